@@ -1,0 +1,211 @@
+"""Records shared by both field models and the client code: who, what is seen, what is done.
+
+Everything is SI inside (metres, seconds, radians). Angles are counter-clockwise positive in a
+right-handed field frame (x toward the right goal, y up); egocentric angles are measured from
+the player's heading, positive to its left. Degrees appear only at the Soccer Server's message
+edge (`field_models.soccer_server`), never here.
+
+The percept is what the paper's clients see (DESIGN.md §2): it carries no truth. The truth
+records are what a coach sees.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Protocol, TypeAlias
+
+LEFT = "left"
+"""Team name of the side that defends the goal at x < 0."""
+RIGHT = "right"
+"""Team name of the side that defends the goal at x > 0."""
+
+
+@dataclass(frozen=True, slots=True, order=True)
+class PlayerRef:
+    """A player (robot) identity: its team and uniform number (robot id)."""
+
+    team: str
+    number: int
+
+    def __str__(self) -> str:
+        return f"{self.team}{self.number}"
+
+
+# ----------------------------------------------------------------------------- percepts
+
+
+@dataclass(frozen=True, slots=True)
+class SeenBall:
+    """The ball as one player perceives it.
+
+    Attributes:
+        distance_m: Distance from the player's centre [m].
+        angle_rad: Direction relative to the player's heading, left positive [rad].
+        distance_change_mps: Rate of change of the distance, when the sensor reports it [m/s].
+        angle_change_radps: Rate of change of the direction, when reported [rad/s].
+    """
+
+    distance_m: float
+    angle_rad: float
+    distance_change_mps: float | None = None
+    angle_change_radps: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class SeenPlayer:
+    """Another player as one player perceives it; team or number is None when not known."""
+
+    distance_m: float
+    angle_rad: float
+    team: str | None = None
+    number: int | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Heard:
+    """A message heard: its text, who said it (when known) and from which direction."""
+
+    text: str
+    sender: PlayerRef | None = None
+    direction_rad: float | None = None
+    tick: int = 0
+
+
+@dataclass(frozen=True, slots=True)
+class Percept:
+    """One player's egocentric view at one decision time.
+
+    Attributes:
+        player: Whose view this is.
+        tick: Tick at which the percept reached the client (decision time).
+        observed_tick: Tick at which the sensor sampled the world (tick minus latency).
+        ball: The ball, or None where the sensor gave nothing.
+        players: Other players seen (teammates and opponents).
+        heard: Messages heard since the previous percept.
+    """
+
+    player: PlayerRef
+    tick: int
+    observed_tick: int
+    ball: SeenBall | None
+    players: tuple[SeenPlayer, ...] = ()
+    heard: tuple[Heard, ...] = ()
+
+
+# ----------------------------------------------------------------------------- actions
+
+
+@dataclass(frozen=True, slots=True)
+class Turn:
+    """Turn the body by `angle_rad` (left positive). The Soccer Server's `(turn Moment)`."""
+
+    angle_rad: float
+
+
+@dataclass(frozen=True, slots=True)
+class Dash:
+    """Drive along the heading with `power` in the server's units ([-100, 100] today).
+
+    On the robots the host maps power to a wheel speed: power/100 of the robot's top speed.
+    """
+
+    power: float
+
+
+@dataclass(frozen=True, slots=True)
+class Kick:
+    """Kick with `power` (server units, [0, 100]) toward `direction_rad` relative to the heading."""
+
+    power: float
+    direction_rad: float
+
+
+@dataclass(frozen=True, slots=True)
+class Say:
+    """Broadcast a short text message to players within hearing range."""
+
+    text: str
+
+
+Action: TypeAlias = Turn | Dash | Kick | Say
+"""The action vocabulary shared by both field models (DESIGN.md §2)."""
+
+
+class Mind(Protocol):
+    """A client mind: turns a percept into at most one body action plus optional says."""
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """Decide what to do on this percept."""
+        ...
+
+
+# ----------------------------------------------------------------------------- truth
+
+
+@dataclass(frozen=True, slots=True)
+class BodyState:
+    """Planar state of a body in the field frame: position [m], heading [rad], velocity [m/s]."""
+
+    x: float
+    y: float
+    heading: float
+    vx: float = 0.0
+    vy: float = 0.0
+
+    @property
+    def speed(self) -> float:
+        """Speed [m/s]."""
+        return math.hypot(self.vx, self.vy)
+
+
+@dataclass(frozen=True, slots=True)
+class Truth:
+    """What the coach sees at one tick: the exact state of every object."""
+
+    tick: int
+    time_s: float
+    ball: BodyState
+    players: dict[PlayerRef, BodyState] = field(default_factory=dict)
+
+
+@dataclass(frozen=True, slots=True)
+class Pitch:
+    """Field geometry both models expose to coaches and recordings.
+
+    The field is centred on the origin; goals are centred on the lines x = ±length_m/2.
+
+    Attributes:
+        length_m: Length between the goal lines [m].
+        width_m: Width between the side lines (or walls) [m].
+        goal_width_m: Distance between the posts' inner edges [m].
+        goal_depth_m: Depth of the goal mouth behind the line [m].
+        ball_radius_m: Ball radius [m], for "wholly over the line" tests and drawing.
+        player_radius_m: Player body half-size [m], for drawing.
+    """
+
+    length_m: float
+    width_m: float
+    goal_width_m: float
+    goal_depth_m: float
+    ball_radius_m: float
+    player_radius_m: float
+
+    @property
+    def half_length_m(self) -> float:
+        """Half the length [m]."""
+        return 0.5 * self.length_m
+
+    @property
+    def half_width_m(self) -> float:
+        """Half the width [m]."""
+        return 0.5 * self.width_m
+
+
+def wrap_angle(angle: float) -> float:
+    """Wrap an angle to [-pi, pi).
+
+    >>> round(wrap_angle(3 * math.pi / 2), 6)
+    -1.570796
+    """
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi

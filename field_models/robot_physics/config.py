@@ -1,0 +1,205 @@
+"""Typed, frozen config records of the robot-physics field model, loaded from preset files.
+
+Numbers and their sources: shared `specs/robot_physics.md` §2.5. Every field name carries its
+unit. Times that the simulation counts (camera period, latencies, timeouts) must be whole
+numbers of physics ticks; :meth:`RobotPhysicsPreset.ticks` converts and refuses anything else,
+so that a configured 50 ms latency is exactly 50 ms, never a rounded 45.8.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from field_models.presets import (
+    PresetError,
+    load_record,
+    non_negative,
+    positive,
+    preset_path,
+    probability,
+    read_toml,
+)
+from field_models.protocol import Pitch
+
+DEFAULT_PRESET = "small_size_1997"
+
+
+@dataclass(frozen=True, slots=True)
+class FieldConfig:
+    """The walled field: playing area inside the walls, goals, walls."""
+
+    length_m: float = field(metadata=positive("goal line to goal line, inside the walls"))
+    width_m: float = field(metadata=positive("side wall to side wall"))
+    goal_width_m: float = field(metadata=positive("between the posts"))
+    goal_depth_m: float = field(metadata=positive("goal box depth behind the line"))
+    wall_thickness_m: float = field(metadata=positive("static box walls; see tunnelling"))
+    corner_fillet_m: float = field(metadata=non_negative("45° corner panel leg length"))
+
+
+@dataclass(frozen=True, slots=True)
+class KickerConfig:
+    """An optional solenoid kicker on the robot's front face."""
+
+    reach_m: float = field(metadata=positive("max gap between front face and ball"))
+    max_speed_mps: float = field(metadata=positive("ball speed at kick power 100"))
+    half_angle_rad: float = field(metadata=positive("ball must be within this of straight ahead"))
+
+
+@dataclass(frozen=True, slots=True)
+class RobotConfig:
+    """A differential-drive mini-robot (square footprint, two wheels)."""
+
+    size_m: float = field(metadata=positive("side of the square footprint"))
+    track_m: float = field(metadata=positive("distance between wheel contact points"))
+    wheel_radius_m: float = field(metadata=positive())
+    max_wheel_speed_mps: float = field(metadata=positive("wheel surface speed cap"))
+    wheel_accel_mps2: float = field(metadata=positive("motor ramp on each wheel's speed"))
+    tyre_mu: float = field(metadata=positive("tyre-floor friction: traction and skid limit"))
+    mass_kg: float = field(metadata=positive())
+    elasticity: float = field(metadata=probability("effective restitution vs the ball"))
+    kicker: KickerConfig | None = None
+
+    @property
+    def max_turn_rate_radps(self) -> float:
+        """Spin rate with the wheels at ±max speed [rad/s]."""
+        return 2.0 * self.max_wheel_speed_mps / self.track_m
+
+
+@dataclass(frozen=True, slots=True)
+class BallConfig:
+    """A golf ball rolling on the table.
+
+    `motion_noise_mps` is the robot-world counterpart of the Soccer Server's `ball_rand`: at every
+    camera period the ball's velocity gets a uniform random kick in [-n, n] m/s on each axis,
+    scaled by its speed relative to `max_speed_mps` (so a resting ball stays at rest), the
+    way `ball_rand` scales its per-cycle perturbation by the ball's speed (soccer_server.md §1.3).
+    """
+
+    radius_m: float = field(metadata=positive())
+    mass_kg: float = field(metadata=positive())
+    rolling_decel_mps2: float = field(metadata=positive("constant rolling deceleration"))
+    stop_speed_mps: float = field(metadata=non_negative("below this the ball is put at rest"))
+    wall_restitution: float = field(metadata=probability())
+    max_speed_mps: float = field(metadata=positive("fastest ball; speeds are clamped to it"))
+    motion_noise_mps: float = field(default=0.0, metadata=non_negative())
+
+
+@dataclass(frozen=True, slots=True)
+class CameraConfig:
+    """The overhead camera: frame rate, latency, noise, missed detections."""
+
+    frame_rate_hz: float = field(metadata=positive())
+    latency_s: float = field(metadata=non_negative("capture to delivery at the host"))
+    position_sigma_m: float = field(metadata=non_negative("Gaussian noise per axis"))
+    heading_sigma_rad: float = field(metadata=non_negative())
+    ball_miss_prob: float = field(metadata=probability("per frame"))
+    robot_miss_prob: float = field(metadata=probability("per robot per frame"))
+    perfect: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class LinkConfig:
+    """The host-to-robot radio/infrared link."""
+
+    packets_per_s: float = field(metadata=positive("one command per packet"))
+    latency_s: float = field(metadata=non_negative())
+    loss_prob: float = field(metadata=probability("per packet"))
+
+
+@dataclass(frozen=True, slots=True)
+class FirmwareConfig:
+    """The robot's on-board loop that runs the newest command it received."""
+
+    timeout_s: float = field(metadata=positive("stop when no command arrives for this long"))
+    goto_gain_per_s: float = field(metadata=positive("heading gain of the GOTO controller"))
+    goto_tolerance_m: float = field(metadata=positive("GOTO ends within this distance"))
+
+
+@dataclass(frozen=True, slots=True)
+class TimingConfig:
+    """The physics step and the solver settings."""
+
+    physics_hz: float = field(metadata=positive("ticks per second, >= 240"))
+    solver_iterations: int = field(metadata=positive())
+    collision_slop_m: float = field(metadata=positive("pymunk default 0.1 is 10 cm in SI"))
+
+
+@dataclass(frozen=True, slots=True)
+class RobotPhysicsPreset:
+    """Everything the robot-physics field model and its camera, link and firmware need."""
+
+    name: str
+    field: FieldConfig
+    robot: RobotConfig
+    ball: BallConfig
+    camera: CameraConfig
+    link: LinkConfig
+    firmware: FirmwareConfig
+    timing: TimingConfig
+    source: str = ""
+
+    @property
+    def dt_s(self) -> float:
+        """Length of one physics tick [s]."""
+        return 1.0 / self.timing.physics_hz
+
+    def ticks(self, seconds: float, what: str) -> int:
+        """Convert a duration to whole ticks, refusing one that is not a whole number of ticks."""
+        exact = seconds * self.timing.physics_hz
+        whole = round(exact)
+        if abs(exact - whole) > 1e-6:
+            raise PresetError(
+                f"{self.source or self.name}: key '{what}': expected a whole number of "
+                f"{1000 * self.dt_s:.4g} ms ticks, got {seconds!r} s ({exact:.3f} ticks)"
+            )
+        return whole
+
+    def pitch(self) -> Pitch:
+        """The geometry coaches and recordings see."""
+        return Pitch(
+            length_m=self.field.length_m,
+            width_m=self.field.width_m,
+            goal_width_m=self.field.goal_width_m,
+            goal_depth_m=self.field.goal_depth_m,
+            ball_radius_m=self.ball.radius_m,
+            player_radius_m=0.5 * self.robot.size_m,
+        )
+
+
+def load_preset(name_or_path: str = DEFAULT_PRESET) -> RobotPhysicsPreset:
+    """Load a robot-physics preset by name (``small_size_1997``, ``vss``) or path.
+
+    Raises:
+        PresetError: naming the file and the key when the file is missing or wrong.
+    """
+    path = preset_path(name_or_path, "robot_physics")
+    table = read_toml(path)
+    table.setdefault("name", Path(path).stem)
+    preset = load_record(RobotPhysicsPreset, {**table, "source": str(path)}, file=path)
+    _validate(preset)
+    return preset
+
+
+def _validate(p: RobotPhysicsPreset) -> None:
+    """Cross-field checks a single key's range cannot express."""
+    if p.timing.physics_hz < 240:
+        raise PresetError(f"{p.source}: key 'timing.physics_hz': expected >= 240 (tunnelling)")
+    p.ticks(1.0 / p.camera.frame_rate_hz, "camera.frame_rate_hz")
+    p.ticks(p.camera.latency_s, "camera.latency_s")
+    p.ticks(p.link.latency_s, "link.latency_s")
+    p.ticks(1.0 / p.link.packets_per_s, "link.packets_per_s")
+    p.ticks(p.firmware.timeout_s, "firmware.timeout_s")
+    if p.field.goal_width_m >= p.field.width_m:
+        raise PresetError(f"{p.source}: key 'field.goal_width_m': expected < field.width_m")
+    # Tunnelling rule (robot_physics.md §3.5): the fastest ball moves less than its radius plus
+    # half a wall per tick.
+    per_tick = p.ball.max_speed_mps * p.dt_s
+    if per_tick >= p.ball.radius_m + 0.5 * p.field.wall_thickness_m:
+        raise PresetError(
+            f"{p.source}: key 'ball.max_speed_mps': {per_tick * 1000:.1f} mm per tick tunnels "
+            "through the walls; lower it, thicken the walls or raise timing.physics_hz"
+        )
+    if p.robot.track_m > p.robot.size_m * math.sqrt(2):
+        raise PresetError(f"{p.source}: key 'robot.track_m': wider than the robot")
