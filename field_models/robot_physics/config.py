@@ -71,10 +71,10 @@ class RobotConfig:
 class BallConfig:
     """A golf ball rolling on the table.
 
-    `motion_noise_mps` is the robot-world counterpart of the Soccer Server's `ball_rand`: at every
-    camera period the ball's velocity gets a uniform random kick in [-n, n] m/s on each axis,
-    scaled by its speed relative to `max_speed_mps` (so a resting ball stays at rest), the
-    way `ball_rand` scales its per-cycle perturbation by the ball's speed (soccer_server.md §1.3).
+    `motion_noise` is the robot-world counterpart of the Soccer Server's ``ball_rand``
+    (soccer_server.md §1.3): every `noise_period_s` the ball's velocity gets a uniform random
+    change in [-n·|v|, n·|v|] m/s on each axis, so a resting ball stays at rest and the
+    perturbation grows with speed, as the server's does per 100 ms cycle. It is dimensionless.
     """
 
     radius_m: float = field(metadata=positive())
@@ -83,7 +83,8 @@ class BallConfig:
     stop_speed_mps: float = field(metadata=non_negative("below this the ball is put at rest"))
     wall_restitution: float = field(metadata=probability())
     max_speed_mps: float = field(metadata=positive("fastest ball; speeds are clamped to it"))
-    motion_noise_mps: float = field(default=0.0, metadata=non_negative())
+    motion_noise: float = field(default=0.0, metadata=non_negative("ball_rand counterpart"))
+    noise_period_s: float = field(default=0.1, metadata=positive("how often noise is applied"))
 
 
 @dataclass(frozen=True, slots=True)
@@ -191,6 +192,7 @@ def _validate(p: RobotPhysicsPreset) -> None:
     p.ticks(p.link.latency_s, "link.latency_s")
     p.ticks(1.0 / p.link.packets_per_s, "link.packets_per_s")
     p.ticks(p.firmware.timeout_s, "firmware.timeout_s")
+    p.ticks(p.ball.noise_period_s, "ball.noise_period_s")
     if p.field.goal_width_m >= p.field.width_m:
         raise PresetError(f"{p.source}: key 'field.goal_width_m': expected < field.width_m")
     # Tunnelling rule (robot_physics.md §3.5): the fastest ball moves less than its radius plus

@@ -1,0 +1,334 @@
+"""The pymunk world of the mini-robots: walled field, goals, differential-drive robots, a ball.
+
+Modelling (shared `specs/robot_physics.md` §3, measured there):
+
+* **Robots** are dynamic square bodies driven through a kinematic *control body* per robot
+  (the pymunk tank pattern, §3.2 option A): a `PivotJoint` with ``max_bias = 0`` and
+  ``max_force = μ·m·g`` pulls the robot's velocity toward the wheels' forward speed, and a
+  `GearJoint` with a yaw-torque cap pulls its spin toward the wheels' turn rate. The caps are the
+  tyres' grip: ask for more than μ·g and the robot skids. The motors are a **wheel-speed ramp**:
+  each wheel's speed moves toward its target by at most ``wheel_accel·dt`` per tick.
+* **Ball rolling resistance** is a `PivotJoint` to the static body with ``max_force = m·a_roll``
+  (§3.4): exact constant deceleration, inside the solver, no Python per step. The ball has an
+  infinite moment (a top-down ball does not spin in the plane).
+* **Walls** are static boxes outside the field lines, thick enough that the fastest ball cannot
+  cross one in a tick (§3.5; checked when the preset loads), with 45° corner panels.
+* **Elasticity** in pymunk is the product of the two shapes' values (§3.1), so the ball has 1.0
+  and each wall or robot carries the per-pair restitution.
+* **Ball-motion noise** (the counterpart of the Soccer Server's ``ball_rand``, see
+  :class:`~field_models.robot_physics.config.BallConfig`) perturbs the ball's velocity every
+  ``noise_period_s`` by a uniform amount per axis proportional to its speed.
+
+Time is counted in integer ticks of ``1/physics_hz`` s. This module imports no drawing, logging
+or CLI code; observers read :meth:`RobotWorld.truth`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+import pymunk
+
+from field_models.protocol import LEFT, RIGHT, BodyState, PlayerRef, Truth
+from field_models.robot_physics.config import RobotPhysicsPreset
+
+GRAVITY_MPS2 = 9.81
+_NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same numbers either way)
+
+
+class _Drive:
+    """One robot's body, its control body and its two wheels' ramped speeds."""
+
+    __slots__ = ("body", "control", "left", "left_target", "right", "right_target")
+
+    def __init__(self, body: pymunk.Body, control: pymunk.Body) -> None:
+        self.body = body
+        self.control = control
+        self.left = 0.0
+        self.right = 0.0
+        self.left_target = 0.0
+        self.right_target = 0.0
+
+
+class RobotWorld:
+    """A walled field with robots and a ball, stepped in fixed ticks of ``1/physics_hz`` s.
+
+    Args:
+        preset: The robot-physics preset.
+        refs: The robots, in a fixed order; index ``i`` in every method means ``refs[i]``.
+        noise_rng: Generator for the ball-motion noise (the trial's "movement" stream).
+    """
+
+    def __init__(
+        self,
+        preset: RobotPhysicsPreset,
+        refs: Sequence[PlayerRef],
+        noise_rng: np.random.Generator | None = None,
+    ) -> None:
+        self.preset = preset
+        self.refs = tuple(refs)
+        self.dt_s = preset.dt_s
+        self.tick = 0
+        self._ramp_step = preset.robot.wheel_accel_mps2 * self.dt_s
+        self._half_track = 0.5 * preset.robot.track_m
+        self._max_wheel = preset.robot.max_wheel_speed_mps
+        self.space = pymunk.Space()
+        self.space.iterations = preset.timing.solver_iterations
+        # pymunk's default slop is 0.1 length units: 10 cm in SI (robot_physics.md §3.1).
+        self.space.collision_slop = preset.timing.collision_slop_m
+        self._build_walls()
+        self.ball = self._build_ball()
+        self._drives = [self._build_robot() for _ in self.refs]
+        self._index = {ref: i for i, ref in enumerate(self.refs)}
+        self._noise_rng = noise_rng
+        self._noise_ticks = max(1, round(preset.ball.noise_period_s / self.dt_s))
+        self._noise_buf: list[float] = []
+
+    # ------------------------------------------------------------------ construction
+
+    def _build_walls(self) -> None:
+        f = self.preset.field
+        hl, hw, t = 0.5 * f.length_m, 0.5 * f.width_m, f.wall_thickness_m
+        gw, gd = 0.5 * f.goal_width_m, f.goal_depth_m
+        boxes = [
+            (-hl - gd - t, hw, hl + gd + t, hw + t),  # top side wall (spans the goal boxes too)
+            (-hl - gd - t, -hw - t, hl + gd + t, -hw),  # bottom side wall
+        ]
+        for sign in (-1.0, 1.0):
+            line_out = sign * hl, sign * (hl + t)
+            back = sign * (hl + gd), sign * (hl + gd + t)
+            boxes += [
+                (min(line_out), gw + t, max(line_out), hw),  # end wall above the goal
+                (min(line_out), -hw, max(line_out), -gw - t),  # end wall below the goal
+                (min(sign * hl, back[1]), gw, max(sign * hl, back[1]), gw + t),  # goal side (post)
+                (min(sign * hl, back[1]), -gw - t, max(sign * hl, back[1]), -gw),
+                (min(back), -gw - t, max(back), gw + t),  # goal back wall
+            ]
+        shapes: list[pymunk.Shape] = [self._static_box(*b) for b in boxes]
+        shapes += self._corner_panels(hl, hw, f.corner_fillet_m)
+        for shape in shapes:
+            shape.elasticity = self.preset.ball.wall_restitution
+            shape.friction = 0.2
+        self.space.add(*shapes)
+
+    def _static_box(self, x0: float, y0: float, x1: float, y1: float) -> pymunk.Poly:
+        corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
+        return pymunk.Poly(self.space.static_body, corners)
+
+    def _corner_panels(self, hl: float, hw: float, leg: float) -> list[pymunk.Shape]:
+        if leg <= 0:
+            return []
+        panels: list[pymunk.Shape] = []
+        for sx in (-1.0, 1.0):
+            for sy in (-1.0, 1.0):
+                cx, cy = sx * hl, sy * hw
+                # A triangle filling the corner, extended into the walls so it has no thin edge.
+                tri = [(cx, cy), (cx - sx * leg, cy), (cx, cy - sy * leg)]
+                panels.append(pymunk.Poly(self.space.static_body, tri))
+        return panels
+
+    def _build_ball(self) -> pymunk.Body:
+        b = self.preset.ball
+        body = pymunk.Body(b.mass_kg, math.inf)
+        shape = pymunk.Circle(body, b.radius_m)
+        shape.elasticity = 1.0  # the per-pair value sits on the other shape (§3.1)
+        shape.friction = 0.2
+        roll = pymunk.PivotJoint(self.space.static_body, body, (0, 0), (0, 0))
+        roll.max_bias = 0.0  # velocity-only: a friction, not a spring
+        roll.max_force = b.mass_kg * b.rolling_decel_mps2
+        self.space.add(body, shape, roll)
+        body.position = (0.0, 0.0)
+        return body
+
+    def _build_robot(self) -> _Drive:
+        r = self.preset.robot
+        body = pymunk.Body(r.mass_kg, pymunk.moment_for_box(r.mass_kg, (r.size_m, r.size_m)))
+        shape = pymunk.Poly.create_box(body, (r.size_m, r.size_m))
+        shape.elasticity = r.elasticity
+        shape.friction = 0.3
+        control = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        grip = r.tyre_mu * r.mass_kg * GRAVITY_MPS2
+        drive = pymunk.PivotJoint(control, body, (0, 0), (0, 0))
+        drive.max_bias = 0.0
+        drive.max_force = grip
+        # Yaw torque the two tyres can give: each carries m·g/2 at ±track/2 (§3.2 option A).
+        spin = pymunk.GearJoint(control, body, 0.0, 1.0)
+        spin.max_bias = 0.0
+        spin.max_force = grip * 0.5 * r.track_m
+        self.space.add(body, shape, control, drive, spin)
+        return _Drive(body, control)
+
+    # ------------------------------------------------------------------ coach side
+
+    def place_robot(self, index: int, x: float, y: float, heading: float) -> None:
+        """Put robot `index` at rest at (x, y) [m] facing `heading` [rad]; wheels stopped."""
+        d = self._drives[index]
+        d.body.position = (x, y)
+        d.body.angle = heading
+        d.body.velocity = (0.0, 0.0)
+        d.body.angular_velocity = 0.0
+        d.control.velocity = (0.0, 0.0)
+        d.control.angular_velocity = 0.0
+        d.left = d.right = d.left_target = d.right_target = 0.0
+        self.space.reindex_shapes_for_body(d.body)
+
+    def place_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0) -> None:
+        """Put the ball at (x, y) [m] with velocity (vx, vy) [m/s], clamped to the max speed."""
+        self.ball.position = (x, y)
+        self.ball.velocity = self._clamp_speed(vx, vy)
+        self.space.reindex_shapes_for_body(self.ball)
+
+    def _clamp_speed(self, vx: float, vy: float) -> tuple[float, float]:
+        speed = math.hypot(vx, vy)
+        cap = self.preset.ball.max_speed_mps
+        if speed > cap:
+            return vx * cap / speed, vy * cap / speed
+        return vx, vy
+
+    # ------------------------------------------------------------------ actuation
+
+    def set_wheel_targets(self, index: int, left_mps: float, right_mps: float) -> None:
+        """Set robot `index`'s wheel-speed targets [m/s], capped at its max wheel speed."""
+        d = self._drives[index]
+        cap = self._max_wheel
+        d.left_target = max(-cap, min(cap, left_mps))
+        d.right_target = max(-cap, min(cap, right_mps))
+
+    def wheel_speeds(self, index: int) -> tuple[float, float]:
+        """Robot `index`'s current (ramped) wheel speeds [m/s], as its encoders read them."""
+        d = self._drives[index]
+        return d.left, d.right
+
+    def kick(self, index: int, power: float, direction_rad: float = 0.0) -> bool:
+        """Fire robot `index`'s kicker with `power` in [0, 100]; True if the ball was in reach.
+
+        The ball is in reach when it touches the robot's front face within the kicker's reach
+        and half-angle. It leaves at ``power/100 · kicker.max_speed_mps`` along the heading plus
+        `direction_rad`, plus the robot's own velocity.
+        """
+        kicker = self.preset.robot.kicker
+        if kicker is None:
+            return False
+        body = self._drives[index].body
+        heading = body.angle
+        dx = self.ball.position.x - body.position.x
+        dy = self.ball.position.y - body.position.y
+        ahead = dx * math.cos(heading) + dy * math.sin(heading)
+        gap = ahead - 0.5 * self.preset.robot.size_m - self.preset.ball.radius_m
+        bearing = math.atan2(dy, dx) - heading
+        bearing = (bearing + math.pi) % (2 * math.pi) - math.pi
+        if gap > kicker.reach_m or ahead <= 0 or abs(bearing) > kicker.half_angle_rad:
+            return False
+        speed = max(0.0, min(100.0, power)) / 100.0 * kicker.max_speed_mps
+        direction = heading + direction_rad
+        vx = speed * math.cos(direction) + body.velocity.x
+        vy = speed * math.sin(direction) + body.velocity.y
+        self.ball.velocity = self._clamp_speed(vx, vy)
+        return True
+
+    # ------------------------------------------------------------------ stepping
+
+    def step(self) -> None:
+        """Advance one tick: ramp the wheels, steer the control bodies, step the solver."""
+        ramp, half_track = self._ramp_step, self._half_track
+        for d in self._drives:
+            left, right = d.left, d.right
+            if left != d.left_target:
+                left = _approach(left, d.left_target, ramp)
+                d.left = left
+            if right != d.right_target:
+                right = _approach(right, d.right_target, ramp)
+                d.right = right
+            v = 0.5 * (left + right)
+            if v != 0.0:
+                heading = d.body.angle
+                d.control.velocity = (v * math.cos(heading), v * math.sin(heading))
+            elif d.control.velocity.x != 0.0 or d.control.velocity.y != 0.0:
+                d.control.velocity = (0.0, 0.0)
+            d.control.angular_velocity = (right - left) / (2.0 * half_track)
+        self.space.step(self.dt_s)
+        self.tick += 1
+        if self._noise_rng is not None and self.tick % self._noise_ticks == 0:
+            self._perturb_ball()
+
+    def _perturb_ball(self) -> None:
+        """Ball-motion noise and the stop threshold, every noise period."""
+        b = self.preset.ball
+        vx, vy = self.ball.velocity
+        speed = math.hypot(vx, vy)
+        if speed < b.stop_speed_mps:
+            if speed > 0.0:
+                self.ball.velocity = (0.0, 0.0)
+            return
+        if b.motion_noise == 0.0:
+            return
+        if len(self._noise_buf) < 2:
+            assert self._noise_rng is not None
+            self._noise_buf = self._noise_rng.uniform(-1.0, 1.0, _NOISE_BLOCK).tolist()
+        amp = b.motion_noise * speed
+        nx = self._noise_buf.pop()
+        ny = self._noise_buf.pop()
+        self.ball.velocity = self._clamp_speed(vx + amp * nx, vy + amp * ny)
+
+    # ------------------------------------------------------------------ truth
+
+    def ball_xy(self) -> tuple[float, float]:
+        """The ball's position [m] (fast path for coaches that check it every tick)."""
+        p = self.ball.position
+        return p.x, p.y
+
+    def ball_state(self) -> BodyState:
+        """The ball's exact state."""
+        p, v = self.ball.position, self.ball.velocity
+        return BodyState(p.x, p.y, 0.0, v.x, v.y)
+
+    def robot_state(self, index: int) -> BodyState:
+        """Robot `index`'s exact state."""
+        body = self._drives[index].body
+        p, v = body.position, body.velocity
+        return BodyState(p.x, p.y, _wrap(body.angle), v.x, v.y)
+
+    def robot_pose(self, index: int) -> tuple[float, float, float]:
+        """Robot `index`'s (x, y, heading) [m, m, rad] (fast path for the camera)."""
+        body = self._drives[index].body
+        p = body.position
+        return p.x, p.y, body.angle
+
+    def robot_spin(self, index: int) -> float:
+        """Robot `index`'s angular velocity [rad/s]."""
+        return float(self._drives[index].body.angular_velocity)
+
+    def truth(self) -> Truth:
+        """Exact state of the ball and every robot."""
+        players = {ref: self.robot_state(i) for i, ref in enumerate(self.refs)}
+        return Truth(self.tick, self.tick * self.dt_s, self.ball_state(), players)
+
+    def goal_scored(self) -> str | None:
+        """Team that conceded if the ball is wholly over a goal line between the posts, else None.
+
+        The left team defends x < 0, so a ball past x = -length/2 is a goal *for* the right team;
+        this returns the scoring side: ``"right"`` then, ``"left"`` for the other goal.
+        """
+        x, y = self.ball_xy()
+        f = self.preset.field
+        if abs(y) >= 0.5 * f.goal_width_m:
+            return None
+        over = 0.5 * f.length_m + self.preset.ball.radius_m
+        if x < -over:
+            return RIGHT
+        if x > over:
+            return LEFT
+        return None
+
+
+def _approach(value: float, target: float, step: float) -> float:
+    """Move `value` toward `target` by at most `step`."""
+    if value < target:
+        return min(target, value + step)
+    return max(target, value - step)
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
