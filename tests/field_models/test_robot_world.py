@@ -1,4 +1,4 @@
-"""The pymunk world against closed forms: rolling ball, unicycle arcs, ramp and grip, walls, goals."""
+"""The pymunk world against closed forms: rolling ball, arcs, ramp and grip, walls, goals."""
 
 from __future__ import annotations
 
@@ -27,10 +27,8 @@ def empty_world(preset=PRESET, refs=ONE, rng=None) -> RobotWorld:
 
 @pytest.mark.parametrize("v0", [0.3, 1.0, 2.0])
 def test_ball_stops_after_v0_over_a_and_v0_squared_over_2a(v0: float) -> None:
-    world = empty_world()
     a = PRESET.ball.rolling_decel_mps2
-    # Roll along the long axis from the left end so even the 2 m/s ball (20 m) would... not fit:
-    # use a world with a long field instead so walls play no part.
+    # A 2 m/s ball rolls 20 m: use a long field so the walls play no part.
     long_field = dataclasses.replace(PRESET.field, length_m=40.0, width_m=4.0)
     world = empty_world(dataclasses.replace(PRESET, field=long_field))
     world.place_ball(-19.0, 0.0, v0, 0.0)
