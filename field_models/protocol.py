@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Protocol, TypeAlias
+from typing import NamedTuple, Protocol, TypeAlias
 
 LEFT = "left"
 """Team name of the side that defends the goal at x < 0."""
@@ -63,6 +63,20 @@ class SeenPlayer:
 
 
 @dataclass(frozen=True, slots=True)
+class SeenLandmark:
+    """A fixed landmark as one player perceives it, named as the Soccer Server names it.
+
+    Goals are ``"g l"`` and ``"g r"`` (the centres of the left and right goal lines); the Soccer
+    Server model adds its flags (``"f c t"``, ...). On the robots the host derives the goals from
+    the robot's detected pose on the known field.
+    """
+
+    name: str
+    distance_m: float
+    angle_rad: float
+
+
+@dataclass(frozen=True, slots=True)
 class Heard:
     """A message heard: its text, who said it (when known) and from which direction."""
 
@@ -83,6 +97,7 @@ class Percept:
         ball: The ball, or None where the sensor gave nothing.
         players: Other players seen (teammates and opponents).
         heard: Messages heard since the previous percept.
+        landmarks: Landmarks seen (goals, flags); empty where the sensor gives none.
     """
 
     player: PlayerRef
@@ -91,6 +106,14 @@ class Percept:
     ball: SeenBall | None
     players: tuple[SeenPlayer, ...] = ()
     heard: tuple[Heard, ...] = ()
+    landmarks: tuple[SeenLandmark, ...] = ()
+
+    def landmark(self, name: str) -> SeenLandmark | None:
+        """The landmark called `name`, if seen."""
+        for mark in self.landmarks:
+            if mark.name == name:
+                return mark
+        return None
 
 
 # ----------------------------------------------------------------------------- actions
@@ -143,9 +166,12 @@ class Mind(Protocol):
 # ----------------------------------------------------------------------------- truth
 
 
-@dataclass(frozen=True, slots=True)
-class BodyState:
-    """Planar state of a body in the field frame: position [m], heading [rad], velocity [m/s]."""
+class BodyState(NamedTuple):
+    """Planar state of a body in the field frame: position [m], heading [rad], velocity [m/s].
+
+    A named tuple rather than a frozen dataclass: coaches read one every tick, and a tuple is
+    built several times faster.
+    """
 
     x: float
     y: float

@@ -44,8 +44,12 @@ class Arena(Protocol):
     """``"robot_physics"`` or ``"soccer_server"``."""
     dt_s: float
     """Length of one tick [s]."""
-    tick: int
-    """Ticks stepped since the trial began."""
+
+    @property
+    def tick(self) -> int:
+        """Ticks stepped since the trial began."""
+        ...
+
     pitch: Pitch
     """Field geometry."""
     players: tuple[PlayerRef, ...]

@@ -30,9 +30,21 @@ from collections.abc import Sequence
 
 import numpy as np
 import pymunk
+from pymunk._chipmunk import lib as _cp
 
 from field_models.protocol import LEFT, RIGHT, BodyState, PlayerRef, Truth
 from field_models.robot_physics.config import RobotPhysicsPreset
+
+# The hot loop calls Chipmunk through pymunk's cffi layer: pymunk's Python property wrappers
+# cost about 3x more per call (measured on pymunk 7.3: setting a velocity 0.62 µs vs 0.21 µs,
+# Space.step 0.77 µs vs 0.23 µs). Only reads, velocity writes and the step go this way; bodies
+# and shapes are built and placed through the public API. Pinned to pymunk 7 in pyproject.toml.
+_get_angle = _cp.cpBodyGetAngle
+_get_position = _cp.cpBodyGetPosition
+_get_velocity = _cp.cpBodyGetVelocity
+_set_velocity = _cp.cpBodySetVelocity
+_set_spin = _cp.cpBodySetAngularVelocity
+_space_step = _cp.cpSpaceStep
 
 GRAVITY_MPS2 = 9.81
 _NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same numbers either way)
@@ -41,11 +53,26 @@ _NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same number
 class _Drive:
     """One robot's body, its control body and its two wheels' ramped speeds."""
 
-    __slots__ = ("body", "control", "left", "left_target", "right", "right_target")
+    __slots__ = (
+        "body",
+        "body_ptr",
+        "control",
+        "control_moving",
+        "control_ptr",
+        "control_spin",
+        "left",
+        "left_target",
+        "right",
+        "right_target",
+    )
 
     def __init__(self, body: pymunk.Body, control: pymunk.Body) -> None:
         self.body = body
         self.control = control
+        self.body_ptr = body._body
+        self.control_ptr = control._body
+        self.control_moving = False
+        self.control_spin = 0.0
         self.left = 0.0
         self.right = 0.0
         self.left_target = 0.0
@@ -85,6 +112,9 @@ class RobotWorld:
         self._noise_rng = noise_rng
         self._noise_ticks = max(1, round(preset.ball.noise_period_s / self.dt_s))
         self._noise_buf: list[float] = []
+        self._space_ptr = self.space._space
+        self._ball_ptr = self.ball._body
+        self.space.step(0.0)  # lets pymunk run its one-off body checks before the fast path
 
     # ------------------------------------------------------------------ construction
 
@@ -171,6 +201,8 @@ class RobotWorld:
         d.body.angular_velocity = 0.0
         d.control.velocity = (0.0, 0.0)
         d.control.angular_velocity = 0.0
+        d.control_moving = False
+        d.control_spin = 0.0
         d.left = d.right = d.left_target = d.right_target = 0.0
         self.space.reindex_shapes_for_body(d.body)
 
@@ -232,23 +264,26 @@ class RobotWorld:
 
     def step(self) -> None:
         """Advance one tick: ramp the wheels, steer the control bodies, step the solver."""
-        ramp, half_track = self._ramp_step, self._half_track
+        ramp, track = self._ramp_step, 2.0 * self._half_track
         for d in self._drives:
             left, right = d.left, d.right
             if left != d.left_target:
-                left = _approach(left, d.left_target, ramp)
-                d.left = left
+                left = d.left = _approach(left, d.left_target, ramp)
             if right != d.right_target:
-                right = _approach(right, d.right_target, ramp)
-                d.right = right
+                right = d.right = _approach(right, d.right_target, ramp)
             v = 0.5 * (left + right)
             if v != 0.0:
-                heading = d.body.angle
-                d.control.velocity = (v * math.cos(heading), v * math.sin(heading))
-            elif d.control.velocity.x != 0.0 or d.control.velocity.y != 0.0:
-                d.control.velocity = (0.0, 0.0)
-            d.control.angular_velocity = (right - left) / (2.0 * half_track)
-        self.space.step(self.dt_s)
+                heading = _get_angle(d.body_ptr)
+                _set_velocity(d.control_ptr, (v * math.cos(heading), v * math.sin(heading)))
+                d.control_moving = True
+            elif d.control_moving:
+                _set_velocity(d.control_ptr, (0.0, 0.0))
+                d.control_moving = False
+            spin = (right - left) / track
+            if spin != d.control_spin:
+                _set_spin(d.control_ptr, spin)
+                d.control_spin = spin
+        _space_step(self._space_ptr, self.dt_s)
         self.tick += 1
         if self._noise_rng is not None and self.tick % self._noise_ticks == 0:
             self._perturb_ball()
@@ -276,25 +311,25 @@ class RobotWorld:
 
     def ball_xy(self) -> tuple[float, float]:
         """The ball's position [m] (fast path for coaches that check it every tick)."""
-        p = self.ball.position
+        p = _get_position(self._ball_ptr)
         return p.x, p.y
 
     def ball_state(self) -> BodyState:
         """The ball's exact state."""
-        p, v = self.ball.position, self.ball.velocity
+        p, v = _get_position(self._ball_ptr), _get_velocity(self._ball_ptr)
         return BodyState(p.x, p.y, 0.0, v.x, v.y)
 
     def robot_state(self, index: int) -> BodyState:
         """Robot `index`'s exact state."""
-        body = self._drives[index].body
-        p, v = body.position, body.velocity
-        return BodyState(p.x, p.y, _wrap(body.angle), v.x, v.y)
+        ptr = self._drives[index].body_ptr
+        p, v = _get_position(ptr), _get_velocity(ptr)
+        return BodyState(p.x, p.y, _wrap(_get_angle(ptr)), v.x, v.y)
 
     def robot_pose(self, index: int) -> tuple[float, float, float]:
         """Robot `index`'s (x, y, heading) [m, m, rad] (fast path for the camera)."""
-        body = self._drives[index].body
-        p = body.position
-        return p.x, p.y, body.angle
+        ptr = self._drives[index].body_ptr
+        p = _get_position(ptr)
+        return p.x, p.y, _get_angle(ptr)
 
     def robot_spin(self, index: int) -> float:
         """Robot `index`'s angular velocity [rad/s]."""

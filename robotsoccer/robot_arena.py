@@ -1,0 +1,146 @@
+"""The robot system as an arena: pymunk world + overhead camera + central host + link + firmware.
+
+One tick (``1/physics_hz`` s), in this order (paper §2, Figures 1–2; DESIGN.md §2):
+
+1. the world steps (wheel ramps, grip, contacts, rolling ball);
+2. packets that arrive this tick reach the firmware of the robot they address (or all, for a
+   broadcast); each robot's firmware turns its newest command into wheel-speed targets, and fires
+   the kicker if the command was a KICK;
+3. on camera ticks the camera captures the true poses; frames whose latency has elapsed reach the
+   host, which builds one egocentric percept per robot and returns them to the runner;
+4. the runner gives each percept to that robot's client mind and hands the actions back through
+   :meth:`RobotArena.submit`; the host translates them to primitives and queues them on the link.
+
+The coach side (`place_*`, `*_state`, `truth`) reads and writes the world directly.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from field_models.protocol import Action, BodyState, Percept, Pitch, PlayerRef, Truth
+from field_models.robot_physics.config import RobotPhysicsPreset
+from field_models.robot_physics.world import RobotWorld
+from robotsoccer.arena import ArenaEvent
+from robotsoccer.camera import OverheadCamera
+from robotsoccer.firmware import Firmware
+from robotsoccer.host import CentralHost
+from robotsoccer.link import Link
+from robotsoccer.seeding import TrialRngs
+
+
+class RobotArena:
+    """The mini-robot testbed behind the :class:`~robotsoccer.arena.Arena` interface."""
+
+    model_name = "robot_physics"
+
+    def __init__(
+        self,
+        preset: RobotPhysicsPreset,
+        players: tuple[PlayerRef, ...],
+        rngs: TrialRngs,
+        *,
+        perfect: bool = False,
+    ) -> None:
+        if perfect:
+            camera = dataclasses.replace(preset.camera, perfect=True)
+            preset = dataclasses.replace(preset, camera=camera)
+        self.preset = preset
+        self.players = players
+        self.pitch: Pitch = preset.pitch()
+        self.dt_s = preset.dt_s
+        self.world = RobotWorld(preset, players, rngs["movement"])
+        frame_ticks = preset.ticks(1.0 / preset.camera.frame_rate_hz, "camera.frame_rate_hz")
+        self.camera = OverheadCamera(
+            preset.camera,
+            players,
+            period_ticks=frame_ticks,
+            latency_ticks=preset.ticks(preset.camera.latency_s, "camera.latency_s"),
+            rng=rngs["camera"],
+        )
+        self.link = Link(
+            preset.link,
+            packet_period_ticks=preset.ticks(1.0 / preset.link.packets_per_s, "link.packets_per_s"),
+            latency_ticks=preset.ticks(preset.link.latency_s, "link.latency_s"),
+            rng=rngs["link"],
+        )
+        timeout = preset.ticks(preset.firmware.timeout_s, "firmware.timeout_s")
+        self.firmware = [
+            Firmware(ref, preset.robot, preset.firmware, timeout_ticks=timeout, dt_s=self.dt_s)
+            for ref in players
+        ]
+        self._by_ref = {ref: i for i, ref in enumerate(players)}
+        self.host = CentralHost(players, preset, self.link, frame_period_ticks=frame_ticks)
+        self._events: list[ArenaEvent] = []
+
+    @property
+    def tick(self) -> int:
+        """Ticks stepped since the trial began."""
+        return self.world.tick
+
+    # ------------------------------------------------------------------ coach side
+
+    def place_player(self, ref: PlayerRef, x: float, y: float, heading: float) -> None:
+        """Put a robot at rest at (x, y) [m] facing `heading` [rad]."""
+        self.world.place_robot(self._by_ref[ref], x, y, heading)
+
+    def place_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0) -> None:
+        """Put the ball at (x, y) [m] moving at (vx, vy) [m/s]."""
+        self.world.place_ball(x, y, vx, vy)
+
+    def ball_state(self) -> BodyState:
+        """The ball's exact state."""
+        return self.world.ball_state()
+
+    def player_state(self, ref: PlayerRef) -> BodyState:
+        """A robot's exact state."""
+        return self.world.robot_state(self._by_ref[ref])
+
+    def truth(self) -> Truth:
+        """Exact state of everything."""
+        return self.world.truth()
+
+    # ------------------------------------------------------------------ client side
+
+    def step(self) -> list[Percept]:
+        """Advance one tick; return the percepts whose camera frame reached the host now."""
+        world = self.world
+        world.step()
+        tick = world.tick
+        for command in self.link.deliver(tick):
+            if command.robot is None:
+                for fw in self.firmware:
+                    fw.receive(command, tick)
+            else:
+                self.firmware[self._by_ref[command.robot]].receive(command, tick)
+        for i, fw in enumerate(self.firmware):
+            if fw.due(tick):
+                left, right = fw.update(tick, *world.wheel_speeds(i))
+                world.set_wheel_targets(i, left, right)
+                power = fw.take_kick()
+                if power is not None:
+                    world.kick(i, power)
+        camera = self.camera
+        if camera.capture_due(tick):
+            bx, by = world.ball_xy()
+            camera.capture(tick, bx, by, [world.robot_pose(i) for i in range(len(self.players))])
+        frames = camera.deliver(tick)
+        if not frames:
+            return []
+        percepts: list[Percept] = []
+        for frame in frames:
+            percepts.extend(self.host.percepts(frame, tick))
+        return percepts
+
+    def submit(self, ref: PlayerRef, actions: tuple[Action, ...]) -> None:
+        """Translate a robot's actions into primitives and queue them on the link."""
+        if actions:
+            self.host.submit(ref, actions, self.world.tick)
+
+    def goto(self, ref: PlayerRef, x: float, y: float) -> bool:
+        """Send a GOTO positioning request (field coordinates [m]) through the host."""
+        return self.host.goto(ref, x, y, self.world.tick)
+
+    def drain_events(self) -> list[ArenaEvent]:
+        """Commands sent since the last call, oldest first."""
+        return self.host.drain_events()

@@ -1,0 +1,135 @@
+"""One trial, start to finish: coach places, field steps, minds act on percepts, coach labels.
+
+A trial is a pure function of its :class:`TrialSpec` and index: the trial's seed sequence is
+derived from the experiment seed and the index alone (DESIGN.md §4), so results do not depend on
+how many workers ran or in which order.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from field_models.protocol import Mind, Percept, PlayerRef
+from robotsoccer.arena import Arena
+from robotsoccer.arenas import make_arena
+from robotsoccer.drills import Drill, Verdict, make_drill
+from robotsoccer.seeding import TrialRngs
+
+Observer = Callable[[Arena, list[Percept]], None]
+"""Called after every tick with the arena and the percepts of that tick (recordings, traces)."""
+
+
+@dataclass(frozen=True, slots=True)
+class TrialSpec:
+    """Everything that defines the trials of one run, except the trial index.
+
+    Attributes:
+        drill: Registered drill name.
+        field_model: ``"robot_physics"`` or ``"soccer_server"``.
+        preset: Preset name or path for that field model.
+        seed: Experiment seed; trial i uses the seed sequence (seed, i).
+        perfect_perception: Robots: camera without noise, misses or latency.
+        record_dir: Folder for rerun recordings, or None.
+        record_trials: Record the trials whose index is below this.
+    """
+
+    drill: str = "shootout"
+    field_model: str = "robot_physics"
+    preset: str = "small_size_1997"
+    seed: int = 0
+    perfect_perception: bool = False
+    record_dir: str | None = None
+    record_trials: int = 0
+
+
+@dataclass(frozen=True, slots=True)
+class TrialResult:
+    """The outcome of one trial."""
+
+    index: int
+    label: str
+    reason: str
+    ticks: int
+    time_s: float
+
+    CSV_HEADER = "index,label,ticks,time_s,reason"
+
+    def csv_row(self) -> str:
+        """This result as a CSV line (the reason is free text without commas)."""
+        return f"{self.index},{self.label},{self.ticks},{self.time_s:.6f},{self.reason}"
+
+    @classmethod
+    def from_csv_row(cls, row: str) -> TrialResult:
+        """Parse a line written by :meth:`csv_row`."""
+        index, label, ticks, time_s, reason = row.rstrip("\n").split(",", 4)
+        return cls(int(index), label, reason, int(ticks), float(time_s))
+
+
+def play(
+    arena: Arena, drill: Drill, minds: dict[PlayerRef, Mind], observer: Observer | None = None
+) -> Verdict:
+    """Step `arena` until `drill` gives a verdict or its time runs out."""
+    max_ticks = round(drill.max_time_s / arena.dt_s)
+    while arena.tick < max_ticks:
+        percepts = arena.step()
+        for percept in percepts:
+            mind = minds.get(percept.player)
+            if mind is not None:
+                arena.submit(percept.player, mind.act(percept))
+        if observer is not None:
+            observer(arena, percepts)
+        verdict = drill.judge(arena)
+        if verdict is not None:
+            return verdict
+    return drill.timeout(arena)
+
+
+def run_trial(spec: TrialSpec, index: int) -> TrialResult:
+    """Run trial `index` of `spec` and return its result."""
+    rngs = TrialRngs.for_trial(spec.seed, index)
+    drill = make_drill(spec.drill)
+    arena = make_arena(
+        spec.field_model, spec.preset, drill.players(), rngs, perfect=spec.perfect_perception
+    )
+    drill.setup(arena, rngs)
+    minds = drill.minds(arena, rngs)
+    if spec.record_dir is not None and index < spec.record_trials:
+        verdict = _play_recorded(arena, drill, minds, spec, index)
+    else:
+        verdict = play(arena, drill, minds)
+    return TrialResult(index, verdict.label, verdict.reason, arena.tick, arena.tick * arena.dt_s)
+
+
+def _play_recorded(
+    arena: Arena, drill: Drill, minds: dict[PlayerRef, Mind], spec: TrialSpec, index: int
+) -> Verdict:
+    from robotsoccer.recording import TrialRecorder  # rerun loads only when recording
+
+    assert spec.record_dir is not None
+    path = Path(spec.record_dir) / f"trial_{index:04d}.rrd"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    every = max(1, round(1.0 / 60.0 / arena.dt_s))  # draw at ≤ 60 Hz: enough to watch
+    recorder = TrialRecorder(
+        path,
+        pitch=arena.pitch,
+        players=arena.players,
+        dt_s=arena.dt_s,
+        recording_id=f"{spec.drill}-{spec.field_model}-seed{spec.seed}-trial{index}",
+        player_shape="square" if arena.model_name == "robot_physics" else "circle",
+        every_ticks=every,
+    )
+
+    def observe(a: Arena, percepts: list[Percept]) -> None:
+        if a.tick % every == 0:
+            recorder.log_truth(a.truth())
+        for percept in percepts:
+            recorder.log_percept(percept, a.player_state(percept.player))
+        recorder.log_events(a.drain_events())
+
+    with recorder:
+        recorder.log_truth(arena.truth())
+        verdict = play(arena, drill, minds, observe)
+        recorder.log_label(arena.tick, verdict.label, verdict.reason)
+    return verdict
