@@ -1,0 +1,331 @@
+"""The central host: camera frames in, one egocentric percept per robot out; actions to primitives.
+
+The paper's off-board computer (§2, Figures 1–2) makes the camera's perception available to one
+client mind per robot, and sends each mind's navigation commands to its robot over the wireless
+link. Here the host sits between :mod:`robotsoccer.camera` and :mod:`robotsoccer.link`:
+
+**Percepts** (DESIGN.md §2). On each delivered frame, :meth:`CentralHost.percepts` builds one
+:class:`~field_models.protocol.Percept` per robot, in `refs` order:
+
+* the robot's own pose is its detection in this frame; when the camera missed it, its last
+  detected pose (from an earlier frame; no dead reckoning); when it was never detected, the
+  percept has no ball and no players (only heard messages);
+* the ball: distance [m] and angle [rad, left of the heading positive] from that pose, or None
+  when the camera missed it in this frame; rates of change are not reported (a client that wants
+  them keeps the previous distance, as the paper's interception skill does, §5);
+* other robots: distance, angle, team and number from this frame's detections only; a robot the
+  camera missed is absent (unknown), not carried over;
+* `observed_tick` is the frame's capture tick, `tick` the decision tick (its delivery);
+* heard: the messages relayed to this robot since its previous percept;
+* landmarks: the two goals (``"g l"``, ``"g r"``: the centres of the goal lines), placed from
+  the robot's pose on the known field, as the Soccer Server's see gives its goals.
+
+**Actions to primitives.** :meth:`CentralHost.submit` takes a mind's actions (the Soccer Server
+vocabulary, `field_models.protocol`) and sends at most one primitive for the first body action
+(Turn, Dash or Kick; later body actions in the same call are ignored, as the server runs one per
+cycle). Let v_max be the top wheel speed, T one camera period, ω_max = 2·v_max/track the top
+spin rate, and α = 2·a/track the spin acceleration the wheel ramp a allows:
+
+* ``Dash(p)``: FORWARD (p > 0) or BACKWARD (p < 0) at |p|/100 · v_max (p clipped to ±100), held
+  for 2·T, so one lost packet does not stall the robot while the next frame's command replaces it
+  in time. ``Dash(0)``: STOP.
+* ``Turn(a)`` (a wrapped to [-π, π)): TURN at ω = min(|a|/T, ω_max, √(α·|a|)) toward a, for
+  D = ⌈|a|/(ω·dt)⌉ ticks, with ω then set to |a|/(D·dt) so that ω·D·dt = |a| exactly. The √(α·|a|)
+  cap lets the wheel ramp reach ω within D; the ramp's lag at the start is then repaid by its
+  run-down at the end, so a turn from rest rotates the robot by a (up to the world's grip and
+  discretisation). ``Turn(0)``: STOP.
+* ``Kick(p, d)`` (d wrapped): with a kicker and |d| within its `half_angle_rad`: KICK(p) (p
+  clipped to 0–100); the wheels keep their command. Without a kicker and |d| <=
+  :data:`PUSH_HALF_ANGLE_RAD`: push, i.e. FORWARD at p/100 · v_max for 2·T. Otherwise (ball
+  direction too far off the heading for the kicker or a push): the Turn(d) above, so that a
+  repeated kick becomes a kick once the robot faces d.
+* ``Say(text)``: not sent to the robot; relayed by the host to every other robot's heard buffer,
+  with the sender and, when both poses are known, the direction of the sender from the listener.
+
+:meth:`CentralHost.goto` sends a positioning request (GOTO) for a target in field coordinates,
+converted into the robot's frame from the host's newest pose estimate.
+"""
+
+from __future__ import annotations
+
+import math
+
+from field_models.protocol import (
+    Action,
+    Dash,
+    Heard,
+    Kick,
+    Percept,
+    PlayerRef,
+    Say,
+    SeenBall,
+    SeenLandmark,
+    SeenPlayer,
+    Turn,
+)
+from field_models.robot_physics.config import RobotPhysicsPreset
+from robotsoccer.arena import ArenaEvent
+from robotsoccer.camera import Frame
+from robotsoccer.link import Command, Link, Primitive
+
+PUSH_HALF_ANGLE_RAD = 0.2
+"""A kicker-less robot pushes the ball only when the kick direction is this close to its heading
+(about 11°); otherwise it turns first."""
+
+DASH_HOLD_PERIODS = 2
+"""Camera periods a Dash (or a push) is held for, so one lost packet does not stall the robot."""
+
+_PI = math.pi
+_TWO_PI = 2.0 * math.pi
+
+Pose = tuple[float, float, float]
+"""(x [m], y [m], heading [rad]) in the field frame."""
+
+
+def _wrap(angle: float) -> float:
+    """Wrap to [-π, π) (inline copy of `protocol.wrap_angle` for the per-frame loop)."""
+    return (angle + _PI) % _TWO_PI - _PI
+
+
+class CentralHost:
+    """Builds percepts from frames and translates client actions into link commands.
+
+    Args:
+        refs: The robots, in the order percepts are returned.
+        preset: The robot-physics preset (robot limits, kicker, tick length).
+        link: The link the commands go out on.
+        frame_period_ticks: Ticks per camera period (T in the module docstring).
+        keep_events: Keep sent commands and messages for :meth:`drain_events`; turn off when
+            nobody drains them (the list would grow).
+    """
+
+    def __init__(
+        self,
+        refs: tuple[PlayerRef, ...],
+        preset: RobotPhysicsPreset,
+        link: Link,
+        *,
+        frame_period_ticks: int,
+        keep_events: bool = True,
+    ) -> None:
+        if frame_period_ticks < 1:
+            raise ValueError(f"frame_period_ticks must be >= 1, got {frame_period_ticks}")
+        self.refs = refs
+        self.preset = preset
+        self.link = link
+        self.frame_period_ticks = frame_period_ticks
+        self.keep_events = keep_events
+        robot = preset.robot
+        self._dt_s = preset.dt_s
+        self._vmax = robot.max_wheel_speed_mps
+        self._max_rate = robot.max_turn_rate_radps
+        self._spin_accel = 2.0 * robot.wheel_accel_mps2 / robot.track_m
+        self._period_s = frame_period_ticks * preset.dt_s
+        self._hold_ticks = DASH_HOLD_PERIODS * frame_period_ticks
+        self._kick_half_angle = None if robot.kicker is None else robot.kicker.half_angle_rad
+        self._index = {ref: i for i, ref in enumerate(refs)}
+        self._poses: list[Pose | None] = [None] * len(refs)
+        self._heard: list[list[Heard]] = [[] for _ in refs]
+        self._seq = 0
+        self._events: list[tuple[int, str, PlayerRef | None, Command | str]] = []
+        half_length = 0.5 * preset.field.length_m
+        self._goals = (("g l", -half_length, 0.0), ("g r", half_length, 0.0))
+
+    # ------------------------------------------------------------------------ perception
+
+    def pose_estimate(self, ref: PlayerRef) -> Pose | None:
+        """The host's newest detected pose of `ref`, or None if never detected."""
+        return self._poses[self._index[ref]]
+
+    def percepts(self, frame: Frame, tick: int) -> list[Percept]:
+        """One egocentric percept per robot, in `refs` order, from a delivered frame."""
+        poses = self._poses
+        index = self._index
+        for det in frame.robots:
+            i = index.get(det.ref)
+            if i is not None:
+                poses[i] = (det.x, det.y, det.heading)
+        ball = frame.ball
+        observed = frame.capture_tick
+        out: list[Percept] = []
+        for i, ref in enumerate(self.refs):
+            heard = tuple(self._heard[i])
+            self._heard[i].clear()
+            pose = poses[i]
+            if pose is None:
+                out.append(Percept(ref, tick, observed, None, (), heard))
+                continue
+            px, py, heading = pose
+            seen_ball = None
+            if ball is not None:
+                dx = ball.x - px
+                dy = ball.y - py
+                seen_ball = SeenBall(math.hypot(dx, dy), _wrap(math.atan2(dy, dx) - heading))
+            players = tuple(
+                SeenPlayer(
+                    math.hypot(det.x - px, det.y - py),
+                    _wrap(math.atan2(det.y - py, det.x - px) - heading),
+                    det.ref.team,
+                    det.ref.number,
+                )
+                for det in frame.robots
+                if det.ref != ref
+            )
+            goals = tuple(
+                SeenLandmark(
+                    name,
+                    math.hypot(gx - px, gy - py),
+                    _wrap(math.atan2(gy - py, gx - px) - heading),
+                )
+                for name, gx, gy in self._goals
+            )
+            out.append(Percept(ref, tick, observed, seen_ball, players, heard, goals))
+        return out
+
+    # ------------------------------------------------------------------------ actuation
+
+    def submit(self, ref: PlayerRef, actions: tuple[Action, ...], tick: int) -> None:
+        """Send the first body action of `ref` as a primitive and relay its says."""
+        acted = False
+        for action in actions:
+            if isinstance(action, Say):
+                self._relay(ref, action.text, tick)
+            elif not acted:
+                acted = True
+                self._translate(ref, action, tick)
+
+    def goto(self, ref: PlayerRef, x: float, y: float, tick: int) -> bool:
+        """Send a GOTO toward field point (x, y) [m]; False if `ref` has no pose estimate yet."""
+        pose = self._poses[self._index[ref]]
+        if pose is None:
+            return False
+        px, py, heading = pose
+        dx = x - px
+        dy = y - py
+        c = math.cos(heading)
+        s = math.sin(heading)
+        self._send(ref, Primitive.GOTO, tick, target_x=c * dx + s * dy, target_y=-s * dx + c * dy)
+        return True
+
+    def stop(self, tick: int, ref: PlayerRef | None = None) -> None:
+        """Send STOP to `ref`, or broadcast it to every robot when `ref` is None."""
+        self._send(ref, Primitive.STOP, tick)
+
+    def drain_events(self) -> list[ArenaEvent]:
+        """Commands sent and messages relayed since the last call, oldest first."""
+        events = [_event(*entry) for entry in self._events]
+        self._events.clear()
+        return events
+
+    # ------------------------------------------------------------------------ internals
+
+    def _translate(self, ref: PlayerRef, action: Action, tick: int) -> None:
+        """Translate one body action into a command (module docstring)."""
+        if isinstance(action, Dash):
+            power = max(-100.0, min(100.0, action.power))
+            self._drive(ref, power / 100.0 * self._vmax, tick)
+        elif isinstance(action, Turn):
+            self._turn(ref, _wrap(action.angle_rad), tick)
+        elif isinstance(action, Kick):
+            power = max(0.0, min(100.0, action.power))
+            direction = _wrap(action.direction_rad)
+            if self._kick_half_angle is not None:
+                if abs(direction) <= self._kick_half_angle:
+                    self._send(ref, Primitive.KICK, tick, value=power)
+                else:
+                    self._turn(ref, direction, tick)
+            elif abs(direction) <= PUSH_HALF_ANGLE_RAD:
+                self._drive(ref, power / 100.0 * self._vmax, tick)
+            else:
+                self._turn(ref, direction, tick)
+        else:
+            raise TypeError(f"not a body action: {action!r}")
+
+    def _drive(self, ref: PlayerRef, speed_mps: float, tick: int) -> None:
+        """FORWARD/BACKWARD at |speed| held for the dash time; STOP for zero."""
+        if speed_mps == 0.0:
+            self._send(ref, Primitive.STOP, tick)
+            return
+        primitive = Primitive.FORWARD if speed_mps > 0.0 else Primitive.BACKWARD
+        self._send(ref, primitive, tick, value=abs(speed_mps), duration_ticks=self._hold_ticks)
+
+    def _turn(self, ref: PlayerRef, angle_rad: float, tick: int) -> None:
+        """A timed TURN that rotates by `angle_rad` (left positive); STOP for zero."""
+        size = abs(angle_rad)
+        if size == 0.0:
+            self._send(ref, Primitive.STOP, tick)
+            return
+        rate, ticks = self.turn_plan(size)
+        self._send(
+            ref, Primitive.TURN, tick, value=math.copysign(rate, angle_rad), duration_ticks=ticks
+        )
+
+    def turn_plan(self, angle_rad: float) -> tuple[float, int]:
+        """Rate [rad/s] and duration [ticks] of a TURN by |angle_rad| (> 0); see the docstring."""
+        size = abs(angle_rad)
+        dt = self._dt_s
+        rate = min(size / self._period_s, self._max_rate, math.sqrt(self._spin_accel * size))
+        ticks = max(1, math.ceil(size / (rate * dt) - 1e-9))
+        return size / (ticks * dt), ticks
+
+    def _send(
+        self,
+        ref: PlayerRef | None,
+        primitive: Primitive,
+        tick: int,
+        *,
+        value: float = 0.0,
+        duration_ticks: int | None = None,
+        target_x: float = 0.0,
+        target_y: float = 0.0,
+    ) -> None:
+        """Number a command, put it on the link and note it as an event."""
+        self._seq += 1
+        command = Command(
+            self._seq, ref, primitive, value, duration_ticks, target_x, target_y, tick
+        )
+        self.link.send(command, tick)
+        if self.keep_events:
+            self._events.append((tick, "command", ref, command))
+
+    def _relay(self, sender: PlayerRef, text: str, tick: int) -> None:
+        """Put a said message into every other robot's heard buffer."""
+        source = self._poses[self._index[sender]]
+        for i, ref in enumerate(self.refs):
+            if ref == sender:
+                continue
+            direction = None
+            listener = self._poses[i]
+            if source is not None and listener is not None:
+                direction = _wrap(
+                    math.atan2(source[1] - listener[1], source[0] - listener[0]) - listener[2]
+                )
+            self._heard[i].append(Heard(text, sender, direction, tick))
+        if self.keep_events:
+            self._events.append((tick, "message", sender, text))
+
+
+def _event(tick: int, channel: str, ref: PlayerRef | None, payload: Command | str) -> ArenaEvent:
+    """Format a noted command or message as an event line."""
+    who = "all" if ref is None else str(ref)
+    if isinstance(payload, str):
+        return ArenaEvent(tick, channel, f"{who} says {payload!r}", ref)
+    return ArenaEvent(tick, channel, f"{who} {describe(payload)}", ref)
+
+
+def describe(command: Command) -> str:
+    """A command as text, e.g. ``FORWARD 0.84 m/s for 16 ticks`` (without the addressee)."""
+    primitive = command.primitive
+    if primitive is Primitive.FORWARD or primitive is Primitive.BACKWARD:
+        text = f"{primitive.name} {command.value:.2f} m/s"
+    elif primitive is Primitive.TURN:
+        text = f"TURN {command.value:+.2f} rad/s"
+    elif primitive is Primitive.KICK:
+        return f"KICK {command.value:.0f}"
+    elif primitive is Primitive.GOTO:
+        return f"GOTO ({command.target_x:+.3f}, {command.target_y:+.3f}) m"
+    else:
+        return "STOP"
+    if command.duration_ticks is not None:
+        text += f" for {command.duration_ticks} ticks"
+    return text

@@ -1,0 +1,287 @@
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from field_models.protocol import LEFT, RIGHT, Dash, Kick, PlayerRef, Say, Turn
+from field_models.robot_physics.config import KickerConfig, RobotPhysicsPreset, load_preset
+from robotsoccer.camera import BallDetection, Frame, RobotDetection
+from robotsoccer.firmware import Firmware
+from robotsoccer.host import PUSH_HALF_ANGLE_RAD, CentralHost
+from robotsoccer.link import Command, Link, Primitive
+
+PRESET = load_preset()
+A = PlayerRef(LEFT, 1)
+B = PlayerRef(LEFT, 2)
+C = PlayerRef(RIGHT, 1)
+REFS = (A, B, C)
+PERIOD = 8
+DT = PRESET.dt_s
+VMAX = PRESET.robot.max_wheel_speed_mps
+
+
+def make_host(preset: RobotPhysicsPreset = PRESET) -> tuple[CentralHost, Link]:
+    link = Link(
+        dataclasses.replace(preset.link, loss_prob=0.0),
+        packet_period_ticks=1,
+        latency_ticks=0,
+        rng=np.random.default_rng(0),
+    )
+    return CentralHost(REFS, preset, link, frame_period_ticks=PERIOD), link
+
+
+def sent(link: Link, tick: int = 0) -> list[Command]:
+    """Commands the host put on the (lossless, zero-latency) link at `tick`."""
+    return link.deliver(tick + 1)
+
+
+def frame(
+    ball: tuple[float, float] | None, *robots: tuple[PlayerRef, float, float, float], tick: int = 0
+) -> Frame:
+    return Frame(
+        tick,
+        tick + 12,
+        None if ball is None else BallDetection(*ball),
+        tuple(RobotDetection(*r) for r in robots),
+    )
+
+
+# ----------------------------------------------------------------------------- percepts
+
+
+def test_percept_geometry_on_hand_made_frame() -> None:
+    host, _ = make_host()
+    f = frame(
+        (0.0, 1.0),
+        (A, 0.0, 0.0, math.pi / 2),  # facing +y
+        (B, 1.0, 0.0, 0.0),
+        (C, -2.0, 0.0, math.pi),
+        tick=40,
+    )
+    pa, pb, pc = host.percepts(f, 52)
+    assert (pa.player, pa.tick, pa.observed_tick) == (A, 52, 40)
+    # A faces the ball straight ahead; B is on A's right; C on A's left.
+    assert pa.ball is not None
+    assert pa.ball.distance_m == pytest.approx(1.0)
+    assert pa.ball.angle_rad == pytest.approx(0.0)
+    seen = {(p.team, p.number): p for p in pa.players}
+    assert set(seen) == {(LEFT, 2), (RIGHT, 1)}
+    assert seen[(LEFT, 2)].distance_m == pytest.approx(1.0)
+    assert seen[(LEFT, 2)].angle_rad == pytest.approx(-math.pi / 2)
+    assert seen[(RIGHT, 1)].distance_m == pytest.approx(2.0)
+    assert seen[(RIGHT, 1)].angle_rad == pytest.approx(math.pi / 2)
+    # B at (1, 0) facing +x: ball at distance √2, 135° to the left.
+    assert pb.ball is not None
+    assert pb.ball.distance_m == pytest.approx(math.sqrt(2))
+    assert pb.ball.angle_rad == pytest.approx(3 * math.pi / 4)
+    # C at (-2, 0) facing -x: A is straight behind, reported in [-π, π).
+    c_sees_a = next(p for p in pc.players if (p.team, p.number) == (LEFT, 1))
+    assert c_sees_a.distance_m == pytest.approx(2.0)
+    assert abs(c_sees_a.angle_rad) == pytest.approx(math.pi)
+    assert -math.pi <= c_sees_a.angle_rad < math.pi
+
+
+def test_missed_objects_unknown_and_own_pose_from_last_detection() -> None:
+    host, _ = make_host()
+    host.percepts(frame((1.0, 0.0), (A, 0.0, 0.0, 0.0), (B, 0.0, 1.0, 0.0)), 12)
+    # Next frame: A missed, B missed, ball seen; C seen for the first time.
+    pa, pb, pc = host.percepts(frame((0.0, 1.0), (C, 3.0, 0.0, math.pi), tick=8), 20)
+    assert host.pose_estimate(A) == (0.0, 0.0, 0.0)
+    assert pa.ball is not None
+    assert pa.ball.distance_m == pytest.approx(1.0)
+    assert pa.ball.angle_rad == pytest.approx(math.pi / 2)  # from A's last pose
+    assert [(p.team, p.number) for p in pa.players] == [(RIGHT, 1)]  # B unknown, not carried
+    assert pb.ball is not None and pb.ball.distance_m == pytest.approx(0.0)
+    assert pc.ball is not None and pc.ball.distance_m == pytest.approx(math.hypot(3.0, 1.0))
+    # Ball missed: no ball for anyone.
+    assert all(p.ball is None for p in host.percepts(frame(None, (A, 0.0, 0.0, 0.0)), 28))
+
+
+def test_never_detected_robot_gets_empty_percept() -> None:
+    host, _ = make_host()
+    pa, pb, pc = host.percepts(frame((1.0, 0.0), (A, 0.0, 0.0, 0.0)), 12)
+    assert pc.ball is None and pc.players == ()
+    assert pb.ball is None and pb.players == () and pb.heard == ()
+    assert pb.observed_tick == 0
+    assert pa.ball is not None
+
+
+# ----------------------------------------------------------------------------- translation
+
+
+def test_dash_forward_and_backward() -> None:
+    host, link = make_host()
+    host.submit(A, (Dash(70.0),), 0)
+    (c,) = sent(link)
+    assert (c.robot, c.primitive, c.duration_ticks, c.sent_tick) == (A, Primitive.FORWARD, 16, 0)
+    assert c.value == pytest.approx(0.84)
+    host.submit(B, (Dash(-150.0),), 5)
+    (c,) = sent(link, 5)
+    assert (c.robot, c.primitive, c.value, c.duration_ticks) == (B, Primitive.BACKWARD, VMAX, 16)
+    host.submit(A, (Dash(0.0),), 9)
+    assert sent(link, 9)[0].primitive is Primitive.STOP
+    texts = [e.text for e in host.drain_events()]
+    assert texts == [
+        "left1 FORWARD 0.84 m/s for 16 ticks",
+        "left2 BACKWARD 1.20 m/s for 16 ticks",
+        "left1 STOP",
+    ]
+    assert host.drain_events() == []
+
+
+def test_turn_rate_and_duration_hand_cases() -> None:
+    host, link = make_host()
+    spin_accel = 2 * PRESET.robot.wheel_accel_mps2 / PRESET.robot.track_m  # 80 rad/s²
+    # 90° left: ramp-limited rate √(80·π/2) = 11.2 rad/s -> ⌈33.6⌉ = 34 ticks.
+    host.submit(A, (Turn(math.pi / 2),), 0)
+    (c,) = sent(link)
+    assert c.primitive is Primitive.TURN and c.duration_ticks == 34
+    assert c.value == pytest.approx((math.pi / 2) / (34 * DT))
+    assert c.value <= math.sqrt(spin_accel * math.pi / 2)
+    # Small right turn: the one-camera-period rate |a|/T, for one period.
+    host.submit(A, (Turn(-0.01),), 1)
+    (c,) = sent(link, 1)
+    assert c.duration_ticks == PERIOD
+    assert c.value == pytest.approx(-0.01 / (PERIOD * DT))
+    # Angles beyond π are wrapped: 3π/2 left is π/2 right.
+    host.submit(A, (Turn(3 * math.pi / 2),), 2)
+    (c,) = sent(link, 2)
+    assert c.value < 0 and c.duration_ticks == 34
+    host.submit(A, (Turn(0.0),), 3)
+    assert sent(link, 3)[0].primitive is Primitive.STOP
+
+
+@pytest.mark.parametrize("angle", [0.05, -0.4, 1.0, -2.0, 3.0])
+def test_turn_from_rest_rotates_by_the_angle(angle: float) -> None:
+    """Host rate/duration + firmware + ramped wheels: the robot ends rotated by the angle."""
+    host, link = make_host()
+    fw = Firmware(A, PRESET.robot, PRESET.firmware, timeout_ticks=PRESET.ticks(0.25, "t"), dt_s=DT)
+    host.submit(A, (Turn(angle),), 0)
+    for c in sent(link):
+        fw.receive(c, 0)
+    left = right = heading = 0.0
+    dv = PRESET.robot.wheel_accel_mps2 * DT
+    for tick in range(200):
+        lt, rt = fw.update(tick, left, right)
+        left += max(-dv, min(dv, lt - left))
+        right += max(-dv, min(dv, rt - right))
+        heading += (right - left) / PRESET.robot.track_m * DT
+    assert left == right == 0.0
+    assert heading == pytest.approx(angle, rel=1e-9)  # the ramp's lag is repaid at the end
+
+
+def test_kick_without_kicker_pushes_or_turns() -> None:
+    host, link = make_host()
+    assert PRESET.robot.kicker is None
+    host.submit(A, (Kick(50.0, 0.1),), 0)
+    (c,) = sent(link)
+    assert (c.primitive, c.duration_ticks) == (Primitive.FORWARD, 16)
+    assert c.value == pytest.approx(0.5 * VMAX)
+    host.submit(A, (Kick(50.0, PUSH_HALF_ANGLE_RAD + 0.3),), 1)
+    (c,) = sent(link, 1)
+    assert c.primitive is Primitive.TURN and c.value > 0
+
+
+def test_kick_with_kicker() -> None:
+    kicker = KickerConfig(reach_m=0.01, max_speed_mps=3.0, half_angle_rad=0.3)
+    preset = dataclasses.replace(PRESET, robot=dataclasses.replace(PRESET.robot, kicker=kicker))
+    host, link = make_host(preset)
+    host.submit(A, (Kick(140.0, -0.25),), 0)
+    (c,) = sent(link)
+    assert (c.primitive, c.value, c.duration_ticks) == (Primitive.KICK, 100.0, None)
+    host.submit(A, (Kick(50.0, -0.5),), 1)
+    (c,) = sent(link, 1)
+    assert c.primitive is Primitive.TURN and c.value < 0
+    assert host.drain_events()[0].text == "left1 KICK 100"
+
+
+def test_one_body_action_per_submit_and_increasing_seq() -> None:
+    host, link = make_host()
+    host.submit(A, (Turn(1.0), Dash(100.0), Kick(10.0, 0.0)), 0)
+    host.submit(B, (Dash(10.0),), 0)
+    cs = sent(link)
+    assert [(c.robot, c.primitive) for c in cs] == [(A, Primitive.TURN), (B, Primitive.FORWARD)]
+    assert cs[0].seq < cs[1].seq
+
+
+def test_goto_in_robot_frame_from_pose_estimate() -> None:
+    host, link = make_host()
+    assert not host.goto(A, 1.0, 1.0, 0)
+    assert sent(link) == []
+    host.percepts(frame(None, (A, 1.0, 1.0, math.pi / 2)), 12)
+    assert host.goto(A, 2.0, 1.5, 12)  # 1 m to the robot's right, 0.5 m ahead
+    (c,) = sent(link, 12)
+    assert c.primitive is Primitive.GOTO and c.duration_ticks is None
+    assert (c.target_x, c.target_y) == (pytest.approx(0.5), pytest.approx(-1.0))
+    assert host.drain_events()[-1].text == "left1 GOTO (+0.500, -1.000) m"
+
+
+def test_broadcast_stop_reaches_every_firmware() -> None:
+    host, link = make_host()
+    fws = [Firmware(r, PRESET.robot, PRESET.firmware, timeout_ticks=60, dt_s=DT) for r in REFS]
+    for fw in fws:
+        fw.receive(Command(0, fw.ref, Primitive.FORWARD, 0.5), 0)
+    host.stop(3)
+    (c,) = sent(link, 3)
+    assert c.robot is None
+    assert all(fw.receive(c, 4) for fw in fws)
+    assert all(fw.update(4, 0.0, 0.0) == (0.0, 0.0) for fw in fws)
+    assert host.drain_events()[0].text == "all STOP"
+
+
+# ----------------------------------------------------------------------------- say / hear
+
+
+def test_say_relayed_to_every_other_robot_once() -> None:
+    host, link = make_host()
+    f = frame(None, (A, 0.0, 0.0, 0.0), (B, 0.0, 2.0, 0.0), (C, 1.0, 0.0, math.pi))
+    host.percepts(f, 12)
+    host.submit(A, (Say("pass to me"), Dash(20.0)), 12)
+    assert [c.primitive for c in sent(link, 12)] == [Primitive.FORWARD]
+    pa, pb, pc = host.percepts(f, 20)
+    assert pa.heard == ()
+    for p, direction in ((pb, -math.pi / 2), (pc, 0.0)):
+        (h,) = p.heard
+        assert (h.text, h.sender, h.tick) == ("pass to me", A, 12)
+        assert h.direction_rad == pytest.approx(direction)
+    assert all(p.heard == () for p in host.percepts(f, 28))
+    events = host.drain_events()
+    assert [(e.channel, e.text) for e in events] == [
+        ("message", "left1 says 'pass to me'"),
+        ("command", "left1 FORWARD 0.24 m/s for 16 ticks"),
+    ]
+
+
+def test_say_from_unseen_robot_has_no_direction() -> None:
+    host, _ = make_host()
+    host.submit(C, (Say("hi"),), 0)
+    pa, pb, pc = host.percepts(frame(None, (A, 0.0, 0.0, 0.0)), 12)
+    assert pa.heard[0].direction_rad is None and pa.heard[0].sender == C
+    assert pb.heard[0].direction_rad is None
+    assert pc.heard == ()
+
+
+# ----------------------------------------------------------------------------- end to end
+
+
+def test_host_link_firmware_pipeline_with_latency() -> None:
+    link = Link(
+        dataclasses.replace(PRESET.link, loss_prob=0.0),
+        packet_period_ticks=1,
+        latency_ticks=3,
+        rng=np.random.default_rng(4),
+    )
+    host = CentralHost(REFS, PRESET, link, frame_period_ticks=PERIOD)
+    fw = Firmware(B, PRESET.robot, PRESET.firmware, timeout_ticks=60, dt_s=DT)
+    outputs = []
+    for tick in range(30):
+        for c in link.deliver(tick):
+            fw.receive(c, tick)
+        if tick == 8:
+            host.submit(B, (Dash(50.0),), tick)
+        outputs.append(fw.update(tick, 0.0, 0.0))
+    moving = [t for t, o in enumerate(outputs) if o != (0.0, 0.0)]
+    assert moving == list(range(11, 27))  # arrives 3 ticks after send, held 2 camera periods
