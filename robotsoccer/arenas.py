@@ -20,20 +20,26 @@ def make_arena(
     rngs: TrialRngs,
     *,
     perfect: bool = False,
+    keep_events: bool = False,
 ) -> Arena:
     """A fresh arena of `field_model` loaded with `preset` and the given players.
 
     Raises:
         ValueError: for an unknown field model.
         field_models.presets.PresetError: for a missing or wrong preset.
+
+    `keep_events` keeps commands and messages for `Arena.drain_events` (recordings, traces).
+        field_models.presets.PresetError: for a missing or wrong preset.
     """
     if field_model == "robot_physics":
         from field_models.robot_physics.config import load_preset
         from robotsoccer.robot_arena import RobotArena
 
-        return RobotArena(load_preset(preset), players, rngs, perfect=perfect)
+        return RobotArena(
+            load_preset(preset), players, rngs, perfect=perfect, keep_events=keep_events
+        )
     if field_model == "soccer_server":
         from robotsoccer.server_arena import SoccerServerArena
 
-        return SoccerServerArena.from_preset(preset, players, rngs)
+        return SoccerServerArena.from_preset(preset, players, rngs, keep_events=keep_events)
     raise ValueError(f"unknown field model {field_model!r} (known: {', '.join(FIELD_MODELS)})")

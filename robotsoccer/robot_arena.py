@@ -41,6 +41,7 @@ class RobotArena:
         rngs: TrialRngs,
         *,
         perfect: bool = False,
+        keep_events: bool = False,
     ) -> None:
         if perfect:
             camera = dataclasses.replace(preset.camera, perfect=True)
@@ -70,8 +71,9 @@ class RobotArena:
             for ref in players
         ]
         self._by_ref = {ref: i for i, ref in enumerate(players)}
-        self.host = CentralHost(players, preset, self.link, frame_period_ticks=frame_ticks)
-        self._events: list[ArenaEvent] = []
+        self.host = CentralHost(
+            players, preset, self.link, frame_period_ticks=frame_ticks, keep_events=keep_events
+        )
 
     @property
     def tick(self) -> int:

@@ -58,7 +58,7 @@ class TrialResult:
 
     def csv_row(self) -> str:
         """This result as a CSV line (the reason is free text without commas)."""
-        return f"{self.index},{self.label},{self.ticks},{self.time_s:.6f},{self.reason}"
+        return f"{self.index},{self.label},{self.ticks},{self.time_s!r},{self.reason}"
 
     @classmethod
     def from_csv_row(cls, row: str) -> TrialResult:
@@ -90,12 +90,18 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
     """Run trial `index` of `spec` and return its result."""
     rngs = TrialRngs.for_trial(spec.seed, index)
     drill = make_drill(spec.drill)
+    recording = spec.record_dir is not None and index < spec.record_trials
     arena = make_arena(
-        spec.field_model, spec.preset, drill.players(), rngs, perfect=spec.perfect_perception
+        spec.field_model,
+        spec.preset,
+        drill.players(),
+        rngs,
+        perfect=spec.perfect_perception,
+        keep_events=recording,
     )
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
-    if spec.record_dir is not None and index < spec.record_trials:
+    if recording:
         verdict = _play_recorded(arena, drill, minds, spec, index)
     else:
         verdict = play(arena, drill, minds)

@@ -1,0 +1,112 @@
+"""Speed measurements behind ``robotsoccer bench``: simulated seconds per wall second, trials/s.
+
+These are benchmarks, not tests: the machines are shared and noisy, so every figure is the
+median of several repeats, and no test asserts a speed.
+
+* ``robot_physics.realtime_factor.N_robots`` — one process, N robots (two teams) all chasing the
+  ball with full camera, host, link and firmware running; simulated seconds per wall second.
+* ``demo.trials_per_s.K_worker(s)`` — the shootout demo drill through the process pool.
+"""
+
+from __future__ import annotations
+
+import math
+import platform
+import statistics
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from field_models.protocol import LEFT, RIGHT, Action, Dash, Percept, PlayerRef, Turn
+from robotsoccer.arenas import make_arena
+from robotsoccer.pool import run_trials
+from robotsoccer.runner import TrialSpec
+from robotsoccer.seeding import TrialRngs
+
+
+@dataclass
+class ChaseMind:
+    """Drive at the perceived ball (turn when off by more than 0.3 rad); a load generator."""
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """One decision per percept."""
+        if percept.ball is None:
+            return (Turn(0.5),)
+        if abs(percept.ball.angle_rad) > 0.3:
+            return (Turn(percept.ball.angle_rad),)
+        return (Dash(100.0),)
+
+
+def robot_realtime_factor(n_robots: int, sim_seconds: float = 20.0, seed: int = 0) -> float:
+    """Simulated seconds per wall second with `n_robots` chasing the ball (robot physics)."""
+    players = tuple(PlayerRef(LEFT if i % 2 == 0 else RIGHT, i // 2 + 1) for i in range(n_robots))
+    rngs = TrialRngs.for_trial(seed, 0)
+    arena = make_arena("robot_physics", "small_size_1997", players, rngs)
+    rng = rngs["placement"]
+    hl, hw = arena.pitch.half_length_m, arena.pitch.half_width_m
+    for ref in players:
+        x, y = rng.uniform(-0.9 * hl, 0.9 * hl), rng.uniform(-0.9 * hw, 0.9 * hw)
+        arena.place_player(ref, float(x), float(y), float(rng.uniform(-math.pi, math.pi)))
+    arena.place_ball(0.0, 0.0, 1.0, 0.5)
+    minds = {ref: ChaseMind() for ref in players}
+    ticks = round(sim_seconds / arena.dt_s)
+    start = time.perf_counter()
+    for _ in range(ticks):
+        for percept in arena.step():
+            arena.submit(percept.player, minds[percept.player].act(percept))
+    wall = time.perf_counter() - start
+    return ticks * arena.dt_s / wall
+
+
+def demo_trials_per_s(workers: int, trials: int, seed: int = 0) -> float:
+    """Shootout demo trials per wall second through the pool (pool start-up included)."""
+    spec = TrialSpec(seed=seed)
+    start = time.perf_counter()
+    run_trials(spec, trials, workers=workers, progress=False)
+    return trials / (time.perf_counter() - start)
+
+
+def median_of(repeats: int, measure: Callable[[], float]) -> float:
+    """Median of `repeats` calls of `measure`."""
+    return statistics.median(measure() for _ in range(repeats))
+
+
+def run_benchmarks(quick: bool = False) -> dict[str, Any]:
+    """All benchmark figures as a nested dict (medians of 3 repeats; 1 when `quick`)."""
+    repeats = 1 if quick else 3
+    sim = 5.0 if quick else 20.0
+    trials = 100 if quick else 600
+    rt2 = median_of(repeats, lambda: robot_realtime_factor(2, sim))
+    rt12 = median_of(repeats, lambda: robot_realtime_factor(12, sim / 2))
+    demo1 = median_of(repeats, lambda: demo_trials_per_s(1, trials // 2))
+    demo2 = median_of(repeats, lambda: demo_trials_per_s(2, trials))
+    results: dict[str, Any] = {
+        "robot_physics": {
+            "realtime_factor": {"2_robots": round(rt2, 1), "12_robots": round(rt12, 1)}
+        },
+        "demo": {"trials_per_s": {"1_worker": round(demo1, 1), "2_workers": round(demo2, 1)}},
+    }
+    results.update(_soccer_server_benchmarks(quick))
+    results["machine"] = {
+        "python": platform.python_version(),
+        "cpu_count": _cpus(),
+        "repeats": repeats,
+        "statistic": "median",
+    }
+    return results
+
+
+def _soccer_server_benchmarks(quick: bool) -> dict[str, Any]:
+    """Soccer Server figures, when that field model is present."""
+    try:
+        from robotsoccer.server_bench import soccer_server_benchmarks
+    except ImportError:
+        return {}
+    return soccer_server_benchmarks(quick)
+
+
+def _cpus() -> int:
+    from robotsoccer.pool import default_workers
+
+    return default_workers()

@@ -1,0 +1,206 @@
+"""The ``robotsoccer`` command line: demo, bench, replay (and the commands later issues add).
+
+Bad input never ends in a traceback: a wrong option, an unknown preset or a wrong preset file
+prints one line naming what is wrong and exits with status 2. Ctrl-C during a run keeps every
+finished trial in the results table and exits with status 130.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import asdict
+from pathlib import Path
+from typing import NoReturn
+
+from field_models.presets import PresetError
+from robotsoccer.arenas import DEFAULT_PRESETS, FIELD_MODELS
+from robotsoccer.drills import DRILLS, make_drill
+from robotsoccer.pool import default_workers, run_trials
+from robotsoccer.runner import TrialResult, TrialSpec
+from robotsoccer.stats import wilson_interval
+
+
+class UsageError(Exception):
+    """A user error reported as one line (exit status 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """An argument parser whose errors are one line and exit 2, without the usage dump."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The full command-line parser."""
+    parser = _Parser(prog="robotsoccer", description=__doc__.splitlines()[0])
+    commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    demo = commands.add_parser("demo", help="run the shootout demo drill headless")
+    _add_run_options(demo, default_trials=200)
+    demo.add_argument("--drill", default="shootout", choices=sorted(DRILLS))
+
+    bench = commands.add_parser("bench", help="measure speed (simulated s per wall s, trials/s)")
+    bench.add_argument("--json", action="store_true", help="print one JSON object")
+    bench.add_argument("--quick", action="store_true", help="one short repeat of each figure")
+
+    replay = commands.add_parser("replay", help="open a recording in the rerun viewer")
+    replay.add_argument("file", type=Path)
+    return parser
+
+
+def _add_run_options(p: argparse.ArgumentParser, default_trials: int) -> None:
+    p.add_argument("--trials", type=_positive_int, default=default_trials)
+    p.add_argument("--field", default="robot_physics", choices=FIELD_MODELS, help="field model")
+    p.add_argument("--field-preset", default=None, help="preset name or .toml path")
+    p.add_argument("--seed", type=int, default=0, help="experiment seed")
+    p.add_argument("--workers", type=_positive_int, default=None, help="default: all cores")
+    p.add_argument("--record", action="store_true", help="write rerun recordings")
+    p.add_argument("--record-trials", type=_positive_int, default=3, help="how many to record")
+    p.add_argument("--out", type=Path, default=None, help="run folder (default under runs/)")
+    p.add_argument("--resume", action="store_true", help="keep finished trials in --out")
+    p.add_argument("--perfect-perception", action="store_true", help="camera without noise")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    return value
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``robotsoccer`` console script."""
+    args = build_parser().parse_args(argv)
+    try:
+        if args.command == "demo":
+            return cmd_demo(args)
+        if args.command == "bench":
+            return cmd_bench(args)
+        if args.command == "replay":
+            return cmd_replay(args)
+    except (PresetError, UsageError, ValueError) as exc:
+        print(f"robotsoccer: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("\nrobotsoccer: interrupted", file=sys.stderr)
+        return 130
+    raise AssertionError(args.command)  # argparse allows only the commands above
+
+
+def cmd_demo(args: argparse.Namespace) -> int:
+    """Run the demo drill and print its summary table."""
+    preset = args.field_preset or DEFAULT_PRESETS[args.field]
+    make_drill(args.drill)  # fail fast on a bad name, before any worker starts
+    run_name = f"{args.drill}-{args.field}-{Path(preset).stem}-seed{args.seed}"
+    out = args.out or Path("runs") / run_name
+    record_dir = Path("recordings") / run_name if args.record else None
+    spec = TrialSpec(
+        drill=args.drill,
+        field_model=args.field,
+        preset=preset,
+        seed=args.seed,
+        perfect_perception=args.perfect_perception,
+        record_dir=str(record_dir) if record_dir else None,
+        record_trials=args.record_trials if args.record else 0,
+    )
+    _check_spec(spec)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "config.json").write_text(json.dumps(asdict(spec) | {"trials": args.trials}, indent=2))
+    workers = args.workers or default_workers()
+    results_path = out / "results.csv"
+    start = time.perf_counter()
+    try:
+        results = run_trials(
+            spec,
+            args.trials,
+            workers=workers,
+            results_path=results_path,
+            resume=args.resume,
+            progress=not args.quiet,
+        )
+    except KeyboardInterrupt:
+        print(
+            f"\nrobotsoccer: interrupted; finished trials are kept in {results_path} "
+            "(rerun with --resume to finish)",
+            file=sys.stderr,
+        )
+        return 130
+    wall = time.perf_counter() - start
+    labels = make_drill(args.drill).labels
+    print(summary_table(results, labels, title=f"{run_name}: {len(results)} trials"))
+    sim = sum(r.time_s for r in results)
+    print(
+        f"\n{sim:.1f} simulated s in {wall:.1f} s wall with {workers} worker(s): "
+        f"{len(results) / wall:.1f} trials/s"
+    )
+    print(f"results: {results_path}")
+    if record_dir is not None:
+        print(f"recordings: {record_dir}/ (open with: robotsoccer replay FILE)")
+    return 0
+
+
+def _check_spec(spec: TrialSpec) -> None:
+    """Build one arena up front so a bad preset fails here with one line, not in a worker."""
+    from robotsoccer.arenas import make_arena
+    from robotsoccer.seeding import TrialRngs
+
+    drill = make_drill(spec.drill)
+    make_arena(spec.field_model, spec.preset, drill.players(), TrialRngs.for_trial(spec.seed, 0))
+
+
+def summary_table(results: Sequence[TrialResult], labels: Sequence[str], title: str) -> str:
+    """A plain-text table: each label's count, share and 95% Wilson interval."""
+    counts = Counter(r.label for r in results)
+    n = len(results)
+    lines = [title, f"{'label':<8}{'count':>7}{'share':>9}   95% interval"]
+    for label in list(labels) + sorted(set(counts) - set(labels)):
+        k = counts.get(label, 0)
+        low, high = wilson_interval(k, n)
+        share = 100.0 * k / n if n else 0.0
+        lines.append(f"{label:<8}{k:>7}{share:>8.1f}%   [{100 * low:.1f}, {100 * high:.1f}]")
+    return "\n".join(lines)
+
+
+def cmd_bench(args: argparse.Namespace) -> int:
+    """Run the benchmarks; print JSON or a readable list."""
+    from robotsoccer.bench import run_benchmarks
+
+    results = run_benchmarks(quick=args.quick)
+    if args.json:
+        print(json.dumps(results))
+    else:
+        for key, value in _flatten(results):
+            print(f"{key:<48} {value}")
+    return 0
+
+
+def _flatten(tree: dict[str, object], prefix: str = "") -> list[tuple[str, object]]:
+    rows: list[tuple[str, object]] = []
+    for key, value in tree.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, dict):
+            rows += _flatten(value, name + ".")
+        else:
+            rows.append((name, value))
+    return rows
+
+
+def cmd_replay(args: argparse.Namespace) -> int:
+    """Open (or, headless, verify and explain how to open) a recording."""
+    from robotsoccer.recording import replay
+
+    return replay(args.file)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

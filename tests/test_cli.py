@@ -1,0 +1,75 @@
+"""The command line: the demo runs, bad input gives one line and a non-zero exit, no traceback."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from robotsoccer.cli import main
+
+
+def run_cli(*args: str, cwd=None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "robotsoccer.cli", *args],
+        capture_output=True,
+        text=True,
+        cwd=cwd,
+        timeout=300,
+    )
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("demo", "--bogus"),
+        ("demo", "--trials", "0"),
+        ("demo", "--workers", "two"),
+        ("demo", "--field", "mars"),
+        ("demo", "--field-preset", "nope"),
+        ("frobnicate",),
+    ],
+)
+def test_bad_option_gives_one_line_and_non_zero_exit(args) -> None:
+    done = run_cli(*args)
+    assert done.returncode == 2
+    assert "Traceback" not in done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert "error" in lines[0]
+
+
+def test_wrong_preset_file_names_file_and_key(tmp_path) -> None:
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[field]\nlength_m = -1\n")
+    done = run_cli("demo", "--field-preset", str(bad))
+    assert done.returncode == 2
+    assert "Traceback" not in done.stderr
+    assert str(bad) in done.stderr
+
+
+def test_demo_prints_a_summary_table_and_writes_results(tmp_path, capsys) -> None:
+    out = tmp_path / "run"
+    code = main(["demo", "--trials", "6", "--workers", "1", "--out", str(out), "--quiet"])
+    assert code == 0
+    text = capsys.readouterr().out
+    for label in ("SAVE", "GOAL", "MISS"):
+        assert label in text
+    assert "95% interval" in text
+    assert len((out / "results.csv").read_text().splitlines()) == 7
+    assert (out / "config.json").exists()
+
+
+def test_demo_with_record_writes_a_recording_that_replays(tmp_path, monkeypatch, capsys) -> None:
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    code = main(
+        ["demo", "--trials", "2", "--workers", "1", "--record", "--record-trials", "1", "--quiet"]
+    )
+    assert code == 0
+    files = sorted((tmp_path / "recordings").rglob("*.rrd"))
+    assert len(files) == 1
+    assert main(["replay", str(files[0])]) == 0
+    assert main(["replay", str(tmp_path / "absent.rrd")]) == 2
