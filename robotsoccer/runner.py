@@ -7,18 +7,22 @@ how many workers ran or in which order.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from field_models.protocol import Mind, Percept, PlayerRef
-from robotsoccer.arena import Arena
+from field_models.protocol import Action, Dash, Kick, Mind, Percept, PlayerRef, Say, Turn
+from robotsoccer.arena import Arena, ArenaEvent
 from robotsoccer.arenas import make_arena
 from robotsoccer.drills import Drill, Verdict, make_drill
 from robotsoccer.seeding import TrialRngs
 
 Observer = Callable[[Arena, list[Percept]], None]
 """Called after every tick with the arena and the percepts of that tick (recordings, traces)."""
+
+DecisionLog = Callable[[Percept, tuple[Action, ...]], None]
+"""Called with every percept a mind acted on and the actions it chose."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,7 +72,11 @@ class TrialResult:
 
 
 def play(
-    arena: Arena, drill: Drill, minds: dict[PlayerRef, Mind], observer: Observer | None = None
+    arena: Arena,
+    drill: Drill,
+    minds: dict[PlayerRef, Mind],
+    observer: Observer | None = None,
+    decisions: DecisionLog | None = None,
 ) -> Verdict:
     """Step `arena` until `drill` gives a verdict or its time runs out."""
     max_ticks = round(drill.max_time_s / arena.dt_s)
@@ -77,7 +85,10 @@ def play(
         for percept in percepts:
             mind = minds.get(percept.player)
             if mind is not None:
-                arena.submit(percept.player, mind.act(percept))
+                actions = mind.act(percept)
+                if decisions is not None:
+                    decisions(percept, actions)
+                arena.submit(percept.player, actions)
         if observer is not None:
             observer(arena, percepts)
         verdict = drill.judge(arena)
@@ -134,8 +145,26 @@ def _play_recorded(
             recorder.log_percept(percept, a.player_state(percept.player))
         recorder.log_events(a.drain_events())
 
+    def decide(percept: Percept, actions: tuple[Action, ...]) -> None:
+        text = ", ".join(map(describe_action, actions)) or "nothing"
+        event = ArenaEvent(percept.tick, "decision", f"{percept.player}: {text}", percept.player)
+        recorder.log_events([event])
+
     with recorder:
         recorder.log_truth(arena.truth())
-        verdict = play(arena, drill, minds, observe)
+        verdict = play(arena, drill, minds, observe, decide)
         recorder.log_label(arena.tick, verdict.label, verdict.reason)
     return verdict
+
+
+def describe_action(action: Action) -> str:
+    """An action in the Soccer Server's words, degrees for angles (for logs and traces)."""
+    if isinstance(action, Turn):
+        return f"turn {math.degrees(action.angle_rad):.1f}"
+    if isinstance(action, Dash):
+        return f"dash {action.power:.0f}"
+    if isinstance(action, Kick):
+        return f"kick {action.power:.0f} {math.degrees(action.direction_rad):.1f}"
+    if isinstance(action, Say):
+        return f"say {action.text}"
+    raise TypeError(f"not an action: {action!r}")
