@@ -8,10 +8,10 @@ PY=${PYTHON:-python3}
 [ -x .venv/bin/python ] || "$PY" -m venv .venv
 . .venv/bin/activate
 export PIP_DISABLE_PIP_VERSION_CHECK=1
-if ! python -c "import torch" 2>/dev/null; then
+if ! pip show -q torch >/dev/null 2>&1; then
   pip install -q torch==2.13.0 2>&1 | grep -v "is ignored" || true
 fi
-python -c "import torch" || { echo "setup.sh: torch failed to install" >&2; exit 1; }
+pip show -q torch >/dev/null 2>&1 || { echo "setup.sh: torch failed to install" >&2; exit 1; }
 pip install -q -e ".[dev]" 2>&1 | grep -v "is ignored" || true
 python -c "import robotsoccer, field_models, learning" || { echo "setup.sh: install failed" >&2; exit 1; }
 echo "setup.sh: ready (.venv)"
