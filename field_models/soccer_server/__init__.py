@@ -1,0 +1,49 @@
+"""The Soccer Server field model: a re-implementation of rcssserver's dynamics and sensing.
+
+Modules (specs/soccer_server.md):
+
+* :mod:`~field_models.soccer_server.params` — :class:`DynamicsParams`, :class:`ServerPreset` and
+  :func:`load_server_preset` for the presets ``soccer_server_1996`` (the paper's era) and
+  ``rcssserver_19`` (today's defaults) in ``field_models/presets/soccer_server/``.
+* :mod:`~field_models.soccer_server.sensing_params` — :class:`SensingParams` (see/hear timing,
+  view cone, quantisation).
+* :mod:`~field_models.soccer_server.dynamics` — :class:`SoccerServerModel`: one trial's 100 ms
+  cycles (commands, movement with noise, collisions, goals and referee messages).
+* :mod:`~field_models.soccer_server.batch` — :class:`BatchSoccerServer`: K trials as numpy
+  arrays, equal to K single models seed for seed.
+
+Typical use (noise from the trial's own generator)::
+
+    preset = load_server_preset("soccer_server_1996")
+    model = SoccerServerModel(preset, (PlayerRef(LEFT, 1),), rng)
+    model.move_ball(0.0, 0.0)
+    model.move_player(1, -1.0, 0.0, 0.0)
+    model.command(1, Kick(100.0, 0.0))
+    messages = model.step()          # referee messages of the cycle, e.g. ["goal_l_1"]
+"""
+
+from field_models.soccer_server.batch import BatchSoccerServer
+from field_models.soccer_server.dynamics import (
+    PLAY_MODES,
+    SoccerServerModel,
+    goal_side,
+    kick_effectiveness,
+)
+from field_models.soccer_server.params import (
+    DynamicsParams,
+    ServerPreset,
+    load_server_preset,
+)
+from field_models.soccer_server.sensing_params import SensingParams
+
+__all__ = [
+    "PLAY_MODES",
+    "BatchSoccerServer",
+    "DynamicsParams",
+    "SensingParams",
+    "ServerPreset",
+    "SoccerServerModel",
+    "goal_side",
+    "kick_effectiveness",
+    "load_server_preset",
+]

@@ -1,0 +1,585 @@
+"""Many independent Soccer Server trials stepped at once as numpy arrays (issue 3, item 5).
+
+:class:`BatchSoccerServer` holds K trials of the same preset and the same players, each with
+its own generator, as arrays of shape (K, N+1) (row 0 the ball, rows 1..N the players). A step
+does for all trials what :meth:`SoccerServerModel.step
+<field_models.soccer_server.dynamics.SoccerServerModel.step>` does for one, with the same
+operations in the same order on the same random numbers, so trial k equals a single model
+built with generator k, seed for seed (``tests/field_models/test_ss_batch.py``).
+
+What batch mode supports: the ball and the players; dash, turn and kick with the server's
+clamping and one body command per cycle; the trainer's moves and ``change_mode``; movement
+noise, turn noise, kick noise; collisions; the referee's goals and kick-offs. What it does not
+support: say/hear and sensing (no see messages; read the state arrays instead).
+
+Numbers: positions [m] and stored velocities [m/cycle] in :attr:`BatchSoccerServer.x` etc.;
+command arguments as in the single model (power in server units, angles in radians, counter-
+clockwise). Each argument may be a scalar or an array of K values; `mask` (K booleans)
+selects the trials a call applies to.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+from field_models.protocol import BodyState, PlayerRef, wrap_angle
+from field_models.soccer_server.dynamics import (
+    AFTER_GOAL_MODES,
+    BEFORE_KICK_OFF,
+    COLLISION_PASSES,
+    COLLISION_VELOCITY_FACTOR,
+    DASH,
+    EPS,
+    KICK,
+    NO_COMMAND,
+    PLAY_MODES,
+    PLAY_ON,
+    RESTART_MODES,
+    SEPARATION_RETRIES,
+    TURN,
+    row_layout,
+    side_of,
+    turn_factor,
+    unit_noise,
+)
+from field_models.soccer_server.params import ServerPreset
+
+BATCH_BLOCK_CYCLES = 64
+"""Cycles of random numbers drawn at once per trial (any value gives the same numbers)."""
+
+_CODE = {mode: code for code, mode in enumerate(PLAY_MODES)}
+_BKO, _PLAY_ON = _CODE[BEFORE_KICK_OFF], _CODE[PLAY_ON]
+_GOAL_L, _GOAL_R = _CODE["goal_l"], _CODE["goal_r"]
+_KICK_OFF_L, _KICK_OFF_R = _CODE["kick_off_l"], _CODE["kick_off_r"]
+_RESTART_CODES = np.array([_CODE[m] for m in RESTART_MODES])
+
+FloatArg = float | np.ndarray
+"""A scalar for every trial, or one value per trial."""
+
+
+class BatchSoccerServer:
+    """K independent Soccer Server trials of one preset, stepped together.
+
+    Attributes:
+        preset: The server configuration. params: its dynamics.
+        players: The players, rows 1..N of every trial.
+        k: Number of trials.
+        cycle: Cycles stepped so far (all trials step together).
+        x, y: Positions (K, N+1) [m]. vx, vy: stored velocities (K, N+1) [m/cycle].
+        heading: Body angles (K, N+1) [rad]; column 0 (the ball) stays 0.
+        mode: Play-mode code per trial, an index into
+            :data:`~field_models.soccer_server.dynamics.PLAY_MODES`.
+        score_left, score_right: Goals per trial.
+    """
+
+    def __init__(
+        self,
+        preset: ServerPreset,
+        players: tuple[PlayerRef, ...],
+        rngs: Sequence[np.random.Generator],
+    ) -> None:
+        p = preset.dynamics
+        self.preset = preset
+        self.params = p
+        self.players = tuple(players)
+        self.rngs = list(rngs)
+        self.k = len(self.rngs)
+        n = len(self.players) + 1
+        self._n = n
+        shape = (self.k, n)
+        self.cycle = 0
+        self.x = np.zeros(shape)
+        self.y = np.zeros(shape)
+        self.x[:, 1:] = [-3.0 * i for i in range(1, n)]  # off the pitch, as the single model
+        self.y[:, 1:] = -(0.5 * p.pitch_width_m + 3.0)
+        self.vx = np.zeros(shape)
+        self.vy = np.zeros(shape)
+        self.heading = np.zeros(shape)
+        self._ax = np.zeros(shape)
+        self._ay = np.zeros(shape)
+        self.mode = np.full(self.k, _PLAY_ON)
+        self.score_left = np.zeros(self.k, dtype=int)
+        self.score_right = np.zeros(self.k, dtype=int)
+        self._after_goal = np.zeros(self.k, dtype=int)
+        self._kind = np.zeros(shape, dtype=np.int8)
+        self._arg1 = np.zeros(shape)
+        self._arg2 = np.zeros(shape)
+        self._announce: dict[int, list[str]] = {}
+        self._decay = np.array([p.ball_decay] + [p.player_decay] * (n - 1))
+        self._rand = np.array([p.ball_rand] + [p.player_rand] * (n - 1))
+        self._amax = np.array(
+            [p.ball_accel_max_m_per_cycle2] + [p.player_accel_max_m_per_cycle2] * (n - 1)
+        )
+        self._smax = np.array(
+            [p.ball_speed_max_m_per_cycle] + [p.player_speed_max_m_per_cycle] * (n - 1)
+        )
+        sizes = [p.ball_size_m] + [p.player_size_m] * (n - 1)
+        self._pairs = [(0, b) for b in range(1, n)]
+        self._pairs += [(a, b) for a in range(1, n) for b in range(a + 1, n)]
+        self._reach = [sizes[a] + sizes[b] for a, b in self._pairs]
+        self._reach2 = [(sizes[a] + sizes[b]) ** 2 for a, b in self._pairs]
+        self._side = np.array([0] + [side_of(ref) for ref in self.players])
+        self._has_left = bool((self._side == 1).any())
+        self._has_right = bool((self._side == -1).any())
+        self._layout = row_layout(n - 1)
+        self._rows = np.empty((self.k, BATCH_BLOCK_CYCLES, self._layout.width))
+        self._block_row = BATCH_BLOCK_CYCLES
+        self._noise: tuple[np.ndarray, ...] = ()
+
+    # ------------------------------------------------------------------ look-ups
+
+    def row(self, ref: PlayerRef) -> int:
+        """Row (1..N) of player `ref`."""
+        return self.players.index(ref) + 1
+
+    def mode_name(self, trial: int) -> str:
+        """Play mode of one trial."""
+        return PLAY_MODES[int(self.mode[trial])]
+
+    def ball_state(self, trial: int) -> BodyState:
+        """The ball of one trial: position [m], velocity [m/s]."""
+        return self._state(trial, 0)
+
+    def player_state(self, trial: int, i: int) -> BodyState:
+        """Player row `i` of one trial: position [m], heading [rad], velocity [m/s]."""
+        self._check_player(i)
+        return self._state(trial, i)
+
+    def _state(self, trial: int, i: int) -> BodyState:
+        k = 1.0 / self.params.dt_s
+        return BodyState(
+            float(self.x[trial, i]),
+            float(self.y[trial, i]),
+            float(self.heading[trial, i]),
+            float(self.vx[trial, i]) * k,
+            float(self.vy[trial, i]) * k,
+        )
+
+    def _mask(self, mask: np.ndarray | None) -> np.ndarray:
+        if mask is None:
+            return np.ones(self.k, dtype=bool)
+        return np.asarray(mask, dtype=bool)
+
+    def _check_player(self, i: int) -> None:
+        if not 0 < i < self._n:
+            raise IndexError(f"player row {i} outside 1..{self._n - 1}")
+
+    # ------------------------------------------------------------------ coach / trainer
+
+    def move_ball(
+        self,
+        x: FloatArg,
+        y: FloatArg,
+        vx_mps: FloatArg = 0.0,
+        vy_mps: FloatArg = 0.0,
+        mask: np.ndarray | None = None,
+    ) -> None:
+        """Put the ball at (x, y) [m] with velocity [m/s] in the trials of `mask`."""
+        m = self._mask(mask)
+        dt = self.params.dt_s
+        self.x[:, 0] = np.where(m, x, self.x[:, 0])
+        self.y[:, 0] = np.where(m, y, self.y[:, 0])
+        self.vx[:, 0] = np.where(m, np.multiply(vx_mps, dt), self.vx[:, 0])
+        self.vy[:, 0] = np.where(m, np.multiply(vy_mps, dt), self.vy[:, 0])
+        self._ax[:, 0] = np.where(m, 0.0, self._ax[:, 0])
+        self._ay[:, 0] = np.where(m, 0.0, self._ay[:, 0])
+
+    def move_player(
+        self,
+        i: int,
+        x: FloatArg,
+        y: FloatArg,
+        heading_rad: FloatArg,
+        vx_mps: FloatArg = 0.0,
+        vy_mps: FloatArg = 0.0,
+        mask: np.ndarray | None = None,
+    ) -> None:
+        """Put player row `i` at (x, y) facing `heading_rad`, then resolve overlaps (§5)."""
+        self._check_player(i)
+        m = self._mask(mask)
+        dt = self.params.dt_s
+        heading = np.broadcast_to(np.asarray(heading_rad, dtype=float), (self.k,))
+        wrapped = np.array([wrap_angle(h) for h in heading.tolist()])
+        self.x[:, i] = np.where(m, x, self.x[:, i])
+        self.y[:, i] = np.where(m, y, self.y[:, i])
+        self.heading[:, i] = np.where(m, wrapped, self.heading[:, i])
+        self.vx[:, i] = np.where(m, np.multiply(vx_mps, dt), self.vx[:, i])
+        self.vy[:, i] = np.where(m, np.multiply(vy_mps, dt), self.vy[:, i])
+        self._collide(m)
+
+    def change_mode(self, mode: str, mask: np.ndarray | None = None) -> None:
+        """Set the play mode in the trials of `mask`; announced at the next step."""
+        if mode not in PLAY_MODES:
+            raise ValueError(f"unknown play mode {mode!r}; known: {', '.join(PLAY_MODES)}")
+        m = self._mask(mask)
+        self.mode[m] = _CODE[mode]
+        self._after_goal[m] = 0
+        if mode not in AFTER_GOAL_MODES:
+            for trial in np.flatnonzero(m).tolist():
+                self._announce.setdefault(trial, []).append(mode)
+
+    # ------------------------------------------------------------------ player commands
+
+    def dash(self, i: int, power: FloatArg, mask: np.ndarray | None = None) -> np.ndarray:
+        """Queue ``(dash power)`` for player row `i`; returns the trials that accepted it."""
+        p = self.params
+        return self._queue(i, DASH, np.clip(power, p.min_dash_power, p.max_dash_power), 0.0, mask)
+
+    def turn(self, i: int, angle_rad: FloatArg, mask: np.ndarray | None = None) -> np.ndarray:
+        """Queue a turn by `angle_rad` (left positive), clamped in the server's sign."""
+        p = self.params
+        angle = -np.clip(np.negative(angle_rad), p.minmoment_rad, p.maxmoment_rad)
+        return self._queue(i, TURN, angle, 0.0, mask)
+
+    def kick(
+        self, i: int, power: FloatArg, direction_rad: FloatArg, mask: np.ndarray | None = None
+    ) -> np.ndarray:
+        """Queue a kick; power and direction clamped as in the single model."""
+        p = self.params
+        power = np.clip(power, p.minpower, p.maxpower)
+        direction = -np.clip(np.negative(direction_rad), p.minmoment_rad, p.maxmoment_rad)
+        return self._queue(i, KICK, power, direction, mask)
+
+    def _queue(
+        self, i: int, kind: int, arg1: FloatArg, arg2: FloatArg, mask: np.ndarray | None
+    ) -> np.ndarray:
+        self._check_player(i)
+        ok = self._mask(mask) & (self._kind[:, i] == NO_COMMAND)
+        self._kind[:, i] = np.where(ok, kind, self._kind[:, i])
+        self._arg1[:, i] = np.where(ok, arg1, self._arg1[:, i])
+        self._arg2[:, i] = np.where(ok, arg2, self._arg2[:, i])
+        return ok
+
+    # ------------------------------------------------------------------ the cycle
+
+    def step(self) -> list[tuple[int, str]]:
+        """Advance every trial one cycle; return the referee messages as (trial, text)."""
+        messages = self._announce
+        self._announce = {}
+        if self._block_row == BATCH_BLOCK_CYCLES:
+            self._refill()
+        r = self._block_row
+        self._block_row += 1
+        if (self._kind != NO_COMMAND).any():
+            self._run_commands(r, messages)
+        bx0, by0 = self.x[:, 0].copy(), self.y[:, 0].copy()
+        held = self.mode == _BKO
+        self._hold_players(held)
+        moving = ~held
+        self._move_objects(r, moving)
+        self._collide(moving)
+        if self.params.referee:
+            self._judge(bx0, by0, moving, messages)
+        self.cycle += 1
+        return [(trial, text) for trial in sorted(messages) for text in messages[trial]]
+
+    def _refill(self) -> None:
+        """Draw every trial's next rows and give each object its update slot's noise."""
+        lay = self._layout
+        u = self._rows
+        for rng, rows in zip(self.rngs, u, strict=True):
+            rng.random(out=rows)  # the same numbers as the single model's block draws
+        slot = _ranks(u[..., lay.order])  # slot[..., i]: when object i is updated
+        model = self.params.noise_model
+        move_a = np.take_along_axis(u[..., lay.move_a], slot, axis=-1)
+        move_b = np.take_along_axis(u[..., lay.move_b], slot, axis=-1)
+        move_x, move_y = unit_noise(move_a, move_b, model)
+        # Kick noise is shaped when a kick happens (kicks are few).
+        self._noise = (
+            move_x,
+            move_y,
+            turn_factor(u[..., lay.turn], self.params.player_rand),
+            u[..., lay.kick_a].copy(),
+            u[..., lay.kick_b].copy(),
+        )
+        self._block_row = 0
+
+    def _run_commands(self, r: int, messages: dict[int, list[str]]) -> None:
+        kicked = np.zeros(self.k, dtype=bool)
+        for i in range(1, self._n):
+            kind = self._kind[:, i]
+            if (kind == DASH).any():
+                self._do_dash(i, kind == DASH)
+            if (kind == TURN).any():
+                self._do_turn(i, kind == TURN, self._noise[2][:, r, i - 1])
+            if (kind == KICK).any():
+                kicked |= self._do_kick(i, kind == KICK, r)
+        self._kind[:] = NO_COMMAND
+        restart = kicked & np.isin(self.mode, _RESTART_CODES)
+        if self.params.referee and restart.any():
+            self.mode[restart] = _PLAY_ON
+            for trial in np.flatnonzero(restart).tolist():
+                messages.setdefault(trial, []).append(PLAY_ON)
+
+    def _do_dash(self, i: int, m: np.ndarray) -> None:
+        a = self._arg1[:, i] * self.params.dash_power_rate_m_per_cycle2
+        h = self.heading[:, i]
+        self._ax[:, i] = np.where(m, self._ax[:, i] + a * np.cos(h), self._ax[:, i])
+        self._ay[:, i] = np.where(m, self._ay[:, i] + a * np.sin(h), self._ay[:, i])
+
+    def _do_turn(self, i: int, m: np.ndarray, factor: np.ndarray) -> None:
+        vx, vy = self.vx[:, i], self.vy[:, i]
+        speed = np.sqrt(vx * vx + vy * vy)
+        inertia = self.params.inertia_moment_cycle_per_m
+        h = self.heading[:, i] + factor * self._arg1[:, i] / (1.0 + inertia * speed)
+        h = np.where(h >= math.pi, h - 2.0 * math.pi, np.where(h < -math.pi, h + 2.0 * math.pi, h))
+        self.heading[:, i] = np.where(m, h, self.heading[:, i])
+
+    def _do_kick(self, i: int, m: np.ndarray, r: int) -> np.ndarray:
+        """Kick in the trials of `m` where allowed and in reach; returns where it was taken."""
+        p = self.params
+        stopped = (self.mode == _BKO) | (self.mode == _GOAL_L) | (self.mode == _GOAL_R)
+        rx = self.x[:, 0] - self.x[:, i]
+        ry = self.y[:, 0] - self.y[:, i]
+        dist2 = rx * rx + ry * ry
+        reach = p.kickable_area_m
+        ok = m & ~stopped & ~(dist2 > reach * reach)
+        idx = np.flatnonzero(ok)
+        if idx.size == 0:
+            return ok
+        h = self.heading[idx, i]
+        ch, sh = np.cos(h), np.sin(h)
+        rx, ry, dist2 = rx[idx], ry[idx], dist2[idx]
+        cross = np.abs(ch * ry - sh * rx)
+        dot = ch * rx + sh * ry
+        # math.atan2, not np.arctan2: the two differ in the last bit (kicks are few).
+        dir_diff = np.array(
+            [math.atan2(c, d) for c, d in zip(cross.tolist(), dot.tolist(), strict=True)]
+        )
+        gap = np.sqrt(dist2) - p.player_size_m - p.ball_size_m
+        if p.kick_reduction:
+            k = 1.0 - 0.25 * dir_diff / math.pi - 0.25 * gap / p.kickable_margin_m
+        else:
+            k = np.ones(idx.size)
+        power = self._arg1[idx, i]
+        a = power * p.kick_power_rate_m_per_cycle2 * k
+        ang = h + self._arg2[idx, i]
+        ax = a * np.cos(ang)
+        ay = a * np.sin(ang)
+        if p.kick_rand:
+            bvx, bvy = self.vx[idx, 0], self.vy[idx, 0]
+            radius = self._kick_noise_radius(power, gap, dir_diff, np.sqrt(bvx * bvx + bvy * bvy))
+            nx, ny = unit_noise(
+                self._noise[3][idx, r, i - 1], self._noise[4][idx, r, i - 1], p.noise_model
+            )
+            ax = ax + radius * nx
+            ay = ay + radius * ny
+        self._ax[idx, 0] = self._ax[idx, 0] + ax
+        self._ay[idx, 0] = self._ay[idx, 0] + ay
+        return ok
+
+    def _kick_noise_radius(
+        self, power: np.ndarray, gap: np.ndarray, dir_diff: np.ndarray, ball_speed: np.ndarray
+    ) -> np.ndarray:
+        p = self.params
+        scale = p.kick_rand * (power / p.maxpower)
+        if p.noise_model == "box":
+            return scale
+        pos_rate = 0.5 + 0.25 * (dir_diff / math.pi + gap / p.kickable_margin_m)
+        speed_rate = 0.5 + 0.5 * (ball_speed / (p.ball_speed_max_m_per_cycle * p.ball_decay))
+        return scale * (pos_rate + speed_rate)
+
+    def _hold_players(self, held: np.ndarray) -> None:
+        if held.any():
+            for arr in (self.vx, self.vy, self._ax, self._ay):
+                arr[held, 1:] = 0.0
+
+    def _move_objects(self, r: int, moving: np.ndarray) -> None:
+        """The per-object update of all objects of the moving trials (§1.2)."""
+        vx, vy, ax, ay = self.vx, self.vy, self._ax, self._ay
+        pushed = (ax != 0.0) | (ay != 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            a2 = ax * ax + ay * ay
+            f = self._amax / np.sqrt(a2)
+            over = a2 > self._amax * self._amax
+            cax, cay = np.where(over, ax * f, ax), np.where(over, ay * f, ay)
+            ux, uy = vx + cax, vy + cay
+            v2 = ux * ux + uy * uy
+            f = self._smax / np.sqrt(v2)
+            over = v2 > self._smax * self._smax
+            ux, uy = np.where(over, ux * f, ux), np.where(over, uy * f, uy)
+        ux, uy = np.where(pushed, ux, vx), np.where(pushed, uy, vy)
+        radius = self._rand * np.sqrt(ux * ux + uy * uy)
+        ux = ux + radius * self._noise[0][:, r]
+        uy = uy + radius * self._noise[1][:, r]
+        keep = moving[:, None]
+        self.x = np.where(keep, self.x + ux, self.x)
+        self.y = np.where(keep, self.y + uy, self.y)
+        self.vx = np.where(keep, self._decay * ux, vx)
+        self.vy = np.where(keep, self._decay * uy, vy)
+        self._ax = np.where(keep, 0.0, ax)
+        self._ay = np.where(keep, 0.0, ay)
+
+    # ------------------------------------------------------------------ collisions (§4)
+
+    def _overlaps(self, a: int, b: int, reach2: float) -> np.ndarray:
+        dx = self.x[:, b] - self.x[:, a]
+        dy = self.y[:, b] - self.y[:, a]
+        return np.asarray(dx * dx + dy * dy < reach2)
+
+    def _collide(self, trials: np.ndarray) -> None:
+        """Resolve overlaps in the given trials, as the single model does (§4)."""
+        if not any(
+            (self._overlaps(a, b, q) & trials).any()
+            for (a, b), q in zip(self._pairs, self._reach2, strict=True)
+        ):
+            return
+        collided = np.zeros((self.k, self._n), dtype=bool)
+        play_on = self.mode == _PLAY_ON
+        for _ in range(COLLISION_PASSES):
+            sx, sy = np.zeros((self.k, self._n)), np.zeros((self.k, self._n))
+            count = np.zeros((self.k, self._n), dtype=int)
+            for (a, b), reach, reach2 in zip(self._pairs, self._reach, self._reach2, strict=True):
+                hit = self._overlaps(a, b, reach2) & trials
+                if not hit.any():
+                    continue
+                collided[:, a] |= hit
+                collided[:, b] |= hit
+                (pax, pay), (pbx, pby) = self._proposals(a, b, reach, reach2, play_on)
+                for col, px, py in ((a, pax, pay), (b, pbx, pby)):
+                    sx[:, col] = np.where(hit, sx[:, col] + px, sx[:, col])
+                    sy[:, col] = np.where(hit, sy[:, col] + py, sy[:, col])
+                    count[:, col] += hit
+            moved = count > 0
+            if not moved.any():
+                break
+            with np.errstate(divide="ignore", invalid="ignore"):
+                self.x = np.where(moved, sx / count, self.x)
+                self.y = np.where(moved, sy / count, self.y)
+        self.vx = np.where(collided, self.vx * COLLISION_VELOCITY_FACTOR, self.vx)
+        self.vy = np.where(collided, self.vy * COLLISION_VELOCITY_FACTOR, self.vy)
+
+    def _proposals(
+        self, a: int, b: int, reach: float, reach2: float, play_on: np.ndarray
+    ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+        ax, ay, bx, by = self.x[:, a], self.y[:, a], self.x[:, b], self.y[:, b]
+        sep_a, sep_b = _separate(ax, ay, bx, by, reach, reach2)
+        if a != 0:
+            return sep_a, sep_b
+        push = _push_from(ax, ay, bx - ax, by - ay, reach + EPS)
+        return (
+            (np.where(play_on, sep_a[0], ax), np.where(play_on, sep_a[1], ay)),
+            (np.where(play_on, sep_b[0], push[0]), np.where(play_on, sep_b[1], push[1])),
+        )
+
+    # ------------------------------------------------------------------ referee (§6)
+
+    def _judge(
+        self, bx0: np.ndarray, by0: np.ndarray, moving: np.ndarray, messages: dict[int, list[str]]
+    ) -> None:
+        mode = self.mode.copy()
+        after = moving & ((mode == _GOAL_L) | (mode == _GOAL_R))
+        self._after_goal[after] += 1
+        ready = after & (self._after_goal >= self.params.after_goal_wait_cycles)
+        for trial in np.flatnonzero(ready).tolist():
+            self._kick_off(trial, messages)
+        side = self._goal_side(bx0, by0) * (moving & ~after)
+        for trial in np.flatnonzero(side).tolist():
+            self._score(trial, int(side[trial]), messages)
+        kick_off = moving & ~after & (side == 0) & ((mode == _KICK_OFF_L) | (mode == _KICK_OFF_R))
+        if kick_off.any():
+            self._keep_halves(kick_off, np.where(mode == _KICK_OFF_L, 1, -1))
+
+    def _goal_side(self, x0: np.ndarray, y0: np.ndarray) -> np.ndarray:
+        p = self.params
+        x1, y1 = self.x[:, 0], self.y[:, 0]
+        line = 0.5 * p.pitch_length_m + p.ball_size_m
+        crossed = ~(np.abs(x0) > line) & ~(np.abs(x1) <= line)
+        edge = np.where(x1 > 0.0, line, -line)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            y_cross = y0 + (edge - x0) * (y1 - y0) / (x1 - x0)
+        between = ~(np.abs(y_cross) > 0.5 * p.goal_width_m + p.goal_post_radius_m)
+        return np.where(crossed & between, np.where(x1 > 0.0, 1, -1), 0)
+
+    def _score(self, trial: int, side: int, messages: dict[int, list[str]]) -> None:
+        said = messages.setdefault(trial, [])
+        if side > 0:
+            self.score_left[trial] += 1 if self._has_left else 0
+            said.append(f"goal_l_{self.score_left[trial]}")
+            self.mode[trial] = _GOAL_L
+        else:
+            self.score_right[trial] += 1 if self._has_right else 0
+            said.append(f"goal_r_{self.score_right[trial]}")
+            self.mode[trial] = _GOAL_R
+        for arr in (self.vx, self.vy, self._ax, self._ay):
+            arr[trial, 0] = 0.0
+        self._after_goal[trial] = 0
+        if self.params.after_goal_wait_cycles == 0:
+            self._kick_off(trial, messages)
+
+    def _kick_off(self, trial: int, messages: dict[int, list[str]]) -> None:
+        kicker = -1 if self.mode[trial] == _GOAL_L else 1
+        self.mode[trial] = _KICK_OFF_R if kicker < 0 else _KICK_OFF_L
+        messages.setdefault(trial, []).append(PLAY_MODES[int(self.mode[trial])])
+        for arr in (self.x, self.y, self.vx, self.vy, self._ax, self._ay):
+            arr[trial, 0] = 0.0
+        one = np.zeros(self.k, dtype=bool)
+        one[trial] = True
+        self._keep_halves(one, np.full(self.k, kicker))
+
+    def _keep_halves(self, trials: np.ndarray, kicker: np.ndarray) -> None:
+        """Players into their own half; the team not kicking off out of the centre circle."""
+        p = self.params
+        side = self._side[1:]
+        x, y = self.x[:, 1:], self.y[:, 1:]
+        sel = trials[:, None]
+        x = np.where(sel & (side * x > 0.0), -side * p.player_size_m, x)
+        radius = p.center_circle_radius_m + p.player_size_m
+        r = np.sqrt(x * x + y * y)
+        inside = sel & (side != 0) & (side != kicker[:, None]) & ~(r > radius)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            nx = np.where(r == 0.0, radius, x * (radius / r))
+            ny = np.where(r == 0.0, 0.0, y * (radius / r))
+        self.x[:, 1:] = np.where(inside, nx, x)
+        self.y[:, 1:] = np.where(inside, ny, y)
+
+
+def _ranks(keys: np.ndarray) -> np.ndarray:
+    """Position of each key in its row's stable ascending order (the inverse of argsort)."""
+    n = keys.shape[-1]
+    ranks = np.zeros(keys.shape, dtype=np.intp)
+    for i in range(n):
+        for j in range(n):
+            if j < i:
+                ranks[..., i] += keys[..., j] <= keys[..., i]
+            elif j > i:
+                ranks[..., i] += keys[..., j] < keys[..., i]
+    return ranks
+
+
+def _separate(
+    ax: np.ndarray, ay: np.ndarray, bx: np.ndarray, by: np.ndarray, reach: float, reach2: float
+) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+    """Vectorised ``dynamics._separate``: same operations, same order."""
+    mx, my = (ax + bx) / 2.0, (ay + by) / 2.0
+    ux, uy, wx, wy = ax - mx, ay - my, bx - mx, by - my
+    half = reach / 2.0 + EPS
+    ru, rw = np.sqrt(ux * ux + uy * uy), np.sqrt(wx * wx + wy * wy)
+    same = ((ax == bx) & (ay == by)) | ((ru < EPS) & (rw < EPS)) | (ru == 0.0) | (rw == 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ux, uy = np.where(same, half, ux * (half / ru)), np.where(same, 0.0, uy * (half / ru))
+        wx, wy = np.where(same, -half, wx * (half / rw)), np.where(same, 0.0, wy * (half / rw))
+    done = np.zeros(ax.shape, dtype=bool)
+    for _ in range(SEPARATION_RETRIES):
+        dx, dy = (mx + wx) - (mx + ux), (my + wy) - (my + uy)
+        done |= dx * dx + dy * dy >= reach2
+        if done.all():
+            break
+        ux, uy = np.where(done, ux, ux * 1.0001), np.where(done, uy, uy * 1.0001)
+        wx, wy = np.where(done, wx, wx * 1.0001), np.where(done, wy, wy * 1.0001)
+    return (mx + ux, my + uy), (mx + wx, my + wy)
+
+
+def _push_from(
+    bx: np.ndarray, by: np.ndarray, dx: np.ndarray, dy: np.ndarray, dist: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Vectorised ``dynamics._push_from``."""
+    r = np.sqrt(dx * dx + dy * dy)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (
+            np.where(r == 0.0, bx + dist, bx + dx * (dist / r)),
+            np.where(r == 0.0, by, by + dy * (dist / r)),
+        )

@@ -1,0 +1,706 @@
+"""The Soccer Server's dynamics for one trial: commands, movement, collisions, referee.
+
+Follows specs/soccer_server.md §1 (cycle and per-object update), §2 (dash, turn, kick, say),
+§4 (collisions), §5 (trainer moves) and §6 (goals, referee messages). One :meth:`step` is one
+100 ms cycle:
+
+1. the body commands queued since the last step run against the state at the start of the
+   cycle: dash pushes the player, turn sets its new heading, kick pushes the ball (§1.1);
+2. every object, in a freshly shuffled order, accelerates (with caps), gets movement noise,
+   moves, decays and forgets its acceleration (§1.2, §1.3);
+3. overlaps are pushed apart, velocities of colliding objects × −0.1 (§4);
+4. the referee looks for a goal and runs the after-goal sequence (§6).
+
+Frames and units. The model runs in our field frame (x toward the right goal, y up, angles
+counter-clockwise). The server's frame has y down and clockwise angles; the dynamics are
+mirror-symmetric, so only command arguments change sign: a ``Turn(+a)`` is the server's
+``(turn -a)``, a ``Kick(p, +d)`` its ``(kick p -d)``, and the ranges ``minmoment``/``maxmoment``
+are applied in the server's convention. Object rows: 0 is the ball, 1..N the players in the
+order given. The raw lists :attr:`SoccerServerModel.x`, ``y``, ``vx``, ``vy``, ``heading`` hold
+metres, metres per *cycle* (the server's stored, post-decay velocity) and radians; the coach
+accessors :meth:`~SoccerServerModel.ball_state`, :meth:`~SoccerServerModel.player_state` and
+the trainer's :meth:`~SoccerServerModel.move_ball` / :meth:`~SoccerServerModel.move_player`
+speak m/s.
+
+Randomness. Each cycle consumes one *row* of uniforms from the trial's generator, whatever
+happens in it (:class:`RowLayout`: movement noise per update slot, turn and kick noise per
+player, the update order; the slot order decides which numbers each object gets, as the
+server's one generator serves the objects in update order). Rows are drawn in blocks of
+:data:`BLOCK_CYCLES`; numpy's ``Generator.random`` yields the same numbers whatever the block
+size, so :class:`~field_models.soccer_server.batch.BatchSoccerServer` reproduces a trial seed
+for seed. Pass the model a generator of its own (e.g. the trial's ``"movement"`` stream).
+
+Choices where the spec leaves one open (or where we simplify), each documented here:
+
+* Movement noise has size ``rand·|u|``, u the velocity after this cycle's acceleration, as the
+  server computes it (§1.3); the paper's §5 wording ("perturbed by a random amount between
+  -.05 and .05") leaves out the speed factor. Box or polar per ``noise_model``; kick noise
+  follows the same model (box: ±kick_rand·P/maxpower per axis as in 6.07–11.x; polar: §2.3).
+* Commands run at the step, against the positions at its start (the server runs a kick on
+  arrival, against the same positions; a coach move between commands and step is seen).
+* In restart modes either team may kick (the server's kick-off faults are not modelled).
+* Objects whose centres coincide in a collision are separated along +x, not at a random
+  angle, so collisions draw no random numbers (§4).
+* No stamina, effort or recovery: effort is 1 (§2.7 is not modelled).
+* No goal posts as obstacles, no ball-out, offside, catch or ball-stuck rules. The referee
+  (``DynamicsParams.referee``) only scores goals and restarts: after ``goal_l_N`` the ball
+  stops, kicks are refused, and ``after_goal_wait_cycles`` later the ball goes to the centre and
+  the mode becomes ``kick_off_r`` (mirror for the right team). In kick-off modes players are
+  kept in their own half and the defending team out of the centre circle every cycle (the
+  server's ``forbid_kick_off_offside``). In any restart mode (kick-off, free kick, ...) an
+  accepted kick turns the mode into ``play_on`` and announces it. With the referee off, the
+  play mode changes only through :meth:`~SoccerServerModel.change_mode`.
+* A goal scores for a side only when a player of that team (``LEFT``/``RIGHT``) is on the field,
+  as the server scores only for a connected team; the announced N is the new score.
+* ``before_kick_off``: players keep their place (velocities and accelerations zeroed), the ball
+  is not updated, no collisions (§1.1). The model starts in ``play_on``, as a trainer's drill.
+* The time :attr:`~SoccerServerModel.cycle` counts every step, stopped modes included.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from field_models.protocol import (
+    LEFT,
+    RIGHT,
+    Action,
+    BodyState,
+    Dash,
+    Kick,
+    Pitch,
+    PlayerRef,
+    Say,
+    Turn,
+    wrap_angle,
+)
+from field_models.soccer_server.params import DynamicsParams, ServerPreset
+
+BLOCK_CYCLES = 256
+"""Cycles of random numbers drawn at once by the single-trial model."""
+EPS = 1e-10
+"""The server's small distance (``EPS`` in utility.h) added to separations."""
+COLLISION_VELOCITY_FACTOR = -0.1
+"""Velocity factor of every object that collided in a cycle (§4)."""
+COLLISION_PASSES = 10
+"""Maximum overlap-resolution passes per cycle (§4)."""
+SEPARATION_RETRIES = 10
+"""Times a separated pair is spread by 0.01 % more when rounding keeps it overlapping."""
+
+BEFORE_KICK_OFF = "before_kick_off"
+PLAY_ON = "play_on"
+AFTER_GOAL_MODES = ("goal_l", "goal_r")
+"""Internal after-goal modes; announced as ``goal_l_N`` / ``goal_r_N`` instead (§6)."""
+RESTART_MODES = (
+    "kick_off_l",
+    "kick_off_r",
+    "free_kick_l",
+    "free_kick_r",
+    "kick_in_l",
+    "kick_in_r",
+    "corner_kick_l",
+    "corner_kick_r",
+    "goal_kick_l",
+    "goal_kick_r",
+)
+"""Modes in which the next accepted kick starts play (``play_on``)."""
+PLAY_MODES = (BEFORE_KICK_OFF, PLAY_ON, *AFTER_GOAL_MODES, *RESTART_MODES)
+"""Every play mode the model knows, as the server spells them."""
+
+NO_COMMAND, DASH, TURN, KICK = 0, 1, 2, 3
+"""Codes of the pending body command of a player."""
+
+
+# ----------------------------------------------------------------------------- random rows
+
+
+@dataclass(frozen=True, slots=True)
+class RowLayout:
+    """Where each use of randomness sits in one cycle's row of uniforms.
+
+    Attributes:
+        move_a, move_b: Movement noise of update slot j (the j-th object updated) (N+1 each).
+        turn: Turn noise of each player (N).
+        kick_a, kick_b: Kick noise of each player (N each).
+        order: Keys whose ascending order is the update order (N+1).
+        width: Uniforms per cycle.
+    """
+
+    move_a: slice
+    move_b: slice
+    turn: slice
+    kick_a: slice
+    kick_b: slice
+    order: slice
+    width: int
+
+
+def row_layout(n_players: int) -> RowLayout:
+    """The row layout for `n_players` players and the ball."""
+    n = n_players + 1
+    edges = list(itertools.accumulate([0, n, n, n_players, n_players, n_players, n]))
+    move_a, move_b, turn, kick_a, kick_b, order = (
+        slice(lo, hi) for lo, hi in itertools.pairwise(edges)
+    )
+    return RowLayout(move_a, move_b, turn, kick_a, kick_b, order, width=edges[-1])
+
+
+def draw_rows(rng: np.random.Generator, n_players: int, cycles: int) -> np.ndarray:
+    """The raw uniforms of `cycles` consecutive cycles of one trial, shape (cycles, width)."""
+    return rng.random((cycles, row_layout(n_players).width))
+
+
+def unit_noise(a: np.ndarray, b: np.ndarray, model: str) -> tuple[np.ndarray, np.ndarray]:
+    """A noise vector in units of its size R from two uniforms on [0, 1) (§1.3, §2.3).
+
+    Box model: each axis uniform on [-1, 1). Polar model: radius uniform on [0, 1), angle
+    uniform on [-π, π). Elementwise, so it commutes with any reordering of its inputs.
+    """
+    if model == "box":
+        return 2.0 * a - 1.0, 2.0 * b - 1.0
+    theta = math.pi * (2.0 * b - 1.0)
+    return a * np.cos(theta), a * np.sin(theta)
+
+
+def turn_factor(u: np.ndarray, player_rand: float) -> np.ndarray:
+    """``1 + ξ`` with ξ uniform on [-player_rand, player_rand) (§2.2)."""
+    return 1.0 + player_rand * (2.0 * u - 1.0)
+
+
+# ----------------------------------------------------------------------------- pure formulas
+
+
+def kick_effectiveness(gap_m: float, dir_diff_rad: float, kickable_margin_m: float) -> float:
+    """The kick's effectiveness k (§2.3, since [CL 4.03]).
+
+    Args:
+        gap_m: Distance between the surfaces of player and ball [m].
+        dir_diff_rad: Absolute angle of the ball off the player's heading [rad].
+        kickable_margin_m: ``kickable_margin`` [m].
+
+    >>> round(kick_effectiveness(0.115, 0.0, 0.7), 6)
+    0.958929
+    """
+    return 1.0 - 0.25 * dir_diff_rad / math.pi - 0.25 * gap_m / kickable_margin_m
+
+
+def clamp(value: float, low: float, high: float) -> float:
+    """`value` limited to [low, high], as the server clamps command arguments (§2)."""
+    return low if value < low else high if value > high else value
+
+
+def side_of(ref: PlayerRef) -> int:
+    """+1 for the left team (defends x < 0), -1 for the right team, 0 for any other team."""
+    return 1 if ref.team == LEFT else -1 if ref.team == RIGHT else 0
+
+
+# ----------------------------------------------------------------------------- the model
+
+
+class SoccerServerModel:
+    """One trial of the Soccer Server: ball and players, stepped one 100 ms cycle at a time.
+
+    Attributes:
+        preset: The server configuration.
+        params: Its dynamics (``preset.dynamics``).
+        players: The players, rows 1..N.
+        cycle: Cycles stepped so far.
+        play_mode: Current play mode (one of :data:`PLAY_MODES`).
+        score_left, score_right: Goals of each team.
+        x, y: Positions per row [m]. vx, vy: stored velocities per row [m/cycle].
+        heading: Body angle per row [rad], counter-clockwise; 0 for the ball.
+
+    The ball starts at rest on the centre mark, the players at rest off the pitch (3 m apart
+    below the bottom touchline) until the coach places them.
+    """
+
+    def __init__(
+        self, preset: ServerPreset, players: tuple[PlayerRef, ...], rng: np.random.Generator
+    ) -> None:
+        p = preset.dynamics
+        self.preset = preset
+        self.params = p
+        self.players = tuple(players)
+        self.rng = rng
+        n = len(self.players) + 1
+        self._n = n
+        self._rows = {ref: i + 1 for i, ref in enumerate(self.players)}
+        if len(self._rows) != len(self.players):
+            raise ValueError("players: a player appears twice")
+        self.cycle = 0
+        self.play_mode = PLAY_ON
+        self.score_left = 0
+        self.score_right = 0
+        # Off the pitch below the bottom line, 3 m apart, so that no first move collides.
+        self.x = [0.0] + [-3.0 * i for i in range(1, n)]
+        self.y = [0.0] + [-(0.5 * p.pitch_width_m + 3.0)] * (n - 1)
+        self.vx = [0.0] * n
+        self.vy = [0.0] * n
+        self.heading = [0.0] * n
+        self._ax = [0.0] * n
+        self._ay = [0.0] * n
+        self._size = [p.ball_size_m] + [p.player_size_m] * (n - 1)
+        self._decay = [p.ball_decay] + [p.player_decay] * (n - 1)
+        self._rand = [p.ball_rand] + [p.player_rand] * (n - 1)
+        self._amax = [p.ball_accel_max_m_per_cycle2] + [p.player_accel_max_m_per_cycle2] * (n - 1)
+        self._smax = [p.ball_speed_max_m_per_cycle] + [p.player_speed_max_m_per_cycle] * (n - 1)
+        self._side = [0] + [side_of(ref) for ref in self.players]
+        self._pairs = _collision_pairs(self._size)
+        self._kind = [NO_COMMAND] * n
+        self._arg1 = [0.0] * n
+        self._arg2 = [0.0] * n
+        self._pending: list[int] = []
+        self._say_queue: list[tuple[int, str]] = []
+        self._said: list[tuple[int, str]] = []
+        self._announce: list[str] = []
+        self._after_goal_cycles = 0
+        self._block_row = BLOCK_CYCLES
+        self._noise: tuple[list[list[float]], ...] = ()
+        self._order: list[list[int]] = []
+
+    # ------------------------------------------------------------------ look-ups
+
+    @property
+    def dt_s(self) -> float:
+        """Length of one cycle [s]."""
+        return self.params.dt_s
+
+    def pitch(self) -> Pitch:
+        """Field geometry."""
+        return self.params.pitch()
+
+    def row(self, ref: PlayerRef) -> int:
+        """Row (1..N) of player `ref`."""
+        return self._rows[ref]
+
+    def ball_state(self) -> BodyState:
+        """The ball's exact state: position [m], velocity [m/s]; heading 0."""
+        k = 1.0 / self.params.dt_s
+        return BodyState(self.x[0], self.y[0], 0.0, self.vx[0] * k, self.vy[0] * k)
+
+    def player_state(self, i: int) -> BodyState:
+        """Player row `i`'s exact state: position [m], heading [rad], velocity [m/s]."""
+        self._check_player(i)
+        k = 1.0 / self.params.dt_s
+        return BodyState(self.x[i], self.y[i], self.heading[i], self.vx[i] * k, self.vy[i] * k)
+
+    def said(self) -> list[tuple[int, str]]:
+        """Messages said during the cycle the last :meth:`step` completed, as (row, text)."""
+        return list(self._said)
+
+    # ------------------------------------------------------------------ coach / trainer
+
+    def move_ball(self, x: float, y: float, vx_mps: float = 0.0, vy_mps: float = 0.0) -> None:
+        """Put the ball at (x, y) [m] with velocity (vx, vy) [m/s]; its pending push is dropped.
+
+        The trainer's ``(move (ball) X Y 0 VX VY)`` (§5), in our frame.
+        """
+        dt = self.params.dt_s
+        self.x[0], self.y[0] = float(x), float(y)
+        self.vx[0], self.vy[0] = float(vx_mps) * dt, float(vy_mps) * dt
+        self._ax[0] = self._ay[0] = 0.0
+
+    def move_player(
+        self,
+        i: int,
+        x: float,
+        y: float,
+        heading_rad: float,
+        vx_mps: float = 0.0,
+        vy_mps: float = 0.0,
+    ) -> None:
+        """Put player row `i` at (x, y) [m] facing `heading_rad`, then resolve overlaps (§5)."""
+        self._check_player(i)
+        dt = self.params.dt_s
+        self.x[i], self.y[i] = float(x), float(y)
+        self.heading[i] = wrap_angle(float(heading_rad))
+        self.vx[i], self.vy[i] = float(vx_mps) * dt, float(vy_mps) * dt
+        if self._any_overlap():
+            self._resolve_collisions()
+
+    def change_mode(self, mode: str) -> None:
+        """Set the play mode (trainer ``change_mode``); announced at the next step (§5, §6)."""
+        if mode not in PLAY_MODES:
+            raise ValueError(f"unknown play mode {mode!r}; known: {', '.join(PLAY_MODES)}")
+        self.play_mode = mode
+        self._after_goal_cycles = 0
+        if mode not in AFTER_GOAL_MODES:
+            self._announce.append(mode)
+
+    # ------------------------------------------------------------------ player commands
+
+    def command(self, i: int, action: Action) -> bool:
+        """Queue player row `i`'s action for the next step; False if the server would ignore it.
+
+        A second body command (turn, dash, kick) in the same cycle is ignored (§1.1); a say
+        combines with one.
+        """
+        if isinstance(action, Dash):
+            return self.dash(i, action.power)
+        if isinstance(action, Turn):
+            return self.turn(i, action.angle_rad)
+        if isinstance(action, Kick):
+            return self.kick(i, action.power, action.direction_rad)
+        if isinstance(action, Say):
+            return self.say(i, action.text)
+        raise TypeError(f"not a Soccer Server action: {action!r}")
+
+    def dash(self, i: int, power: float) -> bool:
+        """Queue ``(dash power)``, power clamped to [min_dash_power, max_dash_power] (§2.1)."""
+        p = self.params
+        return self._queue(i, DASH, clamp(power, p.min_dash_power, p.max_dash_power), 0.0)
+
+    def turn(self, i: int, angle_rad: float) -> bool:
+        """Queue a turn by `angle_rad` (left positive), clamped in the server's sign (§2.2)."""
+        p = self.params
+        return self._queue(i, TURN, -clamp(-angle_rad, p.minmoment_rad, p.maxmoment_rad), 0.0)
+
+    def kick(self, i: int, power: float, direction_rad: float) -> bool:
+        """Queue a kick: power clamped to [minpower, maxpower], direction to the moment range."""
+        p = self.params
+        power = clamp(power, p.minpower, p.maxpower)
+        direction = -clamp(-direction_rad, p.minmoment_rad, p.maxmoment_rad)
+        return self._queue(i, KICK, power, direction)
+
+    def say(self, i: int, text: str) -> bool:
+        """Queue a say; a message longer than ``say_msg_size`` is dropped (§2.6)."""
+        self._check_player(i)
+        if len(text) > self.preset.sensing.say_msg_size:
+            return False
+        self._say_queue.append((i, text))
+        return True
+
+    def _queue(self, i: int, kind: int, arg1: float, arg2: float) -> bool:
+        self._check_player(i)
+        if self._kind[i] != NO_COMMAND:
+            return False
+        self._kind[i] = kind
+        self._arg1[i] = float(arg1)  # plain floats keep the step free of numpy scalars
+        self._arg2[i] = float(arg2)
+        self._pending.append(i)
+        return True
+
+    def _check_player(self, i: int) -> None:
+        if not 0 < i < self._n:
+            raise IndexError(f"player row {i} outside 1..{self._n - 1}")
+
+    # ------------------------------------------------------------------ the cycle
+
+    def step(self) -> list[str]:
+        """Advance one cycle; return the referee messages of this cycle (``goal_l_1``, ...)."""
+        messages = self._announce
+        self._announce = []
+        r = self._block_row
+        if r == BLOCK_CYCLES:
+            self._refill()
+            r = 0
+        self._block_row = r + 1
+        if self._pending:
+            self._run_commands(r, messages)
+        bx0, by0 = self.x[0], self.y[0]
+        if self.play_mode == BEFORE_KICK_OFF:
+            self._hold_players()
+        else:
+            self._move_objects(r)
+            if self._any_overlap():
+                self._resolve_collisions()
+            if self.params.referee:
+                self._judge(bx0, by0, messages)
+        self.cycle += 1
+        self._said = self._say_queue
+        self._say_queue = []
+        return messages
+
+    def _refill(self) -> None:
+        """Draw the next block of rows and shape it into plain lists (no numpy per step)."""
+        lay = row_layout(self._n - 1)
+        u = draw_rows(self.rng, self._n - 1, BLOCK_CYCLES)
+        model = self.params.noise_model
+        move_x, move_y = unit_noise(u[:, lay.move_a], u[:, lay.move_b], model)
+        kick_x, kick_y = unit_noise(u[:, lay.kick_a], u[:, lay.kick_b], model)
+        self._noise = (
+            move_x.tolist(),
+            move_y.tolist(),
+            turn_factor(u[:, lay.turn], self.params.player_rand).tolist(),
+            kick_x.tolist(),
+            kick_y.tolist(),
+        )
+        self._order = np.argsort(u[:, lay.order], axis=1, kind="stable").tolist()
+
+    def _run_commands(self, r: int, messages: list[str]) -> None:
+        """Dash, turn and kick, in row order, against the start-of-cycle state (§1.1, §2)."""
+        kicked = False
+        for i in sorted(self._pending):
+            kind = self._kind[i]
+            if kind == DASH:
+                self._do_dash(i, self._arg1[i])
+            elif kind == TURN:
+                self._do_turn(i, self._arg1[i], self._noise[2][r][i - 1])
+            elif kind == KICK:
+                kicked |= self._do_kick(i, self._arg1[i], self._arg2[i], r)
+            self._kind[i] = NO_COMMAND
+        self._pending.clear()
+        if kicked and self.play_mode in RESTART_MODES and self.params.referee:
+            self.play_mode = PLAY_ON
+            messages.append(PLAY_ON)
+
+    def _do_dash(self, i: int, power: float) -> None:
+        """Push the player along its heading: power · dash_power_rate, effort 1 (§2.1)."""
+        a = power * self.params.dash_power_rate_m_per_cycle2
+        h = self.heading[i]
+        self._ax[i] += a * math.cos(h)
+        self._ay[i] += a * math.sin(h)
+
+    def _do_turn(self, i: int, angle: float, factor: float) -> None:
+        """Turn by (1 + ξ)·angle / (1 + inertia_moment·|v|), |v| the stored speed (§2.2)."""
+        vx, vy = self.vx[i], self.vy[i]
+        speed = math.sqrt(vx * vx + vy * vy)
+        h = self.heading[i] + factor * angle / (
+            1.0 + self.params.inertia_moment_cycle_per_m * speed
+        )
+        self.heading[i] = _wrap_once(h)
+
+    def _do_kick(self, i: int, power: float, direction: float, r: int) -> bool:
+        """Push the ball if it is within the kickable area; True if the kick was taken (§2.3)."""
+        p = self.params
+        if self.play_mode == BEFORE_KICK_OFF or self.play_mode in AFTER_GOAL_MODES:
+            return False
+        rx = self.x[0] - self.x[i]
+        ry = self.y[0] - self.y[i]
+        dist2 = rx * rx + ry * ry
+        reach = p.kickable_area_m
+        if dist2 > reach * reach:
+            return False
+        h = self.heading[i]
+        ch, sh = math.cos(h), math.sin(h)
+        dir_diff = math.atan2(abs(ch * ry - sh * rx), ch * rx + sh * ry)
+        gap = math.sqrt(dist2) - p.player_size_m - p.ball_size_m
+        k = kick_effectiveness(gap, dir_diff, p.kickable_margin_m) if p.kick_reduction else 1.0
+        a = power * p.kick_power_rate_m_per_cycle2 * k
+        ang = h + direction
+        ax = a * math.cos(ang)
+        ay = a * math.sin(ang)
+        if p.kick_rand:
+            bvx, bvy = self.vx[0], self.vy[0]
+            radius = _kick_noise_radius(p, power, gap, dir_diff, math.sqrt(bvx * bvx + bvy * bvy))
+            ax += radius * self._noise[3][r][i - 1]
+            ay += radius * self._noise[4][r][i - 1]
+        self._ax[0] += ax
+        self._ay[0] += ay
+        return True
+
+    def _hold_players(self) -> None:
+        """before_kick_off: players keep their place, the ball is not updated (§1.1)."""
+        for i in range(1, self._n):
+            self.vx[i] = self.vy[i] = self._ax[i] = self._ay[i] = 0.0
+
+    def _move_objects(self, r: int) -> None:
+        """Accelerate (capped), add noise, move, decay, reset — in shuffled order (§1.2)."""
+        x, y, vxs, vys, axs, ays = self.x, self.y, self.vx, self.vy, self._ax, self._ay
+        amax, smax, rand, decay = self._amax, self._smax, self._rand, self._decay
+        nx, ny = self._noise[0][r], self._noise[1][r]
+        for slot, i in enumerate(self._order[r]):
+            vx, vy, ax, ay = vxs[i], vys[i], axs[i], ays[i]
+            if ax or ay:
+                cap = amax[i]
+                a2 = ax * ax + ay * ay
+                if a2 > cap * cap:
+                    f = cap / math.sqrt(a2)
+                    ax, ay = ax * f, ay * f
+                vx, vy = vx + ax, vy + ay
+                cap = smax[i]
+                v2 = vx * vx + vy * vy
+                if v2 > cap * cap:
+                    f = cap / math.sqrt(v2)
+                    vx, vy = vx * f, vy * f
+                axs[i] = ays[i] = 0.0
+            noise = rand[i]
+            if noise:
+                radius = noise * math.sqrt(vx * vx + vy * vy)
+                vx, vy = vx + radius * nx[slot], vy + radius * ny[slot]
+            x[i] += vx
+            y[i] += vy
+            d = decay[i]
+            vxs[i], vys[i] = d * vx, d * vy
+
+    # ------------------------------------------------------------------ collisions (§4)
+
+    def _any_overlap(self) -> bool:
+        x, y = self.x, self.y
+        for a, b, reach2, _ in self._pairs:
+            dx, dy = x[b] - x[a], y[b] - y[a]
+            if dx * dx + dy * dy < reach2:
+                return True
+        return False
+
+    def _resolve_collisions(self) -> None:
+        """Push overlapping pairs apart (mean of proposals, ≤ 10 passes), velocities × −0.1."""
+        n, x, y = self._n, self.x, self.y
+        collided = [False] * n
+        play_on = self.play_mode == PLAY_ON
+        for _ in range(COLLISION_PASSES):
+            sx, sy, count = [0.0] * n, [0.0] * n, [0] * n
+            for a, b, reach2, reach in self._pairs:
+                dx, dy = x[b] - x[a], y[b] - y[a]
+                if dx * dx + dy * dy >= reach2:
+                    continue
+                collided[a] = collided[b] = True
+                if a == 0 and not play_on:
+                    pa, pb = (x[0], y[0]), _push_from(x[0], y[0], dx, dy, reach + EPS)
+                else:
+                    pa, pb = _separate(x[a], y[a], x[b], y[b], reach, reach2)
+                sx[a] += pa[0]
+                sy[a] += pa[1]
+                count[a] += 1
+                sx[b] += pb[0]
+                sy[b] += pb[1]
+                count[b] += 1
+            if not any(count):
+                break
+            for i in range(n):
+                if count[i]:
+                    x[i], y[i] = sx[i] / count[i], sy[i] / count[i]
+        for i in range(n):
+            if collided[i]:
+                self.vx[i] *= COLLISION_VELOCITY_FACTOR
+                self.vy[i] *= COLLISION_VELOCITY_FACTOR
+
+    # ------------------------------------------------------------------ referee (§6)
+
+    def _judge(self, bx0: float, by0: float, messages: list[str]) -> None:
+        mode = self.play_mode
+        if mode in AFTER_GOAL_MODES:
+            self._after_goal_cycles += 1
+            if self._after_goal_cycles >= self.params.after_goal_wait_cycles:
+                self._kick_off(mode, messages)
+            return
+        side = goal_side(self.params, bx0, by0, self.x[0], self.y[0])
+        if side:
+            self._score(side, messages)
+        elif mode in ("kick_off_l", "kick_off_r"):
+            self._keep_halves(1 if mode == "kick_off_l" else -1)
+
+    def _score(self, side: int, messages: list[str]) -> None:
+        """Count the goal, stop the ball, enter the after-goal mode (§6)."""
+        if side > 0:
+            self.score_left += 1 if 1 in self._side else 0
+            messages.append(f"goal_l_{self.score_left}")
+            self.play_mode = "goal_l"
+        else:
+            self.score_right += 1 if -1 in self._side else 0
+            messages.append(f"goal_r_{self.score_right}")
+            self.play_mode = "goal_r"
+        self.vx[0] = self.vy[0] = self._ax[0] = self._ay[0] = 0.0
+        self._after_goal_cycles = 0
+        if self.params.after_goal_wait_cycles == 0:
+            self._kick_off(self.play_mode, messages)
+
+    def _kick_off(self, after_goal_mode: str, messages: list[str]) -> None:
+        """Ball to the centre; the team that conceded kicks off (§6)."""
+        kicker = -1 if after_goal_mode == "goal_l" else 1
+        self.play_mode = "kick_off_r" if kicker < 0 else "kick_off_l"
+        messages.append(self.play_mode)
+        self.move_ball(0.0, 0.0)
+        self._keep_halves(kicker)
+
+    def _keep_halves(self, kicker: int) -> None:
+        """Players into their own half; the other team out of the centre circle."""
+        p = self.params
+        keep_out = p.center_circle_radius_m + p.player_size_m
+        for i in range(1, self._n):
+            side = self._side[i]
+            if side * self.x[i] > 0.0:
+                self.x[i] = -side * p.player_size_m
+            if side and side != kicker:
+                self.x[i], self.y[i] = _out_of_circle(self.x[i], self.y[i], keep_out)
+
+
+# ----------------------------------------------------------------------------- helpers
+
+
+def goal_side(params: DynamicsParams, x0: float, y0: float, x1: float, y1: float) -> int:
+    """+1 if the ball's move (x0, y0) → (x1, y1) scored for the left team, -1 right, else 0.
+
+    The centre must cross the line |x| = pitch_length/2 + ball_size from inside, between the
+    posts: |y| ≤ goal_width/2 + goal_post_radius at the crossing (§6).
+    """
+    line = 0.5 * params.pitch_length_m + params.ball_size_m
+    if abs(x0) > line or abs(x1) <= line:
+        return 0
+    edge = line if x1 > 0.0 else -line
+    y_cross = y0 + (edge - x0) * (y1 - y0) / (x1 - x0)
+    if abs(y_cross) > 0.5 * params.goal_width_m + params.goal_post_radius_m:
+        return 0
+    return 1 if x1 > 0.0 else -1
+
+
+def _collision_pairs(sizes: list[float]) -> list[tuple[int, int, float, float]]:
+    """Pairs in the server's order: ball–player, then player–player (a < b); radii sum²."""
+    n = len(sizes)
+    pairs = [(0, b) for b in range(1, n)]
+    pairs += [(a, b) for a in range(1, n) for b in range(a + 1, n)]
+    return [(a, b, (sizes[a] + sizes[b]) ** 2, sizes[a] + sizes[b]) for a, b in pairs]
+
+
+def _separate(
+    ax: float, ay: float, bx: float, by: float, reach: float, reach2: float
+) -> tuple[tuple[float, float], tuple[float, float]]:
+    """Both objects at (reach/2 + EPS) from their midpoint, on their line of centres (§4)."""
+    mx, my = (ax + bx) / 2.0, (ay + by) / 2.0
+    ux, uy, wx, wy = ax - mx, ay - my, bx - mx, by - my
+    half = reach / 2.0 + EPS
+    ru, rw = math.sqrt(ux * ux + uy * uy), math.sqrt(wx * wx + wy * wy)
+    if (ax == bx and ay == by) or (ru < EPS and rw < EPS) or ru == 0.0 or rw == 0.0:
+        ux, uy, wx, wy = half, 0.0, -half, 0.0  # coincident: along +x (the server: random)
+    else:
+        ux, uy = ux * (half / ru), uy * (half / ru)
+        wx, wy = wx * (half / rw), wy * (half / rw)
+    for _ in range(SEPARATION_RETRIES):
+        dx, dy = (mx + wx) - (mx + ux), (my + wy) - (my + uy)
+        if dx * dx + dy * dy >= reach2:
+            break
+        ux, uy, wx, wy = ux * 1.0001, uy * 1.0001, wx * 1.0001, wy * 1.0001
+    return (mx + ux, my + uy), (mx + wx, my + wy)
+
+
+def _push_from(bx: float, by: float, dx: float, dy: float, dist: float) -> tuple[float, float]:
+    """The point `dist` from (bx, by) along (dx, dy); along +x if that is zero."""
+    r = math.sqrt(dx * dx + dy * dy)
+    if r == 0.0:
+        return bx + dist, by
+    return bx + dx * (dist / r), by + dy * (dist / r)
+
+
+def _out_of_circle(x: float, y: float, radius: float) -> tuple[float, float]:
+    """(x, y) moved to the nearest point of the circle of `radius` about the centre if inside."""
+    r = math.sqrt(x * x + y * y)
+    if r > radius:
+        return x, y
+    if r == 0.0:
+        return radius, 0.0
+    return x * (radius / r), y * (radius / r)
+
+
+def _wrap_once(angle: float) -> float:
+    """Wrap into [-π, π) an angle at most 2π outside it (a heading plus one turn)."""
+    if angle >= math.pi:
+        return angle - 2.0 * math.pi
+    if angle < -math.pi:
+        return angle + 2.0 * math.pi
+    return angle
+
+
+def _kick_noise_radius(
+    p: DynamicsParams, power: float, gap: float, dir_diff: float, ball_speed: float
+) -> float:
+    """Kick-noise size: box ±kick_rand·P/maxpower (6.07–11.x); polar today's formula (§2.3)."""
+    scale = p.kick_rand * (power / p.maxpower)
+    if p.noise_model == "box":
+        return scale
+    pos_rate = 0.5 + 0.25 * (dir_diff / math.pi + gap / p.kickable_margin_m)
+    speed_rate = 0.5 + 0.5 * (ball_speed / (p.ball_speed_max_m_per_cycle * p.ball_decay))
+    return scale * (pos_rate + speed_rate)

@@ -1,0 +1,263 @@
+"""Soccer Server dynamics parameters and the preset loader (specs/soccer_server.md §1, §2, §7).
+
+:class:`DynamicsParams` holds the ``server.conf`` values the dynamics use, under their server
+names with a unit suffix. Units: metres and radians; speeds and accelerations stay *per cycle*
+(``_m_per_cycle``, ``_m_per_cycle2``) because the cycle is the model's integer tick and the
+server's equations are written per cycle (§0); the model's accessors convert to m/s. Angles are
+given in the preset in degrees (``maxmoment_deg``) and converted to radians once, on load.
+
+:class:`ServerPreset` bundles the dynamics with the sensing record of helper ss-sense
+(:class:`~field_models.soccer_server.sensing_params.SensingParams`) and is loaded from
+``field_models/presets/soccer_server/<name>.toml`` by :func:`load_server_preset`. A wrong file
+raises :class:`~field_models.presets.PresetError` naming the file and the dotted key.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from field_models.presets import (
+    PresetError,
+    load_record,
+    non_negative,
+    positive,
+    preset_path,
+    probability,
+    read_toml,
+)
+from field_models.protocol import Pitch
+from field_models.soccer_server.sensing_params import SensingParams
+
+NOISE_MODELS = ("box", "polar")
+"""Allowed :attr:`DynamicsParams.noise_model` values: ≤ 11.x per-axis uniform, ≥ 12 polar (§1.3)."""
+ERAS = ("1996", "19")
+"""Allowed :attr:`ServerPreset.era` values."""
+DEFAULT_PRESET = "soccer_server_1996"
+
+
+class ParamError(ValueError):
+    """A record value outside its allowed set; `key` names the offending field."""
+
+    def __init__(self, key: str, message: str) -> None:
+        super().__init__(f"{key}: {message}")
+        self.key = key
+        self.message = message
+
+
+@dataclass(frozen=True, slots=True)
+class DynamicsParams:
+    """What moves the ball and the players, and how the referee reacts (spec §1, §2, §4, §6).
+
+    Attributes:
+        simulator_step_ms: ``simulator_step``: cycle length [ms].
+        pitch_length_m: Goal line to goal line [m]. pitch_width_m: touchline to touchline [m].
+        goal_width_m: ``goal_width`` [m]. goal_depth_m: goal depth (drawing only) [m].
+        goal_post_radius_m: ``goal_post_radius``: widens the goal-line test by one post radius
+            (§6); posts as obstacles (§1.4) are not modelled. 0 for the post-less 1990s.
+        center_circle_radius_m: kick-off clear distance for the non-kicking team [m].
+        ball_size_m, player_size_m: ``ball_size``, ``player_size``: radii [m].
+        ball_decay, player_decay: ``ball_decay``, ``player_decay``: velocity factor per cycle.
+        ball_rand, player_rand: movement-noise factors; ``player_rand`` also scales turn noise.
+        ball_speed_max_m_per_cycle, player_speed_max_m_per_cycle: speed caps [m/cycle].
+        ball_accel_max_m_per_cycle2, player_accel_max_m_per_cycle2: acceleration caps
+            [m/cycle²]; ``inf`` where the era had none.
+        inertia_moment_cycle_per_m: ``inertia_moment``: turn damping per unit speed [cycle/m].
+        dash_power_rate_m_per_cycle2: ``dash_power_rate`` [m/cycle² per power unit].
+        kick_power_rate_m_per_cycle2: ``kick_power_rate`` [m/cycle² per power unit].
+        kickable_margin_m: ``kickable_margin`` [m].
+        kick_reduction: apply the distance/angle kick-effectiveness reduction ([CL 4.03], §2.3).
+        kick_rand: ``kick_rand``: kick-noise factor (0 = off, the paper's era).
+        noise_model: ``"box"`` (≤ 11.x) or ``"polar"`` (≥ 12) movement and kick noise (§1.3, §2.3).
+        minpower, maxpower: kick power range (``minpower``/``maxpower``) [power units].
+        min_dash_power, max_dash_power: dash power range [power units].
+        minmoment_rad, maxmoment_rad: turn moment and kick direction range, in the server's
+            (clockwise-on-our-field) sign convention [rad]; preset keys ``*_deg``.
+        after_goal_wait_cycles: cycles between ``goal_l_N`` and the kick-off (50 today;
+            0 in the paper's Figure 4, where both messages carry the same time).
+        referee: goal detection and the after-goal sequence on (``server::coach`` off); off, the
+            coach alone decides (the play mode then changes only by ``change_mode``).
+    """
+
+    simulator_step_ms: int = field(metadata=positive("server.conf simulator_step"))
+    pitch_length_m: float = field(metadata=positive())
+    pitch_width_m: float = field(metadata=positive())
+    goal_width_m: float = field(metadata=positive("server.conf goal_width"))
+    goal_depth_m: float = field(metadata=positive())
+    goal_post_radius_m: float = field(metadata=non_negative("server.conf goal_post_radius"))
+    center_circle_radius_m: float = field(metadata=non_negative())
+    ball_size_m: float = field(metadata=positive("server.conf ball_size"))
+    ball_decay: float = field(metadata=probability("server.conf ball_decay"))
+    ball_rand: float = field(metadata=non_negative("server.conf ball_rand"))
+    ball_speed_max_m_per_cycle: float = field(metadata=positive("server.conf ball_speed_max"))
+    ball_accel_max_m_per_cycle2: float = field(metadata=positive("server.conf ball_accel_max"))
+    player_size_m: float = field(metadata=positive("server.conf player_size"))
+    player_decay: float = field(metadata=probability("server.conf player_decay"))
+    player_rand: float = field(metadata=non_negative("server.conf player_rand"))
+    player_speed_max_m_per_cycle: float = field(metadata=positive("server.conf player_speed_max"))
+    player_accel_max_m_per_cycle2: float = field(metadata=positive("server.conf player_accel_max"))
+    inertia_moment_cycle_per_m: float = field(metadata=non_negative("server.conf inertia_moment"))
+    dash_power_rate_m_per_cycle2: float = field(
+        metadata=non_negative("server.conf dash_power_rate")
+    )
+    kick_power_rate_m_per_cycle2: float = field(
+        metadata=non_negative("server.conf kick_power_rate")
+    )
+    kickable_margin_m: float = field(metadata=positive("server.conf kickable_margin"))
+    kick_reduction: bool
+    kick_rand: float = field(metadata=non_negative("server.conf kick_rand"))
+    noise_model: str
+    minpower: float
+    maxpower: float = field(metadata=positive("server.conf maxpower"))
+    min_dash_power: float
+    max_dash_power: float
+    minmoment_rad: float
+    maxmoment_rad: float
+    after_goal_wait_cycles: int = field(metadata=non_negative())
+    referee: bool = True
+
+    def __post_init__(self) -> None:
+        if self.noise_model not in NOISE_MODELS:
+            raise ParamError("noise_model", f"expected one of {', '.join(NOISE_MODELS)}")
+        _ordered("minpower", self.minpower, self.maxpower)
+        _ordered("min_dash_power", self.min_dash_power, self.max_dash_power)
+        _ordered("minmoment_rad", self.minmoment_rad, self.maxmoment_rad)
+        if self.goal_width_m >= self.pitch_width_m:
+            raise ParamError("goal_width_m", "expected less than pitch_width_m")
+
+    @property
+    def dt_s(self) -> float:
+        """Length of one cycle [s]."""
+        return self.simulator_step_ms / 1000.0
+
+    @property
+    def kickable_area_m(self) -> float:
+        """Largest centre distance at which a kick reaches the ball [m] (§2.3)."""
+        return self.player_size_m + self.ball_size_m + self.kickable_margin_m
+
+    def pitch(self) -> Pitch:
+        """The field geometry coaches and recordings see."""
+        return Pitch(
+            length_m=self.pitch_length_m,
+            width_m=self.pitch_width_m,
+            goal_width_m=self.goal_width_m,
+            goal_depth_m=self.goal_depth_m,
+            ball_radius_m=self.ball_size_m,
+            player_radius_m=self.player_size_m,
+        )
+
+    def replace(self, **changes: Any) -> DynamicsParams:
+        """A copy with some fields changed (validated again)."""
+        return dataclasses.replace(self, **changes)
+
+
+def _ordered(key: str, low: float, high: float) -> None:
+    if low > high:
+        raise ParamError(key, f"expected <= its maximum, got {low!r} > {high!r}")
+
+
+@dataclass(frozen=True, slots=True)
+class ServerPreset:
+    """A Soccer Server configuration: its dynamics and its sensing, from one preset file.
+
+    Attributes:
+        name: Preset name (the file's stem unless the file sets ``name``).
+        era: ``"1996"`` (the paper's servers, 1998 values where 1996 ones are unknown) or
+            ``"19"`` (rcssserver 19.0.0 defaults).
+        dynamics: Movement, commands, collisions, referee.
+        sensing: See and hear parameters (helper ss-sense's record).
+        source: The file it came from.
+    """
+
+    name: str
+    era: str
+    dynamics: DynamicsParams
+    sensing: SensingParams
+    source: str = ""
+
+    def replace_dynamics(self, **changes: Any) -> ServerPreset:
+        """A copy whose dynamics have some fields changed (e.g. ``ball_rand=0.0``)."""
+        return dataclasses.replace(self, dynamics=self.dynamics.replace(**changes))
+
+
+def load_server_preset(name_or_path: str = DEFAULT_PRESET) -> ServerPreset:
+    """Load a Soccer Server preset by name (``soccer_server_1996``, ``rcssserver_19``) or path.
+
+    Keys ending in ``_deg`` fill the record's ``_rad`` field of the same stem, converted once.
+
+    Raises:
+        PresetError: naming the file and the dotted key when the file is missing or wrong.
+    """
+    path = preset_path(name_or_path, "soccer_server")
+    table = read_toml(path)
+    unknown = sorted(set(table) - {"name", "era", "dynamics", "sensing"})
+    if unknown:
+        raise PresetError(f"{path}: key '{unknown[0]}': unknown key for ServerPreset")
+    name = _top_string(table, "name", path, default=Path(path).stem)
+    era = _top_string(table, "era", path)
+    if era not in ERAS:
+        raise PresetError(f"{path}: key 'era': expected one of {', '.join(ERAS)}, got {era!r}")
+    dynamics = _load_table(DynamicsParams, table, "dynamics", path)
+    sensing = _load_table(SensingParams, table, "sensing", path)
+    if sensing.simulator_step_ms != dynamics.simulator_step_ms:
+        raise PresetError(
+            f"{path}: key 'sensing.simulator_step_ms': expected dynamics.simulator_step_ms "
+            f"({dynamics.simulator_step_ms}), got {sensing.simulator_step_ms}"
+        )
+    return ServerPreset(name=name, era=era, dynamics=dynamics, sensing=sensing, source=str(path))
+
+
+def _top_string(table: dict[str, Any], key: str, path: Path, default: str | None = None) -> str:
+    if key not in table:
+        if default is None:
+            raise PresetError(f"{path}: key '{key}': missing (required by ServerPreset)")
+        return default
+    value = table[key]
+    if not isinstance(value, str):
+        raise PresetError(f"{path}: key '{key}': expected a string, got {type(value).__name__}")
+    return value
+
+
+def _load_table(cls: Any, table: dict[str, Any], key: str, path: Path) -> Any:
+    """Load one sub-table into `cls`, turning the record's own checks into PresetErrors."""
+    if key not in table:
+        raise PresetError(f"{path}: key '{key}': missing (required by ServerPreset)")
+    sub = degrees_to_radians(cls, table[key], file=path, key=key)
+    try:
+        return load_record(cls, sub, file=path, key=key)
+    except PresetError:
+        raise
+    except ParamError as exc:
+        raise PresetError(f"{path}: key '{key}.{exc.key}': {exc.message}") from None
+    except ValueError as exc:  # the sensing record says "field: message"
+        field_name, _, message = str(exc).partition(": ")
+        raise PresetError(f"{path}: key '{key}.{field_name}': {message}") from None
+
+
+def degrees_to_radians(cls: Any, table: Any, *, file: Path | str, key: str) -> Any:
+    """Rename ``x_deg`` keys to the record's ``x_rad`` fields, converting the value once.
+
+    A ``_deg`` key whose ``_rad`` field does not exist is left alone (the record may hold
+    degrees on purpose, or the key is unknown and :func:`load_record` says so).
+    """
+    if not isinstance(table, dict):
+        return table  # load_record reports the wrong type
+    names = {f.name for f in dataclasses.fields(cls)}
+    out = dict(table)
+    for name, value in table.items():
+        target = name[: -len("_deg")] + "_rad"
+        if not name.endswith("_deg") or name in names or target not in names:
+            continue
+        dotted = f"{key}.{name}"
+        if target in table:
+            raise PresetError(f"{file}: key '{dotted}': give either {name} or {target}, not both")
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise PresetError(
+                f"{file}: key '{dotted}': expected a number, got {type(value).__name__} {value!r}"
+            )
+        del out[name]
+        out[target] = math.radians(value)
+    return out
