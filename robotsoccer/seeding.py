@@ -11,7 +11,7 @@ import zlib
 
 import numpy as np
 
-STREAMS = ("placement", "movement", "camera", "link", "policy", "order")
+STREAMS = ("placement", "movement", "camera", "link", "sensing", "policy")
 """The named random streams every trial owns."""
 
 

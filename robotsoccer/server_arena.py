@@ -1,0 +1,206 @@
+"""The Soccer Server model as an arena: the server's dynamics, see/hear sensing and command queue.
+
+One tick is one 100 ms server cycle (shared `specs/soccer_server.md` §1):
+
+1. the body command queued for this cycle (see below) and any says are handed to the model,
+   which steps: commands, per-object update in shuffled order, collisions, goal check;
+2. says and referee messages of the cycle are delivered to the players in hearing range
+   (`sensing.deliver_says`, §2.6); they reach the client with its next percept;
+3. each player whose see timer fires this cycle (§3.1, the preset's `send_step_ms`; the paper's
+   250 ms by default) gets a percept built from its see (the structured fast path, which a test
+   proves equal to rendering the see message as text and parsing it back).
+
+**Several body actions per decision.** The paper's clients send more than one command per see
+(Figure 4: ``(turn 1)`` then ``(dash 60)``), and the server runs one body command per cycle. So a
+mind may return several body actions: they run in order, one per cycle, and a new decision
+replaces whatever is left of the previous one. Says go out at once.
+
+**Text.** With ``trace=True`` every see, hear and command is also rendered in the server's text
+format (Figure 4) into the event log, and the percept is taken from the *parsed text*, so a trace
+shows exactly what the client acted on.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+
+from field_models.protocol import Action, BodyState, Heard, Percept, PlayerRef, Say, Truth
+from field_models.soccer_server.dynamics import SoccerServerModel
+from field_models.soccer_server.messages import parse_see, render_hear, render_see
+from field_models.soccer_server.params import ServerPreset, load_server_preset
+from field_models.soccer_server.percepts import heard_from_hear, percept_from_see
+from field_models.soccer_server.sensing import (
+    HearInfo,
+    SeeTimer,
+    deliver_says,
+    observe,
+    referee_hear,
+)
+from robotsoccer.arena import ArenaEvent
+from robotsoccer.seeding import TrialRngs
+
+
+class SoccerServerArena:
+    """The Soccer Server field model behind the :class:`~robotsoccer.arena.Arena` interface."""
+
+    model_name = "soccer_server"
+
+    def __init__(
+        self,
+        preset: ServerPreset,
+        players: tuple[PlayerRef, ...],
+        rngs: TrialRngs,
+        *,
+        keep_events: bool = False,
+        trace: bool = False,
+        landmarks: str = "goals",
+    ) -> None:
+        self.preset = preset
+        self.players = players
+        self.model = SoccerServerModel(preset, players, rngs["movement"])
+        self.sensing = preset.sensing
+        self.dt_s = self.model.dt_s
+        self.pitch = self.model.pitch()
+        self.keep_events = keep_events or trace
+        self.trace = trace
+        self.landmarks = "all" if trace else landmarks
+        self._see_rng = rngs["sensing"]
+        self._timers = [SeeTimer(self.sensing) for _ in players]
+        self._rows = {ref: i + 1 for i, ref in enumerate(players)}
+        self._plans: list[deque[Action]] = [deque() for _ in players]
+        self._heard: list[list[Heard]] = [[] for _ in players]
+        self._events: list[ArenaEvent] = []
+
+    @classmethod
+    def from_preset(
+        cls,
+        preset: str,
+        players: tuple[PlayerRef, ...],
+        rngs: TrialRngs,
+        *,
+        keep_events: bool = False,
+        trace: bool = False,
+    ) -> SoccerServerArena:
+        """An arena loaded with the named (or file) Soccer Server preset."""
+        return cls(load_server_preset(preset), players, rngs, keep_events=keep_events, trace=trace)
+
+    @property
+    def tick(self) -> int:
+        """Server cycles stepped since the trial began."""
+        return self.model.cycle
+
+    # ------------------------------------------------------------------ coach side
+
+    def place_player(self, ref: PlayerRef, x: float, y: float, heading: float) -> None:
+        """The trainer's move: put a player at rest at (x, y) [m] facing `heading` [rad]."""
+        self.model.move_player(self._rows[ref], x, y, heading)
+
+    def place_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0) -> None:
+        """The trainer's move of the ball, with velocity (vx, vy) [m/s]."""
+        self.model.move_ball(x, y, vx, vy)
+
+    def ball_state(self) -> BodyState:
+        """The ball's exact state (velocity in m/s)."""
+        return self.model.ball_state()
+
+    def player_state(self, ref: PlayerRef) -> BodyState:
+        """A player's exact state (velocity in m/s)."""
+        return self.model.player_state(self._rows[ref])
+
+    def truth(self) -> Truth:
+        """Exact state of everything."""
+        players = {ref: self.model.player_state(row) for ref, row in self._rows.items()}
+        return Truth(self.tick, self.tick * self.dt_s, self.model.ball_state(), players)
+
+    # ------------------------------------------------------------------ client side
+
+    def step(self) -> list[Percept]:
+        """Run one server cycle; return the percepts of the players whose see fires now."""
+        model = self.model
+        for i, plan in enumerate(self._plans):
+            if plan:
+                model.command(i + 1, plan.popleft())
+        referee = model.step()
+        cycle = model.cycle
+        says = model.said()
+        if says or referee:
+            self._hear(says, referee, cycle)
+        percepts: list[Percept] = []
+        for i, timer in enumerate(self._timers):
+            if timer.due(cycle):
+                percepts.append(self._see(i, cycle))
+        return percepts
+
+    def _see(self, i: int, cycle: int) -> Percept:
+        """Player `i`'s percept from its see of this cycle (text route when tracing)."""
+        m = self.model
+        heard = tuple(self._heard[i])
+        self._heard[i].clear()
+        info = observe(
+            i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
+            self._see_rng, landmarks=self.landmarks,
+        )  # fmt: skip
+        cycle_s = self.dt_s
+        ref = self.players[i]
+        if self.trace:
+            text = render_see(info, self.sensing.protocol_version)
+            self._log(cycle, "see", text, ref)
+            info = parse_see(text)
+        return percept_from_see(info, ref, cycle, cycle, heard, cycle_s=cycle_s)
+
+    def _hear(self, says: list[tuple[int, str]], referee: list[str], cycle: int) -> None:
+        m = self.model
+        delivered = deliver_says(says, m.x, m.y, m.heading, self.players, cycle, self.sensing)
+        for message in referee:
+            self._log(cycle, "referee", message)
+            for row in range(1, len(self.players) + 1):
+                delivered.setdefault(row, []).append(referee_hear(cycle, message))
+        for row, infos in delivered.items():
+            ref = self.players[row - 1]
+            for info in infos:
+                self._deliver(row, ref, info, cycle)
+
+    def _deliver(self, row: int, ref: PlayerRef, info: HearInfo, cycle: int) -> None:
+        if self.trace:
+            self._log(cycle, "hear", render_hear(info, self.sensing.protocol_version), ref)
+        heard = heard_from_hear(info, ref)
+        if heard is not None:
+            self._heard[row - 1].append(heard)
+
+    def submit(self, ref: PlayerRef, actions: tuple[Action, ...]) -> None:
+        """Queue a decision: says now, body actions one per cycle from the next cycle."""
+        row = self._rows[ref]
+        body = []
+        for action in actions:
+            if isinstance(action, Say):
+                self.model.say(row, action.text)
+                self._log(self.tick, "command", f"(say {action.text})", ref)
+            else:
+                body.append(action)
+        plan = self._plans[row - 1]
+        plan.clear()
+        plan.extend(body)
+        if self.keep_events:
+            for action in body:
+                self._log(self.tick, "command", _server_text(action), ref)
+
+    def drain_events(self) -> list[ArenaEvent]:
+        """Commands, messages and referee calls since the last call, oldest first."""
+        events, self._events = self._events, []
+        return events
+
+    def _log(self, tick: int, channel: str, text: str, ref: PlayerRef | None = None) -> None:
+        if self.keep_events:
+            self._events.append(ArenaEvent(tick, channel, text, ref))
+
+
+def _server_text(action: Action) -> str:
+    """A body action as the client would send it, in the server's degrees and sign."""
+    from robotsoccer.runner import describe_action
+
+    words = describe_action(action).split()
+    if words[0] in ("turn", "kick"):  # the server's angles are clockwise: flip the sign
+        words[-1] = f"{-float(words[-1]):g}"
+    if words[0] == "dash":
+        words[-1] = f"{float(words[-1]):g}"
+    return "(" + " ".join(words) + ")"

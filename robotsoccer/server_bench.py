@@ -1,0 +1,83 @@
+"""Soccer Server speed figures for ``robotsoccer bench``.
+
+* ``soccer_server.cycles_per_s.2_players`` — one trial at a time through the arena: 2 players and
+  the ball, both players receiving percepts on their see timer and acting on them (dynamics,
+  sensing, hearing and the command queue all running).
+* ``soccer_server.object_cycles_per_s.batch`` — many trials stepped together as arrays
+  (`field_models.soccer_server.batch`), objects × cycles per second.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from field_models.protocol import LEFT, RIGHT, PlayerRef
+from field_models.soccer_server.batch import BatchSoccerServer
+from field_models.soccer_server.params import load_server_preset
+from robotsoccer.seeding import TrialRngs
+from robotsoccer.server_arena import SoccerServerArena
+
+PLAYERS = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1))
+
+
+def arena_cycles_per_s(cycles: int, preset: str = "soccer_server_1996", seed: int = 0) -> float:
+    """Cycles per wall second of a 2-player arena whose players chase the ball."""
+    from robotsoccer.bench import ChaseMind
+
+    rngs = TrialRngs.for_trial(seed, 0)
+    arena = SoccerServerArena.from_preset(preset, PLAYERS, rngs)
+    minds = {ref: ChaseMind() for ref in PLAYERS}
+    rng = rngs["placement"]
+    start = time.perf_counter()
+    done = 0
+    while done < cycles:
+        # A fresh rally every 200 cycles (5% of the time in placement): the ball is kicked off
+        # from a random spot so the players keep running, turning and seeing a moving ball.
+        arena.place_ball(float(rng.uniform(-30, 30)), float(rng.uniform(-20, 20)), 2.0, 1.0)
+        arena.place_player(PLAYERS[0], -40.0, 0.0, 0.0)
+        arena.place_player(PLAYERS[1], 40.0, 0.0, math.pi)
+        for _ in range(200):
+            for percept in arena.step():
+                arena.submit(percept.player, minds[percept.player].act(percept))
+        done += 200
+    return done / (time.perf_counter() - start)
+
+
+def batch_object_cycles_per_s(
+    cycles: int, trials: int = 2000, preset: str = "soccer_server_1996"
+) -> float:
+    """Object-cycles per wall second of `trials` 2-player trials stepped as arrays."""
+    rngs = [np.random.default_rng([1, k]) for k in range(trials)]
+    batch = BatchSoccerServer(load_server_preset(preset), PLAYERS, rngs)
+    batch.move_ball(-20.0, 0.0)
+    batch.move_player(1, -20.5, 0.0, 0.0)
+    batch.move_player(2, 5.0, 1.0, math.pi)
+    batch.kick(1, 80.0, 0.0)
+    start = time.perf_counter()
+    for t in range(cycles):
+        if t % 5 == 0:
+            batch.turn(2, 0.05)
+        else:
+            batch.dash(2, 60.0)
+        batch.step()
+    return trials * (len(PLAYERS) + 1) * cycles / (time.perf_counter() - start)
+
+
+def soccer_server_benchmarks(quick: bool = False) -> dict[str, Any]:
+    """The Soccer Server figures (medians of 3 repeats; 1 when `quick`)."""
+    from robotsoccer.bench import median_of
+
+    repeats = 1 if quick else 3
+    cycles = 4000 if quick else 20000
+    single = median_of(repeats, lambda: arena_cycles_per_s(cycles))
+    batch = median_of(repeats, lambda: batch_object_cycles_per_s(100 if quick else 300))
+    return {
+        "soccer_server": {
+            "cycles_per_s": {"2_players": round(single)},
+            "object_cycles_per_s": {"batch": round(batch)},
+        }
+    }
