@@ -21,6 +21,7 @@ def make_arena(
     *,
     perfect: bool = False,
     keep_events: bool = False,
+    trace: bool = False,
 ) -> Arena:
     """A fresh arena of `field_model` loaded with `preset` and the given players.
 
@@ -28,7 +29,8 @@ def make_arena(
         ValueError: for an unknown field model.
         field_models.presets.PresetError: for a missing or wrong preset.
 
-    `keep_events` keeps commands and messages for `Arena.drain_events` (recordings, traces).
+    `keep_events` keeps commands and messages for `Arena.drain_events` (recordings);
+    `trace` also renders the Soccer Server's messages as text (robots: same as keep_events).
         field_models.presets.PresetError: for a missing or wrong preset.
     """
     if field_model == "robot_physics":
@@ -36,10 +38,12 @@ def make_arena(
         from robotsoccer.robot_arena import RobotArena
 
         return RobotArena(
-            load_preset(preset), players, rngs, perfect=perfect, keep_events=keep_events
+            load_preset(preset), players, rngs, perfect=perfect, keep_events=keep_events or trace
         )
     if field_model == "soccer_server":
         from robotsoccer.server_arena import SoccerServerArena
 
-        return SoccerServerArena.from_preset(preset, players, rngs, keep_events=keep_events)
+        return SoccerServerArena.from_preset(
+            preset, players, rngs, keep_events=keep_events, trace=trace
+        )
     raise ValueError(f"unknown field model {field_model!r} (known: {', '.join(FIELD_MODELS)})")

@@ -1,4 +1,4 @@
-"""The ``robotsoccer`` command line: demo, bench, replay (and the commands later issues add).
+"""The ``robotsoccer`` command line: demo, trace, bench, replay.
 
 Bad input never ends in a traceback: a wrong option, an unknown preset or a wrong preset file
 prints one line naming what is wrong and exits with status 2. Ctrl-C during a run keeps every
@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import NoReturn
 
 from field_models.presets import PresetError
+from field_models.protocol import PlayerRef
 from robotsoccer.arenas import DEFAULT_PRESETS, FIELD_MODELS
 from robotsoccer.drills import DRILLS, make_drill
 from robotsoccer.pool import default_workers, run_trials
@@ -48,6 +49,14 @@ def build_parser() -> argparse.ArgumentParser:
     bench = commands.add_parser("bench", help="measure speed (simulated s per wall s, trials/s)")
     bench.add_argument("--json", action="store_true", help="print one JSON object")
     bench.add_argument("--quick", action="store_true", help="one short repeat of each figure")
+
+    trace = commands.add_parser("trace", help="print a paper-style trace (Figure 4) of a trial")
+    trace.add_argument("--field", default="soccer_server", choices=FIELD_MODELS)
+    trace.add_argument("--field-preset", default=None, help="preset name or .toml path")
+    trace.add_argument("--drill", default="shootout", choices=sorted(DRILLS))
+    trace.add_argument("--seed", type=int, default=0)
+    trace.add_argument("--trial", type=int, default=0, help="trial index")
+    trace.add_argument("--player", default=None, help="client to trace, e.g. left1")
 
     replay = commands.add_parser("replay", help="open a recording in the rerun viewer")
     replay.add_argument("file", type=Path)
@@ -88,6 +97,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return cmd_bench(args)
         if args.command == "replay":
             return cmd_replay(args)
+        if args.command == "trace":
+            return cmd_trace(args)
     except (PresetError, UsageError, ValueError) as exc:
         print(f"robotsoccer: error: {exc}", file=sys.stderr)
         return 2
@@ -193,6 +204,27 @@ def _flatten(tree: dict[str, object], prefix: str = "") -> list[tuple[str, objec
         else:
             rows.append((name, value))
     return rows
+
+
+def cmd_trace(args: argparse.Namespace) -> int:
+    """Print the trace of one trial for one client."""
+    from robotsoccer.trace import trace_trial
+
+    preset = args.field_preset or DEFAULT_PRESETS[args.field]
+    spec = TrialSpec(drill=args.drill, field_model=args.field, preset=preset, seed=args.seed)
+    client = _player(args.player) if args.player else None
+    for line in trace_trial(spec, args.trial, client):
+        print(line)
+    return 0
+
+
+def _player(text: str) -> PlayerRef:
+    """``left1`` → PlayerRef("left", 1)."""
+    team = text.rstrip("0123456789")
+    number = text[len(team) :]
+    if not team or not number:
+        raise UsageError(f"--player: expected a team and a number like left1, got {text!r}")
+    return PlayerRef(team, int(number))
 
 
 def cmd_replay(args: argparse.Namespace) -> int:
