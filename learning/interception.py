@@ -1,0 +1,478 @@
+"""Layer 1: the interception net — (BD, BA, previous BD) -> turn angle TA (paper §5).
+
+The paper's net (§5, "Learning a Low-level Skill"): fully connected, 3 inputs, 4 sigmoid hidden
+units, a linear output; back-propagation with a learning rate of 1e-6, a weight decay on the
+input-to-hidden weights "linearly decreasing ... starting at .1%", none on the output, 3000 epochs.
+
+What this module keeps and what it changes (the defaults of :class:`InterceptionModel`):
+
+* Architecture: as the paper (3 -> 4 sigmoid -> 1 linear), trained on the *saves* only.
+* Epochs: 3000, as the paper.
+* Weight decay: as the paper — after every update the input-to-hidden weights (not the biases,
+  not the output layer) are multiplied by ``1 - d``, with ``d`` falling linearly from
+  ``weight_decay`` = 0.1 % in the first epoch to 0 at the end.
+* Inputs are standardised (mean 0, standard deviation 1 per column, the scaler stored in the model
+  file). The paper fed raw distances and degrees, which is why it needed a learning rate as small
+  as 1e-6; on standardised inputs the sigmoid units start in their linear range whatever the
+  field's size, and one learning rate suits both fields (distances differ ~40x between them).
+* Optimiser: Adam, learning rate 0.01, full batch (one update per epoch). The paper's plain
+  back-propagation at 1e-6 does not move in 3000 full-batch epochs on standardised inputs; Adam
+  at 0.01 fits 1000 saves in about two seconds on one CPU thread. ``optimizer="sgd"`` (default
+  rate 0.5) is there for comparison.
+* Precision: training runs in float64, so the saved weights, :meth:`InterceptionModel.predict`
+  (numpy) and :meth:`InterceptionModel.as_function` (plain Python) agree to ~1e-15.
+
+Training is reproducible: one seeded ``torch.Generator`` draws the initial weights and the batch
+order (no global torch seed), and torch runs on one thread during ``fit`` because the thread count
+changes the float summation order (notes/tooling.md §4).
+
+Files are ``.npz`` archives of the weights and scaler plus JSON metadata (format tag, feature
+schema, hyper-parameters, provenance), read with ``allow_pickle=False``; a corrupt or mismatched
+file raises :class:`~learning.features.ModelFileError`. In the control loop, use
+:meth:`InterceptionModel.as_function`: a closure over plain floats, ~30x faster per call than torch.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import os
+from collections.abc import Callable, Iterator, Mapping
+from pathlib import Path
+from typing import Any, Self, TypeGuard
+
+import numpy as np
+import numpy.typing as npt
+import torch
+from torch import nn
+
+from learning.datasets import DatasetError, Provenance, read_npz, write_npz
+from learning.features import (
+    DISTANCE_COLUMNS,
+    FEATURE_NAMES,
+    FeatureSchema,
+    ModelFileError,
+    SchemaError,
+    check_distance_scale,
+    scale_distances,
+)
+
+MODEL_FORMAT = "robotsoccer/interception-net"
+"""Format tag stored in every interception-net file."""
+
+MODEL_FORMAT_VERSION = 1
+"""Version of the file layout."""
+
+DEFAULT_LEARNING_RATES = {"adam": 1e-2, "sgd": 0.5}
+"""Learning rate used when ``learning_rate=None``, per optimiser (for standardised inputs)."""
+
+WEIGHT_KEYS = ("hidden.weight", "hidden.bias", "output.weight", "output.bias")
+"""The net's ``state_dict`` keys, stored as arrays of the same names."""
+
+SCALER_KEYS = ("input_mean", "input_scale")
+"""The standardisation arrays stored beside the weights."""
+
+Array = npt.NDArray[np.float64]
+TurnAngleFunction = Callable[[float, float, float], float]
+"""(BD [m], BA [rad], previous BD [m]) -> TA [rad]."""
+
+
+class InterceptionNet(nn.Module):
+    """The paper's net: 3 inputs -> `hidden` sigmoid units -> 1 linear output (§5).
+
+    Its inputs are standardised features; :class:`InterceptionModel` does the scaling.
+    """
+
+    def __init__(self, hidden: int = 4) -> None:
+        super().__init__()
+        self.hidden = nn.Linear(len(FEATURE_NAMES), hidden)
+        self.output = nn.Linear(hidden, 1)
+
+    def forward(self, z: torch.Tensor) -> torch.Tensor:
+        """(N, 3) standardised features -> (N,) turn angles [rad]."""
+        out: torch.Tensor = self.output(torch.sigmoid(self.hidden(z)))
+        return out.squeeze(-1)
+
+
+class InterceptionModel:
+    """The interception net as an estimator: ``fit(X, y)``, ``predict(X)``, save and load.
+
+    ``X`` rows are :data:`~learning.features.FEATURE_NAMES` (BD [m], BA [rad], previous BD [m]),
+    ``y`` the turn angles TA [rad]. See the module docstring for the defaults and why.
+
+    Args:
+        hidden: Number of sigmoid hidden units (paper: 4).
+        optimizer: ``"adam"`` or ``"sgd"``.
+        learning_rate: Step size; None picks :data:`DEFAULT_LEARNING_RATES` for the optimiser.
+        weight_decay: Initial per-update decay of the input-to-hidden weights, falling linearly
+            to 0 over the epochs (paper: 0.1 %).
+        epochs: Passes over the data (paper: 3000).
+        batch_size: Rows per update; None trains on the full batch.
+        random_state: Seed of the initial weights and of the batch order.
+        distance_scale_m: Distances are divided by this before the net [m] (the transfer study;
+            see :mod:`learning.features`).
+
+    Attributes:
+        weights_: The net's ``state_dict`` as float64 arrays (``hidden.weight`` (H, 3), ...).
+        input_mean_: (3,) mean of the scaled training features.
+        input_scale_: (3,) standard deviation of the scaled training features (1 where constant).
+        feature_schema_: The schema the model reads, with its active distance scale.
+        loss_history_: (epochs,) training mean squared error per epoch [rad^2].
+        n_train_: Rows it was fitted on.
+        provenance_: The training data's provenance, when loaded from a file; else None.
+    """
+
+    weights_: dict[str, Array]
+    input_mean_: Array
+    input_scale_: Array
+    feature_schema_: FeatureSchema
+    loss_history_: Array
+    n_train_: int
+    provenance_: Provenance | None
+
+    def __init__(
+        self,
+        hidden: int = 4,
+        optimizer: str = "adam",
+        learning_rate: float | None = None,
+        weight_decay: float = 1e-3,
+        epochs: int = 3000,
+        batch_size: int | None = None,
+        random_state: int = 0,
+        distance_scale_m: float = 1.0,
+    ) -> None:
+        self.hidden = hidden
+        self.optimizer = optimizer
+        self.learning_rate = learning_rate
+        self.weight_decay = weight_decay
+        self.epochs = epochs
+        self.batch_size = batch_size
+        self.random_state = random_state
+        self.distance_scale_m = distance_scale_m
+
+    def __repr__(self) -> str:
+        args = ", ".join(f"{k}={v!r}" for k, v in self.get_params().items())
+        return f"{type(self).__name__}({args})"
+
+    def get_params(self) -> dict[str, Any]:
+        """The constructor arguments, as given (plain types, stored in the model file)."""
+        return {
+            "hidden": self.hidden,
+            "optimizer": self.optimizer,
+            "learning_rate": self.learning_rate,
+            "weight_decay": self.weight_decay,
+            "epochs": self.epochs,
+            "batch_size": self.batch_size,
+            "random_state": self.random_state,
+            "distance_scale_m": self.distance_scale_m,
+        }
+
+    # ------------------------------------------------------------------------- training
+
+    def fit(self, x: npt.ArrayLike, y: npt.ArrayLike) -> Self:
+        """Train on saves: `x` (N, 3) features [m, rad, m], `y` (N,) turn angles [rad].
+
+        Returns:
+            self, fitted.
+
+        Raises:
+            ValueError: A hyper-parameter is invalid, or `x`/`y` have wrong shapes or values.
+        """
+        _check_params(self.get_params())
+        rows = scale_distances(x, self.distance_scale_m)
+        targets = np.asarray(y, dtype=np.float64)
+        if targets.shape != (rows.shape[0],) or rows.shape[0] < 2:
+            raise ValueError(
+                f"need >= 2 rows and y of shape (N,) = ({len(rows)},), got {targets.shape}"
+            )
+        if not np.isfinite(targets).all():
+            raise ValueError("targets hold NaN or infinite values")
+        mean = rows.mean(axis=0)
+        scale = rows.std(axis=0)
+        scale[scale == 0.0] = 1.0  # a constant column carries no information; leave it at 0
+        net, history = self._train((rows - mean) / scale, targets)
+        self.weights_ = {k: v.detach().numpy().copy() for k, v in net.state_dict().items()}
+        self.input_mean_, self.input_scale_ = mean, scale
+        self.feature_schema_ = FeatureSchema(distance_scale_m=self.distance_scale_m)
+        self.loss_history_ = history
+        self.n_train_ = int(rows.shape[0])
+        self.provenance_ = None
+        return self
+
+    def _train(self, z: Array, targets: Array) -> tuple[InterceptionNet, Array]:
+        threads = torch.get_num_threads()
+        torch.set_num_threads(1)  # thread count changes summation order: notes/tooling.md §4
+        try:
+            # The one seeding block: a private generator, so fitting never touches global RNGs.
+            generator = torch.Generator().manual_seed(self.random_state)
+            net = _new_net(self.hidden)
+            _initialise(net, generator)
+            return net, self._epochs(net, torch.from_numpy(z), torch.from_numpy(targets), generator)
+        finally:
+            torch.set_num_threads(threads)
+
+    def _epochs(
+        self, net: InterceptionNet, xs: torch.Tensor, ys: torch.Tensor, generator: torch.Generator
+    ) -> Array:
+        rate = self.learning_rate
+        if rate is None:
+            rate = DEFAULT_LEARNING_RATES[self.optimizer]
+        step: torch.optim.Optimizer
+        if self.optimizer == "adam":
+            step = torch.optim.Adam(net.parameters(), lr=rate)
+        else:
+            step = torch.optim.SGD(net.parameters(), lr=rate)
+        history = np.empty(self.epochs)
+        for epoch in range(self.epochs):
+            # Paper §5: input-to-hidden decay "linearly decreasing ... starting at .1%".
+            keep = 1.0 - self.weight_decay * (1.0 - epoch / self.epochs)
+            total = 0.0
+            for rows in _batches(len(ys), self.batch_size, generator):
+                xb, yb = (xs, ys) if rows is None else (xs[rows], ys[rows])
+                loss = torch.mean((net(xb) - yb) ** 2)
+                step.zero_grad()
+                loss.backward()
+                step.step()
+                with torch.no_grad():
+                    net.hidden.weight.mul_(keep)
+                total += loss.item() * len(yb)
+            history[epoch] = total / len(ys)
+        return history
+
+    # ------------------------------------------------------------------------- inference
+
+    def predict(self, x: npt.ArrayLike) -> Array:
+        """Turn angles for (N, 3) feature rows [m, rad, m] -> (N,) TA [rad]; numpy, batched."""
+        self._check_fitted()
+        rows = scale_distances(x, self.feature_schema_.distance_scale_m)
+        w = self.weights_
+        z = (rows - self.input_mean_) / self.input_scale_
+        # sigmoid(a) = (1 + tanh(a / 2)) / 2: never overflows, and as_function uses the same form.
+        h = 0.5 + 0.5 * np.tanh(0.5 * (z @ w["hidden.weight"].T + w["hidden.bias"]))
+        out: Array = h @ w["output.weight"][0] + w["output.bias"][0]
+        return out
+
+    def as_function(self) -> TurnAngleFunction:
+        """A plain-Python ``f(BD [m], BA [rad], previous BD [m]) -> TA [rad]`` for the control loop.
+
+        The distance scale, the standardisation and the sigmoid's halves are folded into one
+        coefficient set per hidden unit, so a call is 4 ``math.tanh`` and a dozen multiply-adds
+        (about 1 µs; torch takes ~25 µs per single sample). Equals :meth:`predict` to 1e-9.
+        """
+        self._check_fitted()
+        units, offset = self._folded()
+        tanh = math.tanh  # a closure variable: faster than a global lookup per call
+
+        def turn_angle_rad(
+            ball_distance_m: float, ball_angle_rad: float, previous_ball_distance_m: float
+        ) -> float:
+            out = offset
+            for k, c0, c1, c2, b in units:
+                out += k * tanh(
+                    c0 * ball_distance_m + c1 * ball_angle_rad + c2 * previous_ball_distance_m + b
+                )
+            return out
+
+        return turn_angle_rad
+
+    def _folded(self) -> tuple[tuple[tuple[float, float, float, float, float], ...], float]:
+        # out = b2 + sum_j v_j * (1 + tanh(a_j / 2)) / 2, a_j = W1_j . (x / s - mean) / scale + b1_j
+        w = self.weights_
+        divisor = self.input_scale_.copy()
+        divisor[list(DISTANCE_COLUMNS)] *= self.feature_schema_.distance_scale_m
+        coef = 0.5 * w["hidden.weight"] / divisor
+        standard_mean = self.input_mean_ / self.input_scale_
+        bias = 0.5 * (w["hidden.bias"] - w["hidden.weight"] @ standard_mean)
+        v = w["output.weight"][0]
+        units = tuple(
+            (float(0.5 * v[j]), float(c[0]), float(c[1]), float(c[2]), float(bias[j]))
+            for j, c in enumerate(coef)
+        )
+        offset = float(w["output.bias"][0] + 0.5 * v.sum())
+        return units, offset
+
+    def with_distance_scale(self, distance_scale_m: float) -> InterceptionModel:
+        """The same fitted net reading distances divided by another scale (transfer study).
+
+        E.g. a net trained on the Soccer Server with ``distance_scale_m=105`` (field lengths)
+        applied on the robot table with ``.with_distance_scale(2.74)``.
+        """
+        self._check_fitted()
+        check_distance_scale(distance_scale_m)
+        other = type(self)(**{**self.get_params(), "distance_scale_m": distance_scale_m})
+        other.__dict__.update(
+            {k: v for k, v in self.__dict__.items() if k.endswith("_")},
+            feature_schema_=dataclasses.replace(
+                self.feature_schema_, distance_scale_m=distance_scale_m
+            ),
+        )
+        return other
+
+    def to_torch(self) -> InterceptionNet:
+        """A float64 torch net holding the fitted weights (its inputs are standardised)."""
+        self._check_fitted()
+        net = _new_net(self.hidden)
+        net.load_state_dict({k: torch.from_numpy(v.copy()) for k, v in self.weights_.items()})
+        return net
+
+    def _check_fitted(self) -> None:
+        if not hasattr(self, "weights_"):
+            raise RuntimeError("InterceptionModel is not fitted: call fit() or load() first")
+
+    # ------------------------------------------------------------------------- files
+
+    def save(self, path: str | os.PathLike[str], provenance: Provenance) -> Path:
+        """Write the fitted model and its training data's provenance to `path` (``.npz``).
+
+        Returns:
+            The path written.
+        """
+        self._check_fitted()
+        if provenance.schema_version != self.feature_schema_.version:
+            raise ValueError(
+                f"provenance schema version {provenance.schema_version} is not the model's "
+                f"{self.feature_schema_.version}"
+            )
+        meta = {
+            "format": MODEL_FORMAT,
+            "format_version": MODEL_FORMAT_VERSION,
+            "schema": self.feature_schema_.to_dict(),
+            "hyperparameters": self.get_params(),
+            "provenance": provenance.to_dict(),
+            "n_train": self.n_train_,
+            "torch_version": torch.__version__,
+        }
+        arrays = {
+            **self.weights_,
+            "input_mean": self.input_mean_,
+            "input_scale": self.input_scale_,
+            "loss_history": self.loss_history_,
+        }
+        return write_npz(Path(path), arrays, meta)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> InterceptionModel:
+        """Read a model written by :meth:`save`, validating everything before use.
+
+        Checks the format tag and version, the feature schema, the hyper-parameters, every
+        array's shape and dtype, and that all weights are finite.
+
+        Raises:
+            ModelFileError: The file is missing, corrupt, truncated, not a model, for another
+                feature schema, or holds wrong shapes or non-finite weights.
+        """
+        path = Path(path)
+        arrays, meta = read_npz(path, (*WEIGHT_KEYS, *SCALER_KEYS, "loss_history"), ModelFileError)
+        try:
+            return cls._from_file(arrays, meta)
+        except (ModelFileError, SchemaError, DatasetError) as exc:
+            raise ModelFileError(f"{path}: {exc}") from None
+
+    @classmethod
+    def _from_file(cls, arrays: Mapping[str, npt.NDArray[Any]], meta: Mapping[str, Any]) -> Self:
+        if meta.get("format") != MODEL_FORMAT:
+            raise ModelFileError(f"format tag {meta.get('format')!r} is not {MODEL_FORMAT!r}")
+        if meta.get("format_version") != MODEL_FORMAT_VERSION:
+            raise ModelFileError(f"unsupported model format version {meta.get('format_version')!r}")
+        for key in ("schema", "hyperparameters", "provenance", "n_train"):
+            if key not in meta:
+                raise ModelFileError(f"metadata lacks {key!r}")
+        schema = FeatureSchema.from_dict(meta["schema"])
+        params = meta["hyperparameters"]
+        if not isinstance(params, dict) or set(params) != set(cls().get_params()):
+            raise ModelFileError(f"hyper-parameters {params!r} are not this model's")
+        try:
+            _check_params(params)
+        except ValueError as exc:
+            raise ModelFileError(str(exc)) from None
+        _check_arrays(arrays, params["hidden"])
+        model = cls(**params)
+        model.weights_ = {k: arrays[k] for k in WEIGHT_KEYS}
+        model.input_mean_, model.input_scale_ = arrays["input_mean"], arrays["input_scale"]
+        model.loss_history_ = arrays["loss_history"]
+        model.feature_schema_ = schema
+        model.n_train_ = int(meta["n_train"])
+        model.provenance_ = Provenance.from_dict(meta["provenance"])
+        return model
+
+
+def _new_net(hidden: int) -> InterceptionNet:
+    """A float64 net; torch's default init draws from the global RNG, so restore it after."""
+    with torch.random.fork_rng(devices=[]):
+        return InterceptionNet(hidden).double()
+
+
+def _initialise(net: InterceptionNet, generator: torch.Generator) -> None:
+    """Uniform(±1/sqrt(fan_in)) weights and biases, torch's default range, from `generator`."""
+    with torch.no_grad():
+        for layer in (net.hidden, net.output):
+            bound = 1.0 / math.sqrt(layer.in_features)
+            layer.weight.uniform_(-bound, bound, generator=generator)
+            layer.bias.uniform_(-bound, bound, generator=generator)
+
+
+def _batches(
+    n: int, batch_size: int | None, generator: torch.Generator
+) -> Iterator[torch.Tensor | None]:
+    """Row indices of each mini-batch of one epoch (shuffled); None means the full batch."""
+    if batch_size is None or batch_size >= n:
+        yield None
+        return
+    order = torch.randperm(n, generator=generator)
+    yield from order.split(batch_size)
+
+
+def _check_params(params: Mapping[str, Any]) -> None:
+    """Raise ValueError naming the first invalid hyper-parameter."""
+    checks = {
+        "hidden": _is_int(params["hidden"]) and params["hidden"] >= 1,
+        "optimizer": params["optimizer"] in DEFAULT_LEARNING_RATES,
+        "learning_rate": params["learning_rate"] is None or _is_positive(params["learning_rate"]),
+        "weight_decay": _is_number(params["weight_decay"]) and 0 <= params["weight_decay"] < 1,
+        "epochs": _is_int(params["epochs"]) and params["epochs"] >= 1,
+        "batch_size": params["batch_size"] is None
+        or (_is_int(params["batch_size"]) and params["batch_size"] >= 1),
+        "random_state": _is_int(params["random_state"]) and params["random_state"] >= 0,
+        "distance_scale_m": _is_positive(params["distance_scale_m"]),
+    }
+    for name, ok in checks.items():
+        if not ok:
+            raise ValueError(f"invalid hyper-parameter {name}={params[name]!r}")
+
+
+def _is_int(value: object) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def _is_number(value: object) -> TypeGuard[int | float]:
+    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
+
+
+def _is_positive(value: object) -> bool:
+    return _is_number(value) and value > 0
+
+
+def _check_arrays(arrays: Mapping[str, npt.NDArray[Any]], hidden: int) -> None:
+    """Raise ModelFileError unless every array has the expected shape, float64 and finite values."""
+    n_in = len(FEATURE_NAMES)
+    shapes = {
+        "hidden.weight": (hidden, n_in),
+        "hidden.bias": (hidden,),
+        "output.weight": (1, hidden),
+        "output.bias": (1,),
+        "input_mean": (n_in,),
+        "input_scale": (n_in,),
+    }
+    for key, shape in shapes.items():
+        array = arrays[key]
+        if array.shape != shape or array.dtype != np.float64:
+            raise ModelFileError(
+                f"array {key!r} is {array.dtype}{array.shape}, expected float64{shape} "
+                f"for {hidden} hidden units"
+            )
+        if not np.isfinite(array).all():
+            raise ModelFileError(f"array {key!r} holds NaN or infinite values")
+    if not (arrays["input_scale"] > 0).all():
+        raise ModelFileError("input_scale must be > 0")
+    if arrays["loss_history"].ndim != 1 or arrays["loss_history"].dtype != np.float64:
+        raise ModelFileError("loss_history must be a 1-D float64 array")
