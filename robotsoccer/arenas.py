@@ -2,7 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
+from functools import lru_cache
+
 from field_models.protocol import PlayerRef
+from field_models.robot_physics.config import RobotPhysicsPreset
+from field_models.robot_physics.config import load_preset as _load_robot_preset
+from field_models.soccer_server.params import ServerPreset
+from field_models.soccer_server.params import load_server_preset as _load_server_preset
 from robotsoccer.arena import Arena
 from robotsoccer.seeding import TrialRngs
 
@@ -22,6 +29,8 @@ def make_arena(
     perfect: bool = False,
     keep_events: bool = False,
     trace: bool = False,
+    ball_noise: float | None = None,
+    camera_latency_s: float | None = None,
 ) -> Arena:
     """A fresh arena of `field_model` loaded with `preset` and the given players.
 
@@ -34,16 +43,41 @@ def make_arena(
         field_models.presets.PresetError: for a missing or wrong preset.
     """
     if field_model == "robot_physics":
-        from field_models.robot_physics.config import load_preset
         from robotsoccer.robot_arena import RobotArena
 
-        return RobotArena(
-            load_preset(preset), players, rngs, perfect=perfect, keep_events=keep_events or trace
-        )
+        robot = robot_preset(preset, ball_noise, camera_latency_s)
+        return RobotArena(robot, players, rngs, perfect=perfect, keep_events=keep_events or trace)
     if field_model == "soccer_server":
         from robotsoccer.server_arena import SoccerServerArena
 
-        return SoccerServerArena.from_preset(
-            preset, players, rngs, keep_events=keep_events, trace=trace
-        )
+        if camera_latency_s is not None:
+            raise ValueError("camera latency is a robot_physics setting")
+        server = server_preset(preset, ball_noise)
+        return SoccerServerArena(server, players, rngs, keep_events=keep_events, trace=trace)
     raise ValueError(f"unknown field model {field_model!r} (known: {', '.join(FIELD_MODELS)})")
+
+
+@lru_cache(maxsize=32)
+def robot_preset(
+    name: str, ball_noise: float | None = None, camera_latency_s: float | None = None
+) -> RobotPhysicsPreset:
+    """A robot preset with optional overrides (loaded once per process: trials share it)."""
+    preset = _load_robot_preset(name)
+    if ball_noise is not None:
+        preset = dataclasses.replace(
+            preset, ball=dataclasses.replace(preset.ball, motion_noise=ball_noise)
+        )
+    if camera_latency_s is not None:
+        camera = dataclasses.replace(preset.camera, latency_s=camera_latency_s)
+        preset = dataclasses.replace(preset, camera=camera)
+        preset.ticks(camera_latency_s, "camera.latency_s")  # refuse a fraction of a tick
+    return preset
+
+
+@lru_cache(maxsize=32)
+def server_preset(name: str, ball_noise: float | None = None) -> ServerPreset:
+    """A Soccer Server preset with an optional ``ball_rand`` override (loaded once per process)."""
+    preset = _load_server_preset(name)
+    if ball_noise is not None:
+        preset = preset.replace_dynamics(ball_rand=ball_noise)
+    return preset

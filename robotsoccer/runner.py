@@ -7,6 +7,7 @@ how many workers ran or in which order.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -20,6 +21,9 @@ from robotsoccer.seeding import TrialRngs
 
 Observer = Callable[[Arena, list[Percept]], None]
 """Called after every tick with the arena and the percepts of that tick (recordings, traces)."""
+
+DrillOption = str | float | int | bool
+"""A drill option's value (kept to plain types so a TrialSpec pickles and prints)."""
 
 DecisionLog = Callable[[Percept, tuple[Action, ...]], None]
 """Called with every percept a mind acted on and the actions it chose."""
@@ -37,6 +41,10 @@ class TrialSpec:
         perfect_perception: Robots: camera without noise, misses or latency.
         record_dir: Folder for rerun recordings, or None.
         record_trials: Record the trials whose index is below this.
+        drill_options: Keyword arguments for the drill, as (name, value) pairs.
+        ball_noise: Override of the ball-motion noise (Soccer Server ``ball_rand``; robots
+            ``ball.motion_noise``), or None for the preset's.
+        camera_latency_s: Robots: override of the camera latency [s], or None.
     """
 
     drill: str = "shootout"
@@ -46,29 +54,49 @@ class TrialSpec:
     perfect_perception: bool = False
     record_dir: str | None = None
     record_trials: int = 0
+    drill_options: tuple[tuple[str, DrillOption], ...] = ()
+    ball_noise: float | None = None
+    camera_latency_s: float | None = None
+
+    def with_options(self, **options: DrillOption) -> TrialSpec:
+        """A copy with these drill options added (replacing any of the same name)."""
+        merged = dict(self.drill_options) | options
+        return dataclasses.replace(self, drill_options=tuple(sorted(merged.items())))
 
 
 @dataclass(frozen=True, slots=True)
 class TrialResult:
-    """The outcome of one trial."""
+    """The outcome of one trial.
+
+    Attributes:
+        index: Trial index (its seed is the experiment seed and this index).
+        label: The coach's label.
+        reason: Why, in words.
+        ticks: Ticks the trial lasted.
+        time_s: Simulated seconds it lasted.
+        data: What the drill recorded (e.g. the interception example BD, BA, previous BD, TA).
+    """
 
     index: int
     label: str
     reason: str
     ticks: int
     time_s: float
+    data: tuple[float, ...] = ()
 
-    CSV_HEADER = "index,label,ticks,time_s,reason"
+    CSV_HEADER = "index,label,ticks,time_s,data,reason"
 
     def csv_row(self) -> str:
-        """This result as a CSV line (the reason is free text without commas)."""
-        return f"{self.index},{self.label},{self.ticks},{self.time_s!r},{self.reason}"
+        """This result as a CSV line: floats exactly (repr); the reason last, free text."""
+        data = " ".join(repr(v) for v in self.data)
+        return f"{self.index},{self.label},{self.ticks},{self.time_s!r},{data},{self.reason}"
 
     @classmethod
     def from_csv_row(cls, row: str) -> TrialResult:
         """Parse a line written by :meth:`csv_row`."""
-        index, label, ticks, time_s, reason = row.rstrip("\n").split(",", 4)
-        return cls(int(index), label, reason, int(ticks), float(time_s))
+        index, label, ticks, time_s, data, reason = row.rstrip("\n").split(",", 5)
+        values = tuple(float(v) for v in data.split())
+        return cls(int(index), label, reason, int(ticks), float(time_s), values)
 
 
 def play(
@@ -100,7 +128,7 @@ def play(
 def run_trial(spec: TrialSpec, index: int) -> TrialResult:
     """Run trial `index` of `spec` and return its result."""
     rngs = TrialRngs.for_trial(spec.seed, index)
-    drill = make_drill(spec.drill)
+    drill = make_drill(spec.drill, dict(spec.drill_options))
     recording = spec.record_dir is not None and index < spec.record_trials
     arena = make_arena(
         spec.field_model,
@@ -109,6 +137,8 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
         rngs,
         perfect=spec.perfect_perception,
         keep_events=recording,
+        ball_noise=spec.ball_noise,
+        camera_latency_s=spec.camera_latency_s,
     )
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
@@ -116,7 +146,9 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
         verdict = _play_recorded(arena, drill, minds, spec, index)
     else:
         verdict = play(arena, drill, minds)
-    return TrialResult(index, verdict.label, verdict.reason, arena.tick, arena.tick * arena.dt_s)
+    return TrialResult(
+        index, verdict.label, verdict.reason, arena.tick, arena.tick * arena.dt_s, drill.data()
+    )
 
 
 def _play_recorded(

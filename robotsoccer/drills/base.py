@@ -49,3 +49,7 @@ class Drill(Protocol):
     def timeout(self, arena: Arena) -> Verdict:
         """The verdict when `max_time_s` runs out."""
         ...
+
+    def data(self) -> tuple[float, ...]:
+        """What the trial recorded for learning (empty when the drill records nothing)."""
+        ...

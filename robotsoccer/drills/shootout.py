@@ -153,6 +153,10 @@ class ShootoutDrill:
         """Out of time: the shot never arrived."""
         return Verdict("MISS", f"no result within {self.max_time_s:g} s")
 
+    def data(self) -> tuple[float, ...]:
+        """The demo records nothing."""
+        return ()
+
 
 def _xy(distance: float, angle: float) -> tuple[float, float]:
     return distance * math.cos(angle), distance * math.sin(angle)
