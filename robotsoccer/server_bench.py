@@ -17,6 +17,7 @@ import numpy as np
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
 from field_models.soccer_server.batch import BatchSoccerServer
+from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.params import load_server_preset
 from robotsoccer.seeding import TrialRngs
 from robotsoccer.server_arena import SoccerServerArena
@@ -47,23 +48,37 @@ def arena_cycles_per_s(cycles: int, preset: str = "soccer_server_1996", seed: in
     return done / (time.perf_counter() - start)
 
 
+def _drill_like_trial(model: SoccerServerModel | BatchSoccerServer, cycles: int) -> None:
+    """A shooter kicks, a defender dashes every cycle and turns every fifth (noise, referee on)."""
+    model.move_ball(-20.0, 0.0)
+    model.move_player(1, -20.5, 0.0, 0.0)
+    model.move_player(2, 5.0, 1.0, math.pi)
+    model.kick(1, 80.0, 0.0)
+    for t in range(cycles):
+        if t % 5 == 0:
+            model.turn(2, 0.05)
+        else:
+            model.dash(2, 60.0)
+        model.step()
+
+
+def dynamics_cycles_per_s(cycles: int, preset: str = "soccer_server_1996") -> float:
+    """Cycles per wall second of the bare dynamics (no sensing) for 2 players + ball."""
+    model = SoccerServerModel(load_server_preset(preset), PLAYERS, np.random.default_rng(0))
+    start = time.perf_counter()
+    for _ in range(max(1, cycles // 100)):
+        _drill_like_trial(model, 100)
+    return max(1, cycles // 100) * 100 / (time.perf_counter() - start)
+
+
 def batch_object_cycles_per_s(
     cycles: int, trials: int = 2000, preset: str = "soccer_server_1996"
 ) -> float:
     """Object-cycles per wall second of `trials` 2-player trials stepped as arrays."""
     rngs = [np.random.default_rng([1, k]) for k in range(trials)]
     batch = BatchSoccerServer(load_server_preset(preset), PLAYERS, rngs)
-    batch.move_ball(-20.0, 0.0)
-    batch.move_player(1, -20.5, 0.0, 0.0)
-    batch.move_player(2, 5.0, 1.0, math.pi)
-    batch.kick(1, 80.0, 0.0)
     start = time.perf_counter()
-    for t in range(cycles):
-        if t % 5 == 0:
-            batch.turn(2, 0.05)
-        else:
-            batch.dash(2, 60.0)
-        batch.step()
+    _drill_like_trial(batch, cycles)
     return trials * (len(PLAYERS) + 1) * cycles / (time.perf_counter() - start)
 
 
