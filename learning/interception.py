@@ -30,6 +30,9 @@ Files are ``.npz`` archives of the weights and scaler plus JSON metadata (format
 schema, hyper-parameters, provenance), read with ``allow_pickle=False``; a corrupt or mismatched
 file raises :class:`~learning.features.ModelFileError`. In the control loop, use
 :meth:`InterceptionModel.as_function`: a closure over plain floats, ~30x faster per call than torch.
+The file layout, its validation and the plain-Python closure live in the torch-free
+:mod:`learning.interception_file` (one implementation), so a control loop can load a net with
+:func:`~learning.interception_file.load_turn_function` without importing torch.
 """
 
 from __future__ import annotations
@@ -37,44 +40,49 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Any, Self, TypeGuard
+from typing import Any, Self
 
 import numpy as np
 import numpy.typing as npt
 import torch
 from torch import nn
 
-from learning.datasets import DatasetError, Provenance, read_npz, write_npz
+from learning.datasets import Provenance, write_npz
 from learning.features import (
-    DISTANCE_COLUMNS,
     FEATURE_NAMES,
     FeatureSchema,
-    ModelFileError,
-    SchemaError,
     check_distance_scale,
     scale_distances,
 )
+from learning.interception_file import (
+    DEFAULT_LEARNING_RATES,
+    MODEL_FORMAT,
+    MODEL_FORMAT_VERSION,
+    SCALER_KEYS,
+    WEIGHT_KEYS,
+    NetFile,
+    TurnAngleFunction,
+    Unit,
+    fold_net,
+    read_net_file,
+    turn_function,
+)
+from learning.interception_file import check_params as _check_params
 
-MODEL_FORMAT = "robotsoccer/interception-net"
-"""Format tag stored in every interception-net file."""
-
-MODEL_FORMAT_VERSION = 1
-"""Version of the file layout."""
-
-DEFAULT_LEARNING_RATES = {"adam": 1e-2, "sgd": 0.5}
-"""Learning rate used when ``learning_rate=None``, per optimiser (for standardised inputs)."""
-
-WEIGHT_KEYS = ("hidden.weight", "hidden.bias", "output.weight", "output.bias")
-"""The net's ``state_dict`` keys, stored as arrays of the same names."""
-
-SCALER_KEYS = ("input_mean", "input_scale")
-"""The standardisation arrays stored beside the weights."""
+__all__ = [
+    "DEFAULT_LEARNING_RATES",
+    "MODEL_FORMAT",
+    "MODEL_FORMAT_VERSION",
+    "SCALER_KEYS",
+    "WEIGHT_KEYS",
+    "InterceptionModel",
+    "InterceptionNet",
+    "TurnAngleFunction",
+]
 
 Array = npt.NDArray[np.float64]
-TurnAngleFunction = Callable[[float, float, float], float]
-"""(BD [m], BA [rad], previous BD [m]) -> TA [rad]."""
 
 
 class InterceptionNet(nn.Module):
@@ -261,35 +269,15 @@ class InterceptionModel:
         """
         self._check_fitted()
         units, offset = self._folded()
-        tanh = math.tanh  # a closure variable: faster than a global lookup per call
+        return turn_function(units, offset)
 
-        def turn_angle_rad(
-            ball_distance_m: float, ball_angle_rad: float, previous_ball_distance_m: float
-        ) -> float:
-            out = offset
-            for k, c0, c1, c2, b in units:
-                out += k * tanh(
-                    c0 * ball_distance_m + c1 * ball_angle_rad + c2 * previous_ball_distance_m + b
-                )
-            return out
-
-        return turn_angle_rad
-
-    def _folded(self) -> tuple[tuple[tuple[float, float, float, float, float], ...], float]:
-        # out = b2 + sum_j v_j * (1 + tanh(a_j / 2)) / 2, a_j = W1_j . (x / s - mean) / scale + b1_j
-        w = self.weights_
-        divisor = self.input_scale_.copy()
-        divisor[list(DISTANCE_COLUMNS)] *= self.feature_schema_.distance_scale_m
-        coef = 0.5 * w["hidden.weight"] / divisor
-        standard_mean = self.input_mean_ / self.input_scale_
-        bias = 0.5 * (w["hidden.bias"] - w["hidden.weight"] @ standard_mean)
-        v = w["output.weight"][0]
-        units = tuple(
-            (float(0.5 * v[j]), float(c[0]), float(c[1]), float(c[2]), float(bias[j]))
-            for j, c in enumerate(coef)
+    def _folded(self) -> tuple[tuple[Unit, ...], float]:
+        return fold_net(
+            self.weights_,
+            self.input_mean_,
+            self.input_scale_,
+            self.feature_schema_.distance_scale_m,
         )
-        offset = float(w["output.bias"][0] + 0.5 * v.sum())
-        return units, offset
 
     def with_distance_scale(self, distance_scale_m: float) -> InterceptionModel:
         """The same fitted net reading distances divided by another scale (transfer study).
@@ -361,38 +349,17 @@ class InterceptionModel:
             ModelFileError: The file is missing, corrupt, truncated, not a model, for another
                 feature schema, or holds wrong shapes or non-finite weights.
         """
-        path = Path(path)
-        arrays, meta = read_npz(path, (*WEIGHT_KEYS, *SCALER_KEYS, "loss_history"), ModelFileError)
-        try:
-            return cls._from_file(arrays, meta)
-        except (ModelFileError, SchemaError, DatasetError) as exc:
-            raise ModelFileError(f"{path}: {exc}") from None
+        return cls._from_file(read_net_file(path))
 
     @classmethod
-    def _from_file(cls, arrays: Mapping[str, npt.NDArray[Any]], meta: Mapping[str, Any]) -> Self:
-        if meta.get("format") != MODEL_FORMAT:
-            raise ModelFileError(f"format tag {meta.get('format')!r} is not {MODEL_FORMAT!r}")
-        if meta.get("format_version") != MODEL_FORMAT_VERSION:
-            raise ModelFileError(f"unsupported model format version {meta.get('format_version')!r}")
-        for key in ("schema", "hyperparameters", "provenance", "n_train"):
-            if key not in meta:
-                raise ModelFileError(f"metadata lacks {key!r}")
-        schema = FeatureSchema.from_dict(meta["schema"])
-        params = meta["hyperparameters"]
-        if not isinstance(params, dict) or set(params) != set(cls().get_params()):
-            raise ModelFileError(f"hyper-parameters {params!r} are not this model's")
-        try:
-            _check_params(params)
-        except ValueError as exc:
-            raise ModelFileError(str(exc)) from None
-        _check_arrays(arrays, params["hidden"])
-        model = cls(**params)
-        model.weights_ = {k: arrays[k] for k in WEIGHT_KEYS}
-        model.input_mean_, model.input_scale_ = arrays["input_mean"], arrays["input_scale"]
-        model.loss_history_ = arrays["loss_history"]
-        model.feature_schema_ = schema
-        model.n_train_ = int(meta["n_train"])
-        model.provenance_ = Provenance.from_dict(meta["provenance"])
+    def _from_file(cls, net: NetFile) -> Self:
+        model = cls(**net.hyperparameters)
+        model.weights_ = dict(net.weights)
+        model.input_mean_, model.input_scale_ = net.input_mean, net.input_scale
+        model.loss_history_ = net.loss_history
+        model.feature_schema_ = net.schema
+        model.n_train_ = net.n_train
+        model.provenance_ = net.provenance
         return model
 
 
@@ -420,59 +387,3 @@ def _batches(
         return
     order = torch.randperm(n, generator=generator)
     yield from order.split(batch_size)
-
-
-def _check_params(params: Mapping[str, Any]) -> None:
-    """Raise ValueError naming the first invalid hyper-parameter."""
-    checks = {
-        "hidden": _is_int(params["hidden"]) and params["hidden"] >= 1,
-        "optimizer": params["optimizer"] in DEFAULT_LEARNING_RATES,
-        "learning_rate": params["learning_rate"] is None or _is_positive(params["learning_rate"]),
-        "weight_decay": _is_number(params["weight_decay"]) and 0 <= params["weight_decay"] < 1,
-        "epochs": _is_int(params["epochs"]) and params["epochs"] >= 1,
-        "batch_size": params["batch_size"] is None
-        or (_is_int(params["batch_size"]) and params["batch_size"] >= 1),
-        "random_state": _is_int(params["random_state"]) and params["random_state"] >= 0,
-        "distance_scale_m": _is_positive(params["distance_scale_m"]),
-    }
-    for name, ok in checks.items():
-        if not ok:
-            raise ValueError(f"invalid hyper-parameter {name}={params[name]!r}")
-
-
-def _is_int(value: object) -> bool:
-    return isinstance(value, int) and not isinstance(value, bool)
-
-
-def _is_number(value: object) -> TypeGuard[int | float]:
-    return isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value)
-
-
-def _is_positive(value: object) -> bool:
-    return _is_number(value) and value > 0
-
-
-def _check_arrays(arrays: Mapping[str, npt.NDArray[Any]], hidden: int) -> None:
-    """Raise ModelFileError unless every array has the expected shape, float64 and finite values."""
-    n_in = len(FEATURE_NAMES)
-    shapes = {
-        "hidden.weight": (hidden, n_in),
-        "hidden.bias": (hidden,),
-        "output.weight": (1, hidden),
-        "output.bias": (1,),
-        "input_mean": (n_in,),
-        "input_scale": (n_in,),
-    }
-    for key, shape in shapes.items():
-        array = arrays[key]
-        if array.shape != shape or array.dtype != np.float64:
-            raise ModelFileError(
-                f"array {key!r} is {array.dtype}{array.shape}, expected float64{shape} "
-                f"for {hidden} hidden units"
-            )
-        if not np.isfinite(array).all():
-            raise ModelFileError(f"array {key!r} holds NaN or infinite values")
-    if not (arrays["input_scale"] > 0).all():
-        raise ModelFileError("input_scale must be > 0")
-    if arrays["loss_history"].ndim != 1 or arrays["loss_history"].dtype != np.float64:
-        raise ModelFileError("loss_history must be a 1-D float64 array")

@@ -31,6 +31,7 @@ def make_arena(
     trace: bool = False,
     ball_noise: float | None = None,
     camera_latency_s: float | None = None,
+    ball_noise_period_s: float | None = None,
 ) -> Arena:
     """A fresh arena of `field_model` loaded with `preset` and the given players.
 
@@ -45,13 +46,13 @@ def make_arena(
     if field_model == "robot_physics":
         from robotsoccer.robot_arena import RobotArena
 
-        robot = robot_preset(preset, ball_noise, camera_latency_s)
+        robot = robot_preset(preset, ball_noise, camera_latency_s, ball_noise_period_s)
         return RobotArena(robot, players, rngs, perfect=perfect, keep_events=keep_events or trace)
     if field_model == "soccer_server":
         from robotsoccer.server_arena import SoccerServerArena
 
-        if camera_latency_s is not None:
-            raise ValueError("camera latency is a robot_physics setting")
+        if camera_latency_s is not None or ball_noise_period_s is not None:
+            raise ValueError("camera latency and ball-noise period are robot_physics settings")
         server = server_preset(preset, ball_noise)
         return SoccerServerArena(server, players, rngs, keep_events=keep_events, trace=trace)
     raise ValueError(f"unknown field model {field_model!r} (known: {', '.join(FIELD_MODELS)})")
@@ -59,7 +60,10 @@ def make_arena(
 
 @lru_cache(maxsize=32)
 def robot_preset(
-    name: str, ball_noise: float | None = None, camera_latency_s: float | None = None
+    name: str,
+    ball_noise: float | None = None,
+    camera_latency_s: float | None = None,
+    ball_noise_period_s: float | None = None,
 ) -> RobotPhysicsPreset:
     """A robot preset with optional overrides (loaded once per process: trials share it)."""
     preset = _load_robot_preset(name)
@@ -67,6 +71,10 @@ def robot_preset(
         preset = dataclasses.replace(
             preset, ball=dataclasses.replace(preset.ball, motion_noise=ball_noise)
         )
+    if ball_noise_period_s is not None:
+        ball = dataclasses.replace(preset.ball, noise_period_s=ball_noise_period_s)
+        preset = dataclasses.replace(preset, ball=ball)
+        preset.ticks(ball_noise_period_s, "ball.noise_period_s")  # refuse a fraction of a tick
     if camera_latency_s is not None:
         camera = dataclasses.replace(preset.camera, latency_s=camera_latency_s)
         preset = dataclasses.replace(preset, camera=camera)

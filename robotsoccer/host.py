@@ -21,10 +21,9 @@ link. Here the host sits between :mod:`robotsoccer.camera` and :mod:`robotsoccer
   the robot's pose on the known field, as the Soccer Server's see gives its goals.
 
 **Actions to primitives.** :meth:`CentralHost.submit` takes a mind's actions (the Soccer Server
-vocabulary, `field_models.protocol`) and sends at most one primitive for the first body action
-(Turn, Dash or Kick; later body actions in the same call are ignored, as the server runs one per
-cycle). Let v_max be the top wheel speed, T one camera period, ω_max = 2·v_max/track the top
-spin rate, and α = 2·a/track the spin acceleration the wheel ramp a allows:
+vocabulary, `field_models.protocol`) and sends one primitive for the first body action (Turn,
+Dash or Kick) at once. Let v_max be the top wheel speed, T one camera period, ω_max =
+2·v_max/track the top spin rate, and α = 2·a/track the spin acceleration the wheel ramp a allows:
 
 * ``Dash(p)``: FORWARD (p > 0) or BACKWARD (p < 0) at |p|/100 · v_max (p clipped to ±100), held
   for 2·T, so one lost packet does not stall the robot while the next frame's command replaces it
@@ -41,6 +40,19 @@ spin rate, and α = 2·a/track the spin acceleration the wheel ramp a allows:
   repeated kick becomes a kick once the robot faces d.
 * ``Say(text)``: not sent to the robot; relayed by the host to every other robot's heard buffer,
   with the sender and, when both poses are known, the direction of the sender from the listener.
+
+**Several body actions in one decision** run in order, as the Soccer Server runs them one per
+cycle (the paper's clients send ``(turn ...)`` then ``(dash ...)`` on one see, Figure 4): the
+first is sent at once, each later one when the previous one's *duration* has elapsed, and a new
+decision for the same robot replaces whatever is still pending. Durations: a TURN its D ticks
+above; a FORWARD/BACKWARD (a dash or a push) one camera period T (the next action takes over
+from the dash's 2·T hold, as the server's next cycle would); a KICK one link packet period (so
+the next command does not take the kick's place in the link's queue before it leaves); a STOP
+(``Turn(0)``, ``Dash(0)``) none, so the next action goes out in the same call. Because every
+command then waits the same link latency, a FORWARD released D ticks after its TURN reaches the
+firmware as the turn ends. The arena calls :meth:`CentralHost.release` once per tick, before the
+link delivers; it costs one integer comparison while nothing is pending
+(:attr:`CentralHost.next_release_tick`).
 
 :meth:`CentralHost.goto` sends a positioning request (GOTO) for a target in field coordinates,
 converted into the robot's frame from the host's newest pose estimate.
@@ -74,6 +86,9 @@ PUSH_HALF_ANGLE_RAD = 0.2
 
 DASH_HOLD_PERIODS = 2
 """Camera periods a Dash (or a push) is held for, so one lost packet does not stall the robot."""
+
+NEVER = 1 << 62
+"""A tick that never comes: :attr:`CentralHost.next_release_tick` when nothing is pending."""
 
 _PI = math.pi
 _TWO_PI = 2.0 * math.pi
@@ -128,6 +143,11 @@ class CentralHost:
         self._heard: list[list[Heard]] = [[] for _ in refs]
         self._seq = 0
         self._events: list[tuple[int, str, PlayerRef | None, Command | str]] = []
+        self._min_ticks = link.packet_period_ticks
+        self._pending: list[list[Action]] = [[] for _ in refs]
+        self._release_at = [NEVER] * len(refs)
+        self.next_release_tick = NEVER
+        """Earliest tick at which a pending body action is due (:data:`NEVER` if none)."""
         half_length = 0.5 * preset.field.length_m
         self._goals = (("g l", -half_length, 0.0), ("g r", half_length, 0.0))
 
@@ -185,14 +205,46 @@ class CentralHost:
     # ------------------------------------------------------------------------ actuation
 
     def submit(self, ref: PlayerRef, actions: tuple[Action, ...], tick: int) -> None:
-        """Send the first body action of `ref` as a primitive and relay its says."""
-        acted = False
+        """Relay the says of `ref`, send its first body action now and queue the rest.
+
+        A new decision replaces the body actions still pending from the previous one (module
+        docstring, "Several body actions in one decision").
+        """
+        body: list[Action] = []
         for action in actions:
             if isinstance(action, Say):
                 self._relay(ref, action.text, tick)
-            elif not acted:
-                acted = True
-                self._translate(ref, action, tick)
+            else:
+                body.append(action)
+        i = self._index[ref]
+        body.reverse()  # popped from the end, in order
+        self._pending[i] = body
+        self._run_chain(i, ref, tick)
+
+    def release(self, tick: int) -> None:
+        """Send the pending body actions that are due at `tick` (the arena calls this per tick)."""
+        if tick < self.next_release_tick:
+            return
+        release_at = self._release_at
+        for i, due in enumerate(release_at):
+            if due <= tick:
+                self._run_chain(i, self.refs[i], tick)
+        self.next_release_tick = min(release_at)
+
+    def pending(self, ref: PlayerRef) -> tuple[Action, ...]:
+        """The body actions of `ref` not sent yet, in the order they will go."""
+        return tuple(reversed(self._pending[self._index[ref]]))
+
+    def _run_chain(self, i: int, ref: PlayerRef, tick: int) -> None:
+        """Send robot `i`'s next actions until one lasts; note when the rest is due."""
+        chain = self._pending[i]
+        duration = 0
+        while chain and duration == 0:
+            duration = self._translate(ref, chain.pop(), tick)
+        due = tick + duration if chain else NEVER
+        self._release_at[i] = due
+        if due < self.next_release_tick:
+            self.next_release_tick = due
 
     def goto(self, ref: PlayerRef, x: float, y: float, tick: int) -> bool:
         """Send a GOTO toward field point (x, y) [m]; False if `ref` has no pose estimate yet."""
@@ -219,46 +271,46 @@ class CentralHost:
 
     # ------------------------------------------------------------------------ internals
 
-    def _translate(self, ref: PlayerRef, action: Action, tick: int) -> None:
-        """Translate one body action into a command (module docstring)."""
+    def _translate(self, ref: PlayerRef, action: Action, tick: int) -> int:
+        """Translate one body action into a command (module docstring); return its duration."""
         if isinstance(action, Dash):
             power = max(-100.0, min(100.0, action.power))
-            self._drive(ref, power / 100.0 * self._vmax, tick)
-        elif isinstance(action, Turn):
-            self._turn(ref, _wrap(action.angle_rad), tick)
-        elif isinstance(action, Kick):
+            return self._drive(ref, power / 100.0 * self._vmax, tick)
+        if isinstance(action, Turn):
+            return self._turn(ref, _wrap(action.angle_rad), tick)
+        if isinstance(action, Kick):
             power = max(0.0, min(100.0, action.power))
             direction = _wrap(action.direction_rad)
             if self._kick_half_angle is not None:
                 if abs(direction) <= self._kick_half_angle:
                     self._send(ref, Primitive.KICK, tick, value=power)
-                else:
-                    self._turn(ref, direction, tick)
-            elif abs(direction) <= PUSH_HALF_ANGLE_RAD:
-                self._drive(ref, power / 100.0 * self._vmax, tick)
-            else:
-                self._turn(ref, direction, tick)
-        else:
-            raise TypeError(f"not a body action: {action!r}")
+                    return self._min_ticks
+                return self._turn(ref, direction, tick)
+            if abs(direction) <= PUSH_HALF_ANGLE_RAD:
+                return self._drive(ref, power / 100.0 * self._vmax, tick)
+            return self._turn(ref, direction, tick)
+        raise TypeError(f"not a body action: {action!r}")
 
-    def _drive(self, ref: PlayerRef, speed_mps: float, tick: int) -> None:
-        """FORWARD/BACKWARD at |speed| held for the dash time; STOP for zero."""
+    def _drive(self, ref: PlayerRef, speed_mps: float, tick: int) -> int:
+        """FORWARD/BACKWARD at |speed| held for the dash time; STOP for zero. Returns ticks."""
         if speed_mps == 0.0:
             self._send(ref, Primitive.STOP, tick)
-            return
+            return 0
         primitive = Primitive.FORWARD if speed_mps > 0.0 else Primitive.BACKWARD
         self._send(ref, primitive, tick, value=abs(speed_mps), duration_ticks=self._hold_ticks)
+        return max(self.frame_period_ticks, self._min_ticks)
 
-    def _turn(self, ref: PlayerRef, angle_rad: float, tick: int) -> None:
-        """A timed TURN that rotates by `angle_rad` (left positive); STOP for zero."""
+    def _turn(self, ref: PlayerRef, angle_rad: float, tick: int) -> int:
+        """A timed TURN by `angle_rad` (left positive); STOP for zero. Returns its ticks."""
         size = abs(angle_rad)
         if size == 0.0:
             self._send(ref, Primitive.STOP, tick)
-            return
+            return 0
         rate, ticks = self.turn_plan(size)
         self._send(
             ref, Primitive.TURN, tick, value=math.copysign(rate, angle_rad), duration_ticks=ticks
         )
+        return max(ticks, self._min_ticks)
 
     def turn_plan(self, angle_rad: float) -> tuple[float, int]:
         """Rate [rad/s] and duration [ticks] of a TURN by |angle_rad| (> 0); see the docstring."""

@@ -3,7 +3,9 @@
 One tick (``1/physics_hz`` s), in this order (paper §2, Figures 1–2; DESIGN.md §2):
 
 1. the world steps (wheel ramps, grip, contacts, rolling ball);
-2. packets that arrive this tick reach the firmware of the robot they address (or all, for a
+2. the host sends the body actions of earlier decisions that are due now (a decision's later
+   actions, e.g. the Dash after a Turn: :mod:`robotsoccer.host`); packets that arrive this
+   tick reach the firmware of the robot they address (or all, for a
    broadcast); each robot's firmware turns its newest command into wheel-speed targets, and fires
    the kicker if the command was a KICK;
 3. on camera ticks the camera captures the true poses; frames whose latency has elapsed reach the
@@ -109,6 +111,9 @@ class RobotArena:
         world = self.world
         world.step()
         tick = world.tick
+        host = self.host
+        if tick >= host.next_release_tick:  # the later actions of a decision (host docstring)
+            host.release(tick)
         for command in self.link.deliver(tick):
             if command.robot is None:
                 for fw in self.firmware:

@@ -45,6 +45,8 @@ class TrialSpec:
         ball_noise: Override of the ball-motion noise (Soccer Server ``ball_rand``; robots
             ``ball.motion_noise``), or None for the preset's.
         camera_latency_s: Robots: override of the camera latency [s], or None.
+        ball_noise_period_s: Robots: override of how often ball noise acts [s], or None
+            (then the drill's setting, else the preset's).
     """
 
     drill: str = "shootout"
@@ -57,6 +59,7 @@ class TrialSpec:
     drill_options: tuple[tuple[str, DrillOption], ...] = ()
     ball_noise: float | None = None
     camera_latency_s: float | None = None
+    ball_noise_period_s: float | None = None
 
     def with_options(self, **options: DrillOption) -> TrialSpec:
         """A copy with these drill options added (replacing any of the same name)."""
@@ -130,6 +133,8 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
     rngs = TrialRngs.for_trial(spec.seed, index)
     drill = make_drill(spec.drill, dict(spec.drill_options))
     recording = spec.record_dir is not None and index < spec.record_trials
+    settings = drill.arena_settings(spec.field_model, spec.preset)
+    noise_period = spec.ball_noise_period_s or settings.get("ball_noise_period_s")
     arena = make_arena(
         spec.field_model,
         spec.preset,
@@ -139,6 +144,7 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
         keep_events=recording,
         ball_noise=spec.ball_noise,
         camera_latency_s=spec.camera_latency_s,
+        ball_noise_period_s=noise_period,
     )
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)

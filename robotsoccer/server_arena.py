@@ -200,7 +200,7 @@ def _server_text(action: Action) -> str:
 
     words = describe_action(action).split()
     if words[0] in ("turn", "kick"):  # the server's angles are clockwise: flip the sign
-        words[-1] = f"{-float(words[-1]):g}"
+        words[-1] = f"{-float(words[-1]) + 0.0:g}"  # + 0.0 turns -0 into 0
     if words[0] == "dash":
         words[-1] = f"{float(words[-1]):g}"
     return "(" + " ".join(words) + ")"

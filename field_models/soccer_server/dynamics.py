@@ -80,7 +80,7 @@ from field_models.protocol import (
 )
 from field_models.soccer_server.params import DynamicsParams, ServerPreset
 
-BLOCK_CYCLES = 256
+BLOCK_CYCLES = 32
 """Cycles of random numbers drawn at once by the single-trial model."""
 EPS = 1e-10
 """The server's small distance (``EPS`` in utility.h) added to separations."""

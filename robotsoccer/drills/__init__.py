@@ -6,9 +6,10 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from robotsoccer.drills.base import Drill, Verdict
+from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.shootout import ShootoutDrill
 
-DRILLS: dict[str, Callable[..., Drill]] = {"shootout": ShootoutDrill}
+DRILLS: dict[str, Callable[..., Drill]] = {"shootout": ShootoutDrill, "intercept": InterceptDrill}
 """Registered drills: name → factory taking the drill's options as keywords."""
 
 

@@ -34,6 +34,13 @@ class Drill(Protocol):
         """The players on the field, in a fixed order."""
         ...
 
+    def arena_settings(self, field_model: str, preset: str) -> dict[str, float]:
+        """Arena overrides the drill needs on this field (e.g. a scaled noise period), or {}.
+
+        The runner applies them when it builds the arena; a TrialSpec's own override wins.
+        """
+        ...
+
     def setup(self, arena: Arena, rngs: TrialRngs) -> None:
         """Place players and ball for a new trial (the "placement" stream is for this)."""
         ...

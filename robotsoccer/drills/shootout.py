@@ -103,6 +103,10 @@ class ShootoutDrill:
         """Shooter and goalie."""
         return (SHOOTER, GOALIE)
 
+    def arena_settings(self, field_model: str, preset: str) -> dict[str, float]:
+        """The demo runs on the presets as they are."""
+        return {}
+
     def setup(self, arena: Arena, rngs: TrialRngs) -> None:
         """Place ball, shooter and goalie."""
         rng = rngs["placement"]

@@ -285,3 +285,126 @@ def test_host_link_firmware_pipeline_with_latency() -> None:
         outputs.append(fw.update(tick, 0.0, 0.0))
     moving = [t for t, o in enumerate(outputs) if o != (0.0, 0.0)]
     assert moving == list(range(11, 27))  # arrives 3 ticks after send, held 2 camera periods
+
+
+# ----------------------------------------------------------------------------- several actions
+
+
+def test_turn_then_dash_sends_the_dash_when_the_turn_ends() -> None:
+    host, link = make_host()
+    host.submit(A, (Turn(math.pi / 2), Dash(100.0)), 0)  # a 34-tick turn (hand case above)
+    (c,) = sent(link)
+    assert c.primitive is Primitive.TURN and c.duration_ticks == 34
+    assert host.pending(A) == (Dash(100.0),)
+    assert host.next_release_tick == 34
+    for tick in range(1, 34):
+        host.release(tick)
+        assert sent(link, tick) == []
+    host.release(34)
+    (c,) = sent(link, 34)
+    assert (c.robot, c.primitive, c.value, c.sent_tick) == (A, Primitive.FORWARD, VMAX, 34)
+    assert host.pending(A) == () and host.next_release_tick > 10**9
+
+
+def test_three_actions_run_in_order_with_their_durations() -> None:
+    host, link = make_host()
+    host.submit(A, (Dash(50.0), Turn(-0.01), Dash(20.0)), 0)
+    assert sent(link)[0].primitive is Primitive.FORWARD
+    host.release(PERIOD - 1)
+    assert sent(link, PERIOD - 1) == []
+    host.release(PERIOD)  # a dash lasts one camera period, then the turn (one period, small)
+    (c,) = sent(link, PERIOD)
+    assert c.primitive is Primitive.TURN and c.duration_ticks == PERIOD
+    host.release(2 * PERIOD)
+    (c,) = sent(link, 2 * PERIOD)
+    assert c.primitive is Primitive.FORWARD and c.value == pytest.approx(0.2 * VMAX)
+
+
+def test_a_new_decision_replaces_the_pending_actions() -> None:
+    host, link = make_host()
+    host.submit(A, (Turn(1.0), Dash(100.0)), 0)
+    host.submit(B, (Turn(1.0), Dash(60.0)), 0)
+    sent(link)
+    host.submit(A, (Dash(30.0),), 5)
+    (c,) = sent(link, 5)
+    assert c.primitive is Primitive.FORWARD and c.value == pytest.approx(0.3 * VMAX)
+    assert host.pending(A) == () and host.pending(B) == (Dash(60.0),)
+    _, ticks = host.turn_plan(1.0)
+    for tick in range(6, ticks + 1):
+        host.release(tick)
+    (c,) = sent(link, ticks)  # only B's dash: A's was replaced
+    assert (c.robot, c.primitive) == (B, Primitive.FORWARD)
+
+
+def test_zero_turn_then_dash_goes_out_at_once() -> None:
+    host, link = make_host()
+    host.submit(A, (Turn(0.0), Dash(100.0)), 0)
+    # STOP then FORWARD in the same tick: the link keeps the newer one for the address.
+    (c,) = sent(link)
+    assert c.primitive is Primitive.FORWARD
+    assert host.pending(A) == ()
+
+
+def test_kick_then_dash_waits_for_the_kick_packet() -> None:
+    kicker = KickerConfig(reach_m=0.01, max_speed_mps=3.0, half_angle_rad=0.3)
+    preset = dataclasses.replace(PRESET, robot=dataclasses.replace(PRESET.robot, kicker=kicker))
+    host, link = make_host(preset)
+    host.submit(A, (Kick(80.0, 0.0), Dash(100.0)), 0)
+    assert [c.primitive for c in sent(link)] == [Primitive.KICK]
+    host.release(1)  # one packet period (1 tick here) later
+    assert [c.primitive for c in sent(link, 1)] == [Primitive.FORWARD]
+
+
+def test_says_go_at_once_and_do_not_take_a_place_in_the_chain() -> None:
+    host, link = make_host()
+    host.submit(A, (Turn(0.5), Say("mine"), Dash(100.0)), 0)
+    assert [c.primitive for c in sent(link)] == [Primitive.TURN]
+    assert host.pending(A) == (Dash(100.0),)
+    assert [e.channel for e in host.drain_events()] == ["message", "command"]
+
+
+def test_turn_then_dash_reaches_the_firmware_as_the_turn_ends() -> None:
+    link = Link(
+        dataclasses.replace(PRESET.link, loss_prob=0.0),
+        packet_period_ticks=1,
+        latency_ticks=3,
+        rng=np.random.default_rng(4),
+    )
+    host = CentralHost(REFS, PRESET, link, frame_period_ticks=PERIOD)
+    fw = Firmware(B, PRESET.robot, PRESET.firmware, timeout_ticks=60, dt_s=DT)
+    _, turn_ticks = host.turn_plan(0.8)
+    outputs = []
+    for tick in range(80):
+        host.release(tick)
+        for c in link.deliver(tick):
+            fw.receive(c, tick)
+        if tick == 8:
+            host.submit(B, (Turn(0.8), Dash(100.0)), tick)
+        outputs.append(fw.update(tick, 0.0, 0.0))
+    turning = [t for t, (left, right) in enumerate(outputs) if left < 0.0 < right]
+    forward = [t for t, (left, right) in enumerate(outputs) if left == right > 0.0]
+    assert turning == list(range(11, 11 + turn_ticks))
+    assert forward == list(range(11 + turn_ticks, 11 + turn_ticks + 2 * PERIOD))
+
+
+def test_robot_arena_releases_the_dash_of_a_decision() -> None:
+    from robotsoccer.arenas import make_arena
+    from robotsoccer.robot_arena import RobotArena
+    from robotsoccer.seeding import TrialRngs
+
+    arena = make_arena(
+        "robot_physics", "small_size_1997", (A, C), TrialRngs.for_trial(3, 0), keep_events=True
+    )
+    assert isinstance(arena, RobotArena)
+    arena.place_player(A, 0.0, 0.0, 0.0)
+    arena.place_player(C, 0.5, 0.5, 0.0)
+    for _ in range(10):
+        arena.step()
+    arena.submit(A, (Turn(1.0), Dash(100.0)))
+    _, turn_ticks = arena.host.turn_plan(1.0)
+    for _ in range(turn_ticks + 20):
+        arena.step()
+    events = [(e.tick, e.text.split()[1]) for e in arena.drain_events() if e.player == A]
+    assert events == [(10, "TURN"), (10 + turn_ticks, "FORWARD")]
+    state = arena.player_state(A)
+    assert math.hypot(state.vx, state.vy) > 0.1  # driving after the turn

@@ -1,0 +1,439 @@
+"""Layer 1 as client minds: the interception defender and the shooter of the drill (paper §5).
+
+**The defender** (:class:`DefenderMind`) follows the paper's training procedure (§5, the list
+under Figure 6; BD = ball distance, BA = ball angle, TA = "the angle to turn *after* facing the
+ball"), in our reading (the lead's decision, ``ta_mode="hold"``):
+
+* while BD > the trigger distance (14 units): TURN(BA) — watch and face the ball;
+* the first time BD <= the trigger distance: TA is chosen by the behaviour from (BD, BA,
+  previous BD), and the example (BD, BA, previous BD, TA) is recorded (:attr:`DefenderMind.
+  example`, once per trial);
+* from then on, at every percept: TURN(BA + TA), DASH(100) — two body actions in one decision
+  (the arena runs them in order). TA is *held*, so ``straight`` (TA = 0) keeps watching the ball
+  and moving directly toward it, as the paper says it does. ``ta_mode="every_see"`` recomputes
+  TA at every percept instead (``random`` draws anew; the first TA is still the one recorded).
+
+Details the paper leaves open, chosen here:
+
+* **previous BD** is the distance of the previous *sighting* (the last percept that had the
+  ball); on the first sighting it is BD itself.
+* **Ball not seen**: DASH(100) only once triggered (the defender turned away from the ball,
+  Figure 5); before the trigger, nothing (it has nothing to face).
+* **Kicking**: when a kickable distance is given (Soccer Server: ``kickable_area_m``) and BD is
+  within it, the defender kicks with power 100 away from its own goal: toward the bearing of
+  ``"g r"`` + 180°, else (own goal not in view, as when it faces the shooter) toward ``"g l"``,
+  else straight ahead. Robots without a kicker get no kickable distance: they block.
+* **TA is clipped to ±90°**, a safety net only (random draws lie in ±45°; the net, lookup and
+  analytic rules could in principle return anything).
+* **Turn tolerance**: a turn smaller than ``turn_tolerance_rad`` is left out (a dash alone, or
+  nothing before the trigger). 0 (the default, the Soccer Server) never leaves one out, as the
+  paper's client; robots use a few times the camera's heading noise, because a robot stops to
+  spin for a whole camera period on every turn however small (:mod:`robotsoccer.host`).
+
+**Behaviours** (:data:`BEHAVIOURS`), each a small :class:`TurnPolicy`:
+
+* ``still`` — never moves (the paper's "if the defender remains still" check); no policy;
+* ``straight`` — TA = 0;
+* ``random`` — TA uniform in [-45°, 45°] from the trial's ``"policy"`` stream (training);
+* ``net`` — the interception net, evaluated in plain Python (no torch is imported; the file is
+  read once per process, :func:`load_net_function`);
+* ``lookup`` — the one-dimensional table BA -> TA (:class:`~learning.lookup.LookupTable`, a
+  JSON file, read once per process);
+* ``analytic`` — Mike Bowling's rule: the ball's motion vector from its two previous positions,
+  extended x3, i.e. its position two sensory steps ahead; TA turns toward that point
+  (:func:`learning.analytic.analytic_turn_angle_xy`).
+
+**Heading estimate (analytic).** The two sightings must be expressed in one frame. The
+defender keeps a heading estimate: the sum of the turns it commanded, a turn counting from the
+first percept *observed* after the tick it was commanded on (on the Soccer Server a turn runs in
+the next cycle, so this is exact up to the server's turn noise). Each sighting is stored as a
+position in that reckoned frame. TA does not depend on the frame's orientation, only on the two
+positions relative to the defender. Its own displacement is not reckoned: exact while it stands
+(before the trigger, which is when ``hold`` chooses TA); in ``every_see`` mode, and on robots
+(whose turns show in the camera only after the link, the turn itself and the camera latency),
+the estimate is approximate.
+
+**The shooter** (:class:`ShooterMind`) kicks once, at its first percept, toward the defender as
+it sees it plus an aim offset (the paper's shooter "kicks the ball directly towards the
+defender with a fixed power"), then stands.
+
+Per-percept cost is a few float operations; the policies are called once per trial in ``hold``
+mode. Angles are radians, left positive; distances metres.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from pathlib import Path
+from typing import Protocol
+
+import numpy as np
+
+from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Turn
+from learning.analytic import MOTION_MULTIPLIER, analytic_turn_angle_xy
+from learning.interception_file import TurnAngleFunction, load_turn_function
+from learning.lookup import LookupTable
+
+BEHAVIOURS = ("still", "straight", "random", "net", "lookup", "analytic")
+"""Defender behaviours, by name."""
+
+MODEL_BEHAVIOURS = ("net", "lookup")
+"""Behaviours that read a model file."""
+
+TA_MODES = ("hold", "every_see")
+"""When TA is chosen: once at the trigger and held, or at every percept after it."""
+
+RANDOM_TA_HALF_RANGE_RAD = math.radians(45.0)
+"""The training behaviour's TA range: uniform in [-45°, 45°] (paper §5)."""
+
+TA_CLIP_RAD = math.radians(90.0)
+"""Any TA is clipped to ±90° (a safety net; see the module docstring)."""
+
+DASH_POWER = 100.0
+"""The defender's dash power (paper: "DASH()" at full power)."""
+
+KICK_POWER = 100.0
+"""The defender's clearing kick power."""
+
+Point = tuple[float, float]
+
+
+class TurnPolicy(Protocol):
+    """A behaviour's rule for TA, the turn after facing the ball [rad, left positive]."""
+
+    def __call__(
+        self,
+        ball_distance_m: float,
+        ball_angle_rad: float,
+        previous_ball_distance_m: float,
+        previous_ball_xy_m: Point | None,
+        ball_xy_m: Point,
+        /,
+    ) -> float:
+        """TA from BD, BA and previous BD; the two sightings as positions in one frame [m]."""
+        ...
+
+
+# ----------------------------------------------------------------------------- policies
+
+
+def straight_policy(
+    ball_distance_m: float,
+    ball_angle_rad: float,
+    previous_ball_distance_m: float,
+    previous_ball_xy_m: Point | None,
+    ball_xy_m: Point,
+) -> float:
+    """TA = 0: move directly toward where the ball was seen (paper §5, "straight")."""
+    return 0.0
+
+
+class RandomPolicy:
+    """TA uniform in [-half_range, half_range] from a generator (the training behaviour)."""
+
+    def __init__(
+        self, rng: np.random.Generator, half_range_rad: float = RANDOM_TA_HALF_RANGE_RAD
+    ) -> None:
+        self.rng = rng
+        self.half_range_rad = half_range_rad
+
+    def __call__(
+        self,
+        ball_distance_m: float,
+        ball_angle_rad: float,
+        previous_ball_distance_m: float,
+        previous_ball_xy_m: Point | None,
+        ball_xy_m: Point,
+    ) -> float:
+        """A fresh random TA [rad]."""
+        return float(self.rng.uniform(-self.half_range_rad, self.half_range_rad))
+
+
+class NetPolicy:
+    """TA = the interception net's output f(BD, BA, previous BD) (plain Python)."""
+
+    def __init__(self, function: TurnAngleFunction) -> None:
+        self.function = function
+
+    def __call__(
+        self,
+        ball_distance_m: float,
+        ball_angle_rad: float,
+        previous_ball_distance_m: float,
+        previous_ball_xy_m: Point | None,
+        ball_xy_m: Point,
+    ) -> float:
+        """The net's TA [rad]."""
+        return self.function(ball_distance_m, ball_angle_rad, previous_ball_distance_m)
+
+
+class LookupPolicy:
+    """TA = the one-dimensional table's entry for BA (paper §5, Table 1)."""
+
+    def __init__(self, table: Callable[[float], float]) -> None:
+        self.table = table
+
+    def __call__(
+        self,
+        ball_distance_m: float,
+        ball_angle_rad: float,
+        previous_ball_distance_m: float,
+        previous_ball_xy_m: Point | None,
+        ball_xy_m: Point,
+    ) -> float:
+        """The table's TA for this BA [rad]."""
+        return self.table(ball_angle_rad)
+
+
+class AnalyticPolicy:
+    """TA toward the ball's predicted position two sensory steps ahead (Bowling's rule, §5).
+
+    Without a previous sighting the motion is unknown and TA is 0 (move at the ball).
+    """
+
+    def __init__(self, motion_multiplier: float = MOTION_MULTIPLIER) -> None:
+        self.motion_multiplier = motion_multiplier
+
+    def __call__(
+        self,
+        ball_distance_m: float,
+        ball_angle_rad: float,
+        previous_ball_distance_m: float,
+        previous_ball_xy_m: Point | None,
+        ball_xy_m: Point,
+    ) -> float:
+        """The analytic TA [rad] from the two sightings."""
+        if previous_ball_xy_m is None:
+            return 0.0
+        px, py = previous_ball_xy_m
+        x, y = ball_xy_m
+        return analytic_turn_angle_xy(px, py, x, y, self.motion_multiplier)
+
+
+# ----------------------------------------------------------------------------- model files
+
+_NETS: dict[tuple[str, int, int], TurnAngleFunction] = {}
+_TABLES: dict[tuple[str, int, int], LookupTable] = {}
+
+
+def _file_key(path: str | os.PathLike[str]) -> tuple[str, int, int]:
+    """Cache key of a model file: its resolved path, modification time and size."""
+    resolved = Path(path).resolve()
+    try:
+        stat = resolved.stat()
+    except OSError:
+        return str(resolved), -1, -1  # the loader reports the missing file
+    return str(resolved), stat.st_mtime_ns, stat.st_size
+
+
+def load_net_function(path: str | os.PathLike[str]) -> TurnAngleFunction:
+    """The plain-Python net of a model file, read once per process (keyed by path and mtime).
+
+    Never imports torch (:mod:`learning.interception_file`).
+
+    Raises:
+        learning.features.ModelFileError: The file is missing, corrupt or not a net.
+    """
+    key = _file_key(path)
+    function = _NETS.get(key)
+    if function is None:
+        function = _NETS[key] = load_turn_function(path)
+    return function
+
+
+def load_lookup_table(path: str | os.PathLike[str]) -> LookupTable:
+    """A lookup-table file, read once per process (keyed by path and mtime).
+
+    Raises:
+        learning.features.ModelFileError: The file is missing, corrupt or not a table.
+    """
+    key = _file_key(path)
+    table = _TABLES.get(key)
+    if table is None:
+        table = _TABLES[key] = LookupTable.load(path)
+    return table
+
+
+def make_policy(behaviour: str, rng: np.random.Generator, model: str = "") -> TurnPolicy | None:
+    """The TA rule of a behaviour; None for ``still`` (which never moves).
+
+    Args:
+        behaviour: One of :data:`BEHAVIOURS`.
+        rng: The trial's ``"policy"`` stream (used by ``random``).
+        model: The model file of ``net`` (``.npz``) or ``lookup`` (JSON).
+
+    Raises:
+        ValueError: Unknown behaviour, or a model file missing for ``net``/``lookup``.
+        learning.features.ModelFileError: The model file is unreadable.
+    """
+    check_behaviour(behaviour, model)
+    if behaviour == "still":
+        return None
+    if behaviour == "straight":
+        return straight_policy
+    if behaviour == "random":
+        return RandomPolicy(rng)
+    if behaviour == "net":
+        return NetPolicy(load_net_function(model))
+    if behaviour == "lookup":
+        return LookupPolicy(load_lookup_table(model))
+    return AnalyticPolicy()
+
+
+def check_behaviour(behaviour: str, model: str = "") -> None:
+    """Raise ValueError for an unknown behaviour or a missing model file name."""
+    if behaviour not in BEHAVIOURS:
+        raise ValueError(f"unknown behaviour {behaviour!r} (known: {', '.join(BEHAVIOURS)})")
+    if behaviour in MODEL_BEHAVIOURS and not model:
+        raise ValueError(f"behaviour {behaviour!r} needs a model file (option model=...)")
+
+
+# ----------------------------------------------------------------------------- minds
+
+
+class DefenderMind:
+    """The interception defender (module docstring): watch, choose TA at the trigger, dash.
+
+    Args:
+        policy: The behaviour's TA rule; None stands still (``still``).
+        trigger_distance_m: TA is chosen the first time BD is at most this (14 units) [m].
+        ta_mode: ``"hold"`` or ``"every_see"`` (:data:`TA_MODES`).
+        kickable_distance_m: Kick (clear) when BD is at most this [m]; None never kicks.
+        turn_tolerance_rad: Leave out turns smaller than this [rad]; 0 keeps every turn.
+        ta_clip_rad: |TA| is clipped to this [rad].
+
+    Attributes:
+        example: (BD [m], BA [rad], previous BD [m], TA [rad]) recorded at the trigger, or None.
+        triggered: True once BD came within the trigger distance.
+        turn_angle_rad: The TA in use (0 before the trigger).
+    """
+
+    def __init__(
+        self,
+        policy: TurnPolicy | None,
+        trigger_distance_m: float,
+        *,
+        ta_mode: str = "hold",
+        kickable_distance_m: float | None = None,
+        turn_tolerance_rad: float = 0.0,
+        ta_clip_rad: float = TA_CLIP_RAD,
+    ) -> None:
+        if ta_mode not in TA_MODES:
+            raise ValueError(f"unknown ta_mode {ta_mode!r} (known: {', '.join(TA_MODES)})")
+        self.policy = policy
+        self.trigger_distance_m = trigger_distance_m
+        self.every_see = ta_mode == "every_see"
+        self.kickable_distance_m = kickable_distance_m
+        self.turn_tolerance_rad = turn_tolerance_rad
+        self.ta_clip_rad = ta_clip_rad
+        self.example: tuple[float, float, float, float] | None = None
+        self.triggered = False
+        self.turn_angle_rad = 0.0
+        self._previous_distance_m: float | None = None
+        self._previous_xy: Point | None = None
+        self._heading_rad = 0.0  # reckoned heading, turns already visible in the percepts
+        self._turns: list[tuple[int, float]] = []  # (tick commanded, angle), not yet visible
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """One decision per percept (module docstring)."""
+        policy = self.policy
+        if policy is None:
+            return ()
+        ball = percept.ball
+        if ball is None:
+            return (Dash(DASH_POWER),) if self.triggered else ()
+        bd, ba = ball.distance_m, ball.angle_rad
+        heading = self._heading_at(percept.observed_tick) + ba
+        xy = (bd * math.cos(heading), bd * math.sin(heading))
+        previous_bd = bd if self._previous_distance_m is None else self._previous_distance_m
+        previous_xy = self._previous_xy
+        self._previous_distance_m, self._previous_xy = bd, xy
+        if not self.triggered:
+            if bd > self.trigger_distance_m:
+                return self._turn(percept.tick, ba, ())
+            self.triggered = True
+            self.turn_angle_rad = self._choose(policy, bd, ba, previous_bd, previous_xy, xy)
+            self.example = (bd, ba, previous_bd, self.turn_angle_rad)
+        elif self.every_see:
+            self.turn_angle_rad = self._choose(policy, bd, ba, previous_bd, previous_xy, xy)
+        if self.kickable_distance_m is not None and bd <= self.kickable_distance_m:
+            return (Kick(KICK_POWER, _clearing_direction(percept)),)
+        return self._turn(percept.tick, ba + self.turn_angle_rad, (Dash(DASH_POWER),))
+
+    def _choose(
+        self,
+        policy: TurnPolicy,
+        bd: float,
+        ba: float,
+        previous_bd: float,
+        previous_xy: Point | None,
+        xy: Point,
+    ) -> float:
+        ta = policy(bd, ba, previous_bd, previous_xy, xy)
+        clip = self.ta_clip_rad
+        return clip if ta > clip else -clip if ta < -clip else ta
+
+    def _turn(self, tick: int, angle: float, then: tuple[Action, ...]) -> tuple[Action, ...]:
+        """Turn by `angle` (wrapped) then `then`; the turn is left out below the tolerance."""
+        if not -math.pi <= angle < math.pi:  # wrap only when needed: keeps the angle exact
+            angle = (angle + math.pi) % (2.0 * math.pi) - math.pi
+        if abs(angle) < self.turn_tolerance_rad:
+            return then
+        self._turns.append((tick, angle))
+        return (Turn(angle), *then)
+
+    def _heading_at(self, observed_tick: int) -> float:
+        """The reckoned heading the percept observed at `observed_tick` was taken with."""
+        turns = self._turns
+        while turns and turns[0][0] < observed_tick:
+            self._heading_rad += turns.pop(0)[1]
+        return self._heading_rad
+
+
+def _clearing_direction(percept: Percept) -> float:
+    """Kick direction away from the own goal: "g r" + 180°, else toward "g l", else ahead."""
+    own = percept.landmark("g r")
+    if own is not None:
+        return (own.angle_rad + 2.0 * math.pi) % (2.0 * math.pi) - math.pi
+    other = percept.landmark("g l")
+    if other is not None:
+        return other.angle_rad
+    return 0.0
+
+
+class ShooterMind:
+    """Kick once, at the first percept, toward the defender as seen plus an aim offset (§5).
+
+    Args:
+        target: The defender.
+        kick_power: Kick power (server units; robots: kicker power).
+        aim_offset_rad: Added to the seen direction (the paper's "aims slightly wide") [rad].
+
+    The target is the seen player with its team and number, else the one seen player of unknown
+    identity or of its team, else straight ahead (the coach placed the shooter facing it).
+    """
+
+    def __init__(self, target: PlayerRef, kick_power: float, aim_offset_rad: float = 0.0) -> None:
+        self.target = target
+        self.kick_power = kick_power
+        self.aim_offset_rad = aim_offset_rad
+        self.kicked = False
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """Kick at the first percept, then stand."""
+        if self.kicked:
+            return ()
+        self.kicked = True
+        return (Kick(self.kick_power, self._target_angle(percept) + self.aim_offset_rad),)
+
+    def _target_angle(self, percept: Percept) -> float:
+        target = self.target
+        fallback = None
+        for seen in percept.players:
+            if seen.team == target.team and seen.number == target.number:
+                return seen.angle_rad
+            if seen.team in (None, target.team) and fallback is None:
+                fallback = seen.angle_rad
+        return 0.0 if fallback is None else fallback
