@@ -156,7 +156,11 @@ Action: TypeAlias = Turn | Dash | Kick | Say
 
 
 class Mind(Protocol):
-    """A client mind: turns a percept into at most one body action plus optional says."""
+    """A client mind: turns a percept into body actions and says.
+
+    A mind whose work is over (a shooter that has kicked) may set an attribute ``done = True``;
+    the runner then stops sending it percepts.
+    """
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """Decide what to do on this percept."""

@@ -81,6 +81,14 @@ class Arena(Protocol):
         """Advance one tick; return the percepts that reach their clients at the new tick."""
         ...
 
+    def listen(self, refs: frozenset[PlayerRef]) -> None:
+        """Build percepts only for these players from now on (default: every player).
+
+        The runner calls it with the players whose minds still think; a field model may then
+        skip sensing the others (a speed-up: their percepts would go unread).
+        """
+        ...
+
     def submit(self, ref: PlayerRef, actions: tuple[Action, ...]) -> None:
         """Hand a client's actions to the actuation path (acted on from the next tick)."""
         ...

@@ -73,6 +73,7 @@ class RobotArena:
             for ref in players
         ]
         self._by_ref = {ref: i for i, ref in enumerate(players)}
+        self._listeners: frozenset[PlayerRef] | None = None
         self.host = CentralHost(
             players, preset, self.link, frame_period_ticks=frame_ticks, keep_events=keep_events
         )
@@ -137,7 +138,14 @@ class RobotArena:
         percepts: list[Percept] = []
         for frame in frames:
             percepts.extend(self.host.percepts(frame, tick))
-        return percepts
+        listeners = self._listeners
+        if listeners is None:
+            return percepts
+        return [p for p in percepts if p.player in listeners]
+
+    def listen(self, refs: frozenset[PlayerRef]) -> None:
+        """Return percepts only for these robots (the host still tracks every robot's pose)."""
+        self._listeners = None if refs >= frozenset(self.players) else refs
 
     def submit(self, ref: PlayerRef, actions: tuple[Action, ...]) -> None:
         """Translate a robot's actions into primitives and queue them on the link."""

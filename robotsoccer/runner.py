@@ -111,15 +111,21 @@ def play(
 ) -> Verdict:
     """Step `arena` until `drill` gives a verdict or its time runs out."""
     max_ticks = round(drill.max_time_s / arena.dt_s)
+    thinking = dict(minds)
+    arena.listen(frozenset(thinking))
     while arena.tick < max_ticks:
         percepts = arena.step()
         for percept in percepts:
-            mind = minds.get(percept.player)
-            if mind is not None:
-                actions = mind.act(percept)
-                if decisions is not None:
-                    decisions(percept, actions)
-                arena.submit(percept.player, actions)
+            mind = thinking.get(percept.player)
+            if mind is None:
+                continue
+            actions = mind.act(percept)
+            if decisions is not None:
+                decisions(percept, actions)
+            arena.submit(percept.player, actions)
+            if getattr(mind, "done", False):
+                del thinking[percept.player]
+                arena.listen(frozenset(thinking))
         if observer is not None:
             observer(arena, percepts)
         verdict = drill.judge(arena)

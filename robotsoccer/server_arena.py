@@ -23,6 +23,7 @@ shows exactly what the client acted on.
 from __future__ import annotations
 
 from collections import deque
+from functools import lru_cache
 
 from field_models.protocol import Action, BodyState, Heard, Percept, PlayerRef, Say, Truth
 from field_models.soccer_server.dynamics import SoccerServerModel
@@ -36,6 +37,7 @@ from field_models.soccer_server.sensing import (
     observe,
     referee_hear,
 )
+from field_models.soccer_server.sensing_params import SensingParams
 from robotsoccer.arena import ArenaEvent
 from robotsoccer.seeding import TrialRngs
 
@@ -65,7 +67,9 @@ class SoccerServerArena:
         self.trace = trace
         self.landmarks = "all" if trace else landmarks
         self._see_rng = rngs["sensing"]
-        self._timers = [SeeTimer(self.sensing) for _ in players]
+        self._see_schedule = see_schedule(self.sensing)
+        self._timer = SeeTimer(self.sensing)  # every player's sees share one phase (0)
+        self._listening = [True] * len(players)
         self._rows = {ref: i + 1 for i, ref in enumerate(players)}
         self._plans: list[deque[Action]] = [deque() for _ in players]
         self._heard: list[list[Heard]] = [[] for _ in players]
@@ -125,11 +129,15 @@ class SoccerServerArena:
         says = model.said()
         if says or referee:
             self._hear(says, referee, cycle)
-        percepts: list[Percept] = []
-        for i, timer in enumerate(self._timers):
-            if timer.due(cycle):
-                percepts.append(self._see(i, cycle))
-        return percepts
+        schedule = self._see_schedule
+        due = schedule[cycle] if cycle < len(schedule) else self._timer.due(cycle)
+        if not due:
+            return []
+        return [self._see(i, cycle) for i, on in enumerate(self._listening) if on]
+
+    def listen(self, refs: frozenset[PlayerRef]) -> None:
+        """See only for these players (the others' see messages would go unread)."""
+        self._listening = [ref in refs for ref in self.players]
 
     def _see(self, i: int, cycle: int) -> Percept:
         """Player `i`'s percept from its see of this cycle (text route when tracing)."""
@@ -204,3 +212,14 @@ def _server_text(action: Action) -> str:
     if words[0] == "dash":
         words[-1] = f"{float(words[-1]):g}"
     return "(" + " ".join(words) + ")"
+
+
+SCHEDULE_CYCLES = 6000
+"""Cycles (10 simulated minutes) whose see timing is computed once per preset."""
+
+
+@lru_cache(maxsize=16)
+def see_schedule(params: SensingParams) -> tuple[bool, ...]:
+    """For each cycle, whether a see is sent in it (`SeeTimer`, phase 0), computed once."""
+    timer = SeeTimer(params)
+    return tuple(timer.due(cycle) for cycle in range(SCHEDULE_CYCLES))

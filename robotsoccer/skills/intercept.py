@@ -420,12 +420,13 @@ class ShooterMind:
         self.kick_power = kick_power
         self.aim_offset_rad = aim_offset_rad
         self.kicked = False
+        self.done = False
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
-        """Kick at the first percept, then stand."""
+        """Kick at the first percept, then stand (and want no more percepts: ``done``)."""
         if self.kicked:
             return ()
-        self.kicked = True
+        self.kicked = self.done = True
         return (Kick(self.kick_power, self._target_angle(percept) + self.aim_offset_rad),)
 
     def _target_angle(self, percept: Percept) -> float:
