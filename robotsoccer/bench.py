@@ -6,6 +6,9 @@ median of several repeats, and no test asserts a speed.
 * ``robot_physics.realtime_factor.N_robots`` — one process, N robots (two teams) all chasing the
   ball with full camera, host, link and firmware running; simulated seconds per wall second.
 * ``demo.trials_per_s.K_worker(s)`` — the shootout demo drill through the process pool.
+* ``intercept.trials_per_s.<field model>`` — the layer-1 interception drill (straight
+  defender, ball noise 0.05) through the pool with 2 workers, pool start included; enough trials
+  that start-up is a small share.
 """
 
 from __future__ import annotations
@@ -67,6 +70,18 @@ def demo_trials_per_s(workers: int, trials: int, seed: int = 0) -> float:
     return trials / (time.perf_counter() - start)
 
 
+def intercept_trials_per_s(field_model: str, trials: int, workers: int = 2) -> float:
+    """Interception-drill trials per wall second through the pool (straight defender)."""
+    preset = {"soccer_server": "soccer_server_1996", "robot_physics": "small_size_1997"}
+    spec = TrialSpec(
+        drill="intercept", field_model=field_model, preset=preset[field_model], seed=1,
+        ball_noise=0.05,
+    ).with_options(behaviour="straight")  # fmt: skip
+    start = time.perf_counter()
+    run_trials(spec, trials, workers=workers, progress=False)
+    return trials / (time.perf_counter() - start)
+
+
 def median_of(repeats: int, measure: Callable[[], float]) -> float:
     """Median of `repeats` calls of `measure`."""
     return statistics.median(measure() for _ in range(repeats))
@@ -86,6 +101,17 @@ def run_benchmarks(quick: bool = False) -> dict[str, Any]:
             "realtime_factor": {"2_robots": round(rt2, 1), "12_robots": round(rt12, 1)}
         },
         "demo": {"trials_per_s": {"1_worker": round(demo1, 1), "2_workers": round(demo2, 1)}},
+    }
+    server_trials, robot_trials = (4000, 2000) if quick else (20000, 6000)
+    results["intercept"] = {
+        "trials_per_s": {
+            "soccer_server": round(
+                median_of(repeats, lambda: intercept_trials_per_s("soccer_server", server_trials))
+            ),
+            "robot_physics": round(
+                median_of(repeats, lambda: intercept_trials_per_s("robot_physics", robot_trials))
+            ),
+        }
     }
     results.update(_soccer_server_benchmarks(quick))
     results["machine"] = {
