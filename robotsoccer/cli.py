@@ -3,6 +3,10 @@
 Bad input never ends in a traceback: a wrong option, an unknown preset or a wrong preset file
 prints one line naming what is wrong and exits with status 2. Ctrl-C during a run keeps every
 finished trial in the results table and exits with status 130.
+
+``learn intercept`` and ``reproduce`` run layer 1 of the paper (§5) through
+:mod:`robotsoccer.experiments.layer1`: collect saves, train nets, evaluate every condition and
+write one folder with ``report.md``, plots, models and recordings; rerunning resumes.
 """
 
 from __future__ import annotations
@@ -60,7 +64,26 @@ def build_parser() -> argparse.ArgumentParser:
 
     replay = commands.add_parser("replay", help="open a recording in the rerun viewer")
     replay.add_argument("file", type=Path)
+
+    learn = commands.add_parser("learn", help="learn a layer: collect, train, evaluate, report")
+    targets = learn.add_subparsers(dest="target", required=True, parser_class=_Parser)
+    intercept = targets.add_parser("intercept", help="layer 1: the interception net (paper §5)")
+    intercept.add_argument("--field", required=True, choices=FIELD_MODELS, help="field model")
+    intercept.add_argument("--field-preset", default=None, help="preset name or .toml path")
+    _add_experiment_options(intercept)
+
+    reproduce = commands.add_parser(
+        "reproduce", help="run all of layer 1 on both field models; report, plots, models"
+    )
+    _add_experiment_options(reproduce)
     return parser
+
+
+def _add_experiment_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--quick", action="store_true", help="~200 trials per condition (< 5 min)")
+    p.add_argument("--seed", type=int, default=0, help="experiment seed")
+    p.add_argument("--workers", type=_positive_int, default=None, help="default: all cores")
+    p.add_argument("--out", type=Path, default=None, help="output folder (default under runs/)")
 
 
 def _add_run_options(p: argparse.ArgumentParser, default_trials: int) -> None:
@@ -99,6 +122,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             return cmd_replay(args)
         if args.command == "trace":
             return cmd_trace(args)
+        if args.command == "learn":
+            return cmd_learn(args)
+        if args.command == "reproduce":
+            return cmd_reproduce(args)
     except (PresetError, UsageError, ValueError) as exc:
         print(f"robotsoccer: error: {exc}", file=sys.stderr)
         return 2
@@ -232,6 +259,69 @@ def cmd_replay(args: argparse.Namespace) -> int:
     from robotsoccer.recording import replay
 
     return replay(args.file)
+
+
+def cmd_learn(args: argparse.Namespace) -> int:
+    """``learn intercept``: layer 1 on one field model (collect → train → evaluate → report)."""
+    preset = args.field_preset or DEFAULT_PRESETS[args.field]
+    tag = f"learn-intercept-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
+    out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
+    title = f"Layer 1 (interception) on {args.field}" + (" — quick plan" if args.quick else "")
+    return _run_layer1(args, [(args.field, preset)], out, title, "robotsoccer learn intercept")
+
+
+def cmd_reproduce(args: argparse.Namespace) -> int:
+    """``reproduce``: all of layer 1 on both field models into one folder."""
+    name = f"reproduce-quick-seed{args.seed}" if args.quick else f"reproduce-seed{args.seed}"
+    out = args.out or Path("runs") / name
+    models = [(model, DEFAULT_PRESETS[model]) for model in ("soccer_server", "robot_physics")]
+    title = "Layer 1 reproduction (Stone & Veloso 1996, §5)" + (
+        " — quick plan" if args.quick else ""
+    )
+    return _run_layer1(args, models, out, title, "robotsoccer reproduce")
+
+
+def _run_layer1(
+    args: argparse.Namespace,
+    models: list[tuple[str, str]],
+    out: Path,
+    title: str,
+    created_by: str,
+) -> int:
+    from robotsoccer.experiments.layer1 import plan_for, run_layer1
+
+    for model, preset in models:  # a bad preset fails here with one line, not in a worker
+        _check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
+    plan = plan_for(args.quick)
+    workers = args.workers or default_workers()
+    start = time.perf_counter()
+
+    def log(line: str) -> None:
+        print(f"[{time.perf_counter() - start:6.1f} s] {line}", flush=True)
+
+    try:
+        report, _ = run_layer1(
+            models,
+            plan,
+            out,
+            args.seed,
+            workers,
+            log,
+            title=title,
+            created_by=created_by,
+            progress=sys.stderr.isatty(),
+        )
+    except KeyboardInterrupt:
+        print(
+            f"\nrobotsoccer: interrupted; finished trials are kept under {out}/results "
+            "(rerun the same command to resume)",
+            file=sys.stderr,
+        )
+        return 130
+    print()
+    print(report.read_text())
+    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
+    return 0
 
 
 if __name__ == "__main__":  # pragma: no cover

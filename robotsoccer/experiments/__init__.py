@@ -1,0 +1,11 @@
+"""Experiments that reproduce the paper's results: layer 1 (§5) end to end.
+
+* :mod:`robotsoccer.experiments.layer1` — collect, train, evaluate, record, one output folder.
+* :mod:`robotsoccer.experiments.report` — markdown tables in the paper's layout, ours beside.
+* :mod:`robotsoccer.experiments.plots` — the Figure 7 and Figure 8 curves as PNG (matplotlib Agg).
+* :mod:`robotsoccer.experiments.paper` — the paper's numbers as data.
+
+Importing this package loads neither torch nor matplotlib; they load when training or plotting.
+"""
+
+from __future__ import annotations

@@ -1,0 +1,489 @@
+"""Layer-1 results as markdown tables in the paper's layout, ours beside the paper's (§5).
+
+Each table has the paper's columns — Saves(%), Goals(%), Saves/(Goals+Saves)(%) — and for each
+our percentage with its 95% Wilson interval (:func:`robotsoccer.stats.wilson_interval`) beside
+the paper's number. Saves and goals are shares of all trials (n, misses included, as the paper's
+tables count them: "the misses are not included in the results" means they appear in neither
+column, not that n excludes them); Saves/(Goals+Saves) is a share of the shots on goal, so its
+interval uses n = saves + goals, printed with it.
+
+This module only renders: :mod:`robotsoccer.experiments.layer1` runs the trials and fills a
+:class:`ModelSection` per field model. The "Where we differ from the paper" section states, for
+every row with a paper number, where the paper's value lies outside our interval, and checks the
+issue's must-show claims on the Soccer Server model.
+"""
+
+from __future__ import annotations
+
+from collections import Counter
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+
+from robotsoccer.experiments.paper import (
+    AIM_4_DEG_WIDE,
+    AIM_OFFSET_DEG,
+    FIGURE_7,
+    FIGURE_8,
+    PAPER_ALL_SAVES,
+    TABLE_1,
+    TRAINING_FACTS,
+    PaperRow,
+)
+from robotsoccer.stats import wilson_interval
+
+BEHAVIOUR_NAMES = {
+    "net": "NN",
+    "straight": "Straight",
+    "lookup": "Lookup Table",
+    "analytic": "Analytic",
+    "random": "Random TA",
+    "still": "Still",
+}
+"""How each defender behaviour is named in the tables (the paper's words)."""
+
+NEAR_100_PCT = 95.0
+""""Both near 100%" with no noise is read as: both save at least this share."""
+
+NET_LEAD_POINTS = 20.0
+"""The issue's claim: at ball noise .05 the net saves at least this many points more."""
+
+
+@dataclass(frozen=True, slots=True)
+class Counts:
+    """How many trials of one condition ended in each label."""
+
+    saves: int
+    goals: int
+    misses: int
+
+    @property
+    def n(self) -> int:
+        """All trials."""
+        return self.saves + self.goals + self.misses
+
+    @property
+    def on_goal(self) -> int:
+        """Shots on goal: saves + goals."""
+        return self.saves + self.goals
+
+    @classmethod
+    def from_labels(cls, labels: Iterable[str]) -> Counts:
+        """Count SAVE/GOAL/MISS labels (anything else is an error)."""
+        counts = Counter(labels)
+        unknown = set(counts) - {"SAVE", "GOAL", "MISS"}
+        if unknown:
+            raise ValueError(f"unexpected labels {sorted(unknown)}")
+        return cls(counts["SAVE"], counts["GOAL"], counts["MISS"])
+
+    def saves_pct(self) -> float:
+        """Saves as a percentage of all trials (0 when there are none)."""
+        return 100.0 * self.saves / self.n if self.n else 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class Row:
+    """One table row: its key cells, our counts (None: not run) and the paper's row."""
+
+    keys: tuple[str, ...]
+    counts: Counts | None
+    paper: PaperRow | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class StageTiming:
+    """Wall time of one stage of the pipeline and the trials it ran (resumed ones excluded)."""
+
+    name: str
+    trials: int
+    wall_s: float
+
+    def rate(self) -> str:
+        """Trials per second, or "—" when the stage ran no trials."""
+        if self.trials == 0 or self.wall_s <= 0.0:
+            return "—"
+        return f"{self.trials / self.wall_s:,.0f}"
+
+
+@dataclass
+class ModelSection:
+    """Everything the report shows for one field model.
+
+    Attributes:
+        field_model: ``"soccer_server"`` or ``"robot_physics"``.
+        preset: The preset name.
+        figure7: (training examples, row label, counts) per trained net, ascending.
+        figure8: (noise, behaviour) → counts.
+        table1: behaviour → counts (ball noise .05).
+        wide: behaviour → counts (no noise, the shooter aiming 4° wide).
+        latency: (camera latency [s], behaviour) → counts (robots only).
+        checks: behaviour → counts of the training-drill checks (still, straight, random).
+        noise: The ball noise of Figure 7, Table 1 and the checks.
+        net_examples: Training examples of the net used in Figure 8, Table 1, 4° wide, latency.
+        stages: Timing of each stage.
+        notes: Free markdown lines (scaling, presets, ...), printed under the model's heading.
+    """
+
+    field_model: str
+    preset: str
+    figure7: list[tuple[int, str, Counts]] = field(default_factory=list)
+    figure8: dict[tuple[float, str], Counts] = field(default_factory=dict)
+    table1: dict[str, Counts] = field(default_factory=dict)
+    wide: dict[str, Counts] = field(default_factory=dict)
+    latency: dict[tuple[float, str], Counts] = field(default_factory=dict)
+    checks: dict[str, Counts] = field(default_factory=dict)
+    noise: float = 0.05
+    net_examples: int = 750
+    stages: list[StageTiming] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+
+
+# ----------------------------------------------------------------------------- cells and tables
+
+
+def percent_cell(successes: int, trials: int) -> str:
+    """``"57.3 [54.2, 60.4]"``: a percentage with its 95% Wilson interval; "—" for no trials."""
+    if trials <= 0:
+        return "—"
+    low, high = wilson_interval(successes, trials)
+    return f"{100 * successes / trials:.1f} [{100 * low:.1f}, {100 * high:.1f}]"
+
+
+def paper_cell(value: float | None) -> str:
+    """A paper number, or "—" when the paper does not give one."""
+    return "—" if value is None else f"{value:g}"
+
+
+TABLE_COLUMNS = (
+    "Saves (%)",
+    "paper",
+    "Goals (%)",
+    "paper",
+    "Saves/(Goals+Saves) (%)",
+    "paper",
+    "n",
+)
+"""The value columns of every results table, after the row's key columns."""
+
+
+def paper_table(key_headers: Sequence[str], rows: Sequence[Row]) -> str:
+    """A markdown table in the paper's layout: ours with 95% intervals, the paper's beside.
+
+    Args:
+        key_headers: Headers of the leading key columns (e.g. ``("Noise", "Behavior")``).
+        rows: The rows; each has as many key cells as there are key headers.
+    """
+    headers = (*key_headers, *TABLE_COLUMNS)
+    lines = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
+    for row in rows:
+        if len(row.keys) != len(key_headers):
+            raise ValueError(f"row {row.keys} does not match headers {tuple(key_headers)}")
+        lines.append("| " + " | ".join((*row.keys, *_value_cells(row))) + " |")
+    return "\n".join(lines)
+
+
+def _value_cells(row: Row) -> tuple[str, ...]:
+    paper = row.paper
+    ours: tuple[str, str, str, str]
+    if row.counts is None:
+        ours = ("not run", "—", "—", "—")
+    else:
+        c = row.counts
+        on_goal = percent_cell(c.saves, c.on_goal)
+        ours = (
+            percent_cell(c.saves, c.n),
+            percent_cell(c.goals, c.n),
+            f"{on_goal} of {c.on_goal}" if c.on_goal else on_goal,
+            str(c.n),
+        )
+    return (
+        ours[0],
+        paper_cell(paper.saves_pct if paper else None),
+        ours[1],
+        paper_cell(paper.goals_pct if paper else None),
+        ours[2],
+        paper_cell(paper.on_goal_saved_pct if paper else None),
+        ours[3],
+    )
+
+
+# ----------------------------------------------------------------------------- per-model tables
+
+
+def figure7_rows(section: ModelSection) -> list[Row]:
+    """Figure 7 rows; the last (all saves) is set beside the paper's 4773-example row."""
+    rows = []
+    for examples, label, counts in section.figure7:
+        paper = FIGURE_7.get(PAPER_ALL_SAVES if label.startswith("all") else examples)
+        rows.append(Row((label,), counts, paper))
+    return rows
+
+
+def figure8_rows(section: ModelSection) -> list[Row]:
+    """Figure 8 rows: per noise level the NN then Straight, the paper's beside."""
+    noises = sorted({noise for noise, _ in section.figure8})
+    rows = []
+    for noise in noises:
+        for behaviour in ("net", "straight"):
+            counts = section.figure8.get((noise, behaviour))
+            if counts is None:
+                continue
+            label = f"{noise:g}"
+            paper = FIGURE_8.get((round(noise, 4), behaviour))
+            rows.append(Row((label, BEHAVIOUR_NAMES[behaviour]), counts, paper))
+    return rows
+
+
+def table1_rows(section: ModelSection) -> list[Row]:
+    """Table 1 rows (NN, lookup table, analytic, plus straight for reference)."""
+    order = ("net", "lookup", "analytic", "straight")
+    paper = {**TABLE_1, "straight": FIGURE_8[(0.05, "straight")]}
+    return [
+        Row((BEHAVIOUR_NAMES[b],), section.table1[b], paper.get(b))
+        for b in order
+        if b in section.table1
+    ]
+
+
+def wide_rows(section: ModelSection) -> list[Row]:
+    """The 4°-wide rows (no noise): NN and Straight."""
+    return [
+        Row((BEHAVIOUR_NAMES[b],), section.wide[b], AIM_4_DEG_WIDE.get(b))
+        for b in ("net", "straight")
+        if b in section.wide
+    ]
+
+
+def latency_rows(section: ModelSection) -> list[Row]:
+    """Camera-latency rows (robots; the paper has no such experiment)."""
+    rows = []
+    for latency_s in sorted({lat for lat, _ in section.latency}):
+        for behaviour in ("net", "straight", "analytic"):
+            counts = section.latency.get((latency_s, behaviour))
+            if counts is not None:
+                rows.append(Row((f"{1000 * latency_s:.0f}", BEHAVIOUR_NAMES[behaviour]), counts))
+    return rows
+
+
+def checks_table(section: ModelSection) -> str:
+    """The training drill's sanity numbers beside the paper's text (§5)."""
+    lines = ["| Behavior | what | ours | paper | n |", "|---|---|---|---|---|"]
+    for behaviour, (what, paper) in TRAINING_FACTS.items():
+        counts = section.checks.get(behaviour)
+        if counts is None:
+            continue
+        k = check_count(behaviour, counts)
+        lines.append(
+            f"| {BEHAVIOUR_NAMES[behaviour]} | {what} | {percent_cell(k, counts.n)} "
+            f"| {paper:g} | {counts.n} |"
+        )
+    return "\n".join(lines)
+
+
+def stages_table(stages: Sequence[StageTiming]) -> str:
+    """Wall time and trials per second of each stage."""
+    lines = ["| stage | trials run | wall (s) | trials/s |", "|---|---|---|---|"]
+    for s in stages:
+        lines.append(f"| {s.name} | {s.trials} | {s.wall_s:.1f} | {s.rate()} |")
+    return "\n".join(lines)
+
+
+def model_markdown(section: ModelSection) -> str:
+    """The section of the report for one field model: every table that was run."""
+    out = [f"## {section.field_model} (`{section.preset}`)", ""]
+    out += [*section.notes, ""] if section.notes else []
+    if section.figure7:
+        out += [
+            f"### Figure 7 — nets trained on different numbers of saves (noise {section.noise:g})",
+            "",
+            paper_table(("Training examples",), figure7_rows(section)),
+            "",
+        ]
+    if section.figure8:
+        out += [
+            f"### Figure 8 — ball noise, NN ({section.net_examples} examples) vs straight",
+            "",
+            paper_table(("Noise", "Behavior"), figure8_rows(section)),
+            "",
+        ]
+    if section.table1:
+        out += [
+            f"### Table 1 — NN, lookup table, analytic (noise {section.noise:g})",
+            "",
+            paper_table(("Defender Behavior",), table1_rows(section)),
+            "",
+        ]
+    if section.wide:
+        out += [
+            f"### The shooter aiming {AIM_OFFSET_DEG:g}° wide, no noise",
+            "",
+            paper_table(("Defender Behavior",), wide_rows(section)),
+            "",
+        ]
+    if section.latency:
+        out += [
+            f"### Camera latency (noise {section.noise:g}; no paper numbers)",
+            "",
+            paper_table(("Latency (ms)", "Behavior"), latency_rows(section)),
+            "",
+        ]
+    if section.checks:
+        out += ["### Training-drill checks (§5 text)", "", checks_table(section), ""]
+    if section.stages:
+        out += ["### Stages: wall time and speed", "", stages_table(section.stages), ""]
+    return "\n".join(out)
+
+
+# ----------------------------------------------------------------------------- differences
+
+
+def differences(section: ModelSection) -> list[str]:
+    """Facts, one markdown bullet per row: each paper number outside our 95% interval.
+
+    "Outside" is judged at the printed precision (0.1 points), so a paper 0% beside our
+    0.0 [0.0, 1.9] is inside.
+    """
+    facts: list[str] = []
+    tables = (
+        ("Figure 7", figure7_rows(section)),
+        ("Figure 8", figure8_rows(section)),
+        ("Table 1", table1_rows(section)),
+        (f"{AIM_OFFSET_DEG:g}° wide", wide_rows(section)),
+    )
+    for title, rows in tables:
+        for row in rows:
+            if row.counts is None or row.paper is None:
+                continue
+            c, p = row.counts, row.paper
+            parts = [
+                _outside("saves", c.saves, c.n, p.saves_pct),
+                _outside("goals", c.goals, c.n, p.goals_pct),
+                _outside("saves/(goals+saves)", c.saves, c.on_goal, p.on_goal_saved_pct),
+            ]
+            found = [part for part in parts if part]
+            if found:
+                facts.append(f"- {title}, {' / '.join(row.keys)}: " + "; ".join(found) + ".")
+    for behaviour, (what, paper) in TRAINING_FACTS.items():
+        counts = section.checks.get(behaviour)
+        if counts is not None:
+            found_check = _outside(what, check_count(behaviour, counts), counts.n, paper)
+            if found_check:
+                facts.append(f"- Training drill, {BEHAVIOUR_NAMES[behaviour]}: {found_check}.")
+    return facts
+
+
+def check_count(behaviour: str, counts: Counts) -> int:
+    """The count a training-drill check compares with the paper's text (§5).
+
+    "If the defender remains still, the ball hits it only 35% of the time": a hit ball comes
+    back, so the still defender's *saves*. The straight defender's "stop the ball 53%": saves.
+    The random defender "misses most (76%) of the time": it fails to stop the ball, so every
+    trial that is not a save (goals and misses).
+    """
+    return counts.n - counts.saves if behaviour == "random" else counts.saves
+
+
+def _outside(what: str, k: int, n: int, paper: float | None) -> str:
+    """``"goals 48.5 [41.7, 55.4] vs the paper's 35 (above)"``, or "" when inside or unknown."""
+    if paper is None or n == 0:
+        return ""
+    low, high = (round(100 * v, 1) for v in wilson_interval(k, n))
+    if low <= paper <= high:
+        return ""
+    side = "above" if paper < low else "below"
+    return f"{what} {percent_cell(k, n)} (n={n}) {side} the paper's {paper:g}"
+
+
+def claims(section: ModelSection) -> list[str]:
+    """The issue's must-show claims, each stated with the numbers and PASS or FAIL."""
+    lines = []
+    net = section.figure8.get((0.05, "net"))
+    straight = section.figure8.get((0.05, "straight"))
+    if net and straight:
+        lead = net.saves_pct() - straight.saves_pct()
+        verdict = "PASS" if lead >= NET_LEAD_POINTS else "FAIL"
+        lines.append(
+            f"- {verdict}: noise .05, the net saves {lead:+.1f} points vs straight "
+            f"({net.saves_pct():.1f}% vs {straight.saves_pct():.1f}%; claim ≥ "
+            f"{NET_LEAD_POINTS:g}; paper 86% vs 53%)."
+        )
+    behind = [
+        (noise, section.figure8[(noise, "net")], section.figure8[(noise, "straight")])
+        for noise, b in sorted(section.figure8)
+        if b == "net" and noise > 0 and (noise, "straight") in section.figure8
+    ]
+    if behind:
+        worse = [f"{noise:g}" for noise, n, s in behind if n.saves < s.saves]
+        verdict = "PASS" if not worse else "FAIL"
+        detail = "every level" if not worse else "not at " + ", ".join(worse)
+        lines.append(f"- {verdict}: net ≥ straight at every noise level above 0 ({detail}).")
+    zero = [section.figure8.get((0.0, b)) for b in ("net", "straight")]
+    if all(zero):
+        shares = [c.saves_pct() for c in zero if c is not None]
+        verdict = "PASS" if min(shares) >= NEAR_100_PCT else "FAIL"
+        lines.append(
+            f"- {verdict}: no noise, both near 100% (net {shares[0]:.1f}%, straight "
+            f"{shares[1]:.1f}%; read as ≥ {NEAR_100_PCT:g}%)."
+        )
+    return lines
+
+
+def net_lead_line(section: ModelSection) -> str:
+    """The net's saves minus straight's, in points, at each noise level, the paper's beside."""
+    leads = []
+    for (noise, behaviour), net in sorted(section.figure8.items()):
+        straight = section.figure8.get((noise, "straight"))
+        if behaviour != "net" or straight is None:
+            continue
+        ours = net.saves_pct() - straight.saves_pct()
+        paper_net, paper_straight = (FIGURE_8.get((noise, b)) for b in ("net", "straight"))
+        theirs = ""
+        if paper_net and paper_straight:
+            theirs = f" (paper {paper_net.saves_pct - paper_straight.saves_pct:+g})"
+        leads.append(f"{noise:g}: {ours:+.1f}{theirs}")
+    if not leads:
+        return ""
+    return "Net minus straight, saves in points, by ball noise: " + ", ".join(leads) + "."
+
+
+# ----------------------------------------------------------------------------- the document
+
+
+def report_markdown(
+    title: str,
+    intro: Sequence[str],
+    sections: Sequence[ModelSection],
+    plots: Sequence[tuple[str, str]] = (),
+) -> str:
+    """The whole report: title, intro lines, plots, one section per model, the differences.
+
+    Args:
+        title: The report's title.
+        intro: Markdown lines under the title.
+        sections: One per field model.
+        plots: (caption, path relative to the report) of each image.
+    """
+    out = [f"# {title}", "", *intro, ""]
+    if plots:
+        out += ["## Plots", ""]
+        for caption, path in plots:
+            out += [f"![{caption}]({path})", ""]
+    for section in sections:
+        out += [model_markdown(section), ""]
+    out += ["## Where we differ from the paper", ""]
+    out += [
+        "Generated from the measured numbers: each line is a paper value outside our 95% "
+        "interval (the lead reviews the reasons).",
+        "",
+    ]
+    for section in sections:
+        facts = differences(section)
+        checks = claims(section) if section.field_model == "soccer_server" else []
+        out += [f"### {section.field_model}", ""]
+        if checks:
+            out += ["Claims of the issue (Soccer Server, `soccer_server_1996`):", "", *checks, ""]
+        lead = net_lead_line(section)
+        out += [lead, ""] if lead else []
+        out += ["Paper numbers outside our 95% intervals:", ""]
+        out += facts or ["- None: every paper number lies inside our 95% interval."]
+        out += [""]
+    return "\n".join(out).rstrip() + "\n"

@@ -1,0 +1,319 @@
+"""Layer-1 experiments: the report in the paper's layout, the plans, a tiny pipeline end to end."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from learning.datasets import InterceptionDataset
+from learning.lookup import LookupTable
+from robotsoccer.experiments import paper
+from robotsoccer.experiments.layer1 import (
+    Layer1Plan,
+    PipelineError,
+    Trained,
+    base_spec,
+    experiments,
+    full_plan,
+    quick_plan,
+    run_layer1,
+    seeds_for,
+    training_sizes,
+    unique_conditions,
+)
+from robotsoccer.experiments.report import (
+    Counts,
+    ModelSection,
+    Row,
+    claims,
+    differences,
+    net_lead_line,
+    paper_table,
+    percent_cell,
+    report_markdown,
+)
+
+# ----------------------------------------------------------------------------- report writer
+
+
+def test_percent_cell_is_the_wilson_interval_in_percent() -> None:
+    # 53/100: Wilson 95% interval [43.28%, 62.48%] (robotsoccer.stats doctest).
+    assert percent_cell(53, 100) == "53.0 [43.3, 62.5]"
+    assert percent_cell(0, 0) == "—"
+    assert percent_cell(10, 10) == "100.0 [72.2, 100.0]"
+
+
+def test_paper_table_puts_ours_with_intervals_beside_the_papers() -> None:
+    counts = Counts(saves=860, goals=90, misses=50)
+    table = paper_table(("Training examples",), [Row(("750",), counts, paper.FIGURE_7[750])])
+    header, rule, row = table.splitlines()
+    assert header.startswith("| Training examples | Saves (%) | paper | Goals (%) | paper |")
+    assert "Saves/(Goals+Saves) (%)" in header and header.endswith("| n |")
+    assert rule.count("---") == 8
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    assert cells[0] == "750"
+    assert cells[1] == "86.0 [83.7, 88.0]" and cells[2] == "86"
+    assert cells[3] == "9.0 [7.4, 10.9]" and cells[4] == "9"
+    # Saves/(Goals+Saves) = 860/950 with its own n.
+    assert cells[5] == "90.5 [88.5, 92.2] of 950" and cells[6] == "91"
+    assert cells[7] == "1000"
+
+
+def test_rows_without_paper_numbers_or_runs_show_dashes() -> None:
+    table = paper_table(("Behavior",), [Row(("NN",), None, paper.AIM_4_DEG_WIDE["net"])])
+    cells = [c.strip() for c in table.splitlines()[2].strip("|").split("|")]
+    assert cells == ["NN", "not run", "99", "—", "—", "—", "—", "—"]
+
+
+def test_a_row_must_match_the_key_headers() -> None:
+    with pytest.raises(ValueError, match="does not match"):
+        paper_table(("Noise", "Behavior"), [Row(("0.05",), Counts(1, 0, 0))])
+
+
+def test_counts_from_labels_refuses_unknown_labels() -> None:
+    assert Counts.from_labels(["SAVE", "GOAL", "SAVE", "MISS"]) == Counts(2, 1, 1)
+    with pytest.raises(ValueError, match="unexpected"):
+        Counts.from_labels(["SAVE", "FAILURE"])
+
+
+def _section() -> ModelSection:
+    s = ModelSection("soccer_server", "soccer_server_1996")
+    s.figure7 = [(100, "100", Counts(570, 330, 100)), (900, "all (900)", Counts(700, 100, 200))]
+    s.figure8 = {
+        (0.0, "net"): Counts(1000, 0, 0),
+        (0.0, "straight"): Counts(990, 10, 0),
+        (0.05, "net"): Counts(860, 90, 50),
+        (0.05, "straight"): Counts(530, 350, 120),
+        (0.1, "net"): Counts(270, 300, 430),
+        (0.1, "straight"): Counts(280, 320, 400),
+    }
+    s.table1 = {"net": Counts(860, 90, 50), "lookup": Counts(830, 80, 90)}
+    s.checks = {"random": Counts(150, 90, 760)}
+    return s
+
+
+def test_figure7_all_row_sits_beside_the_papers_4773_row() -> None:
+    text = report_markdown("t", [], [_section()])
+    row = next(line for line in text.splitlines() if line.startswith("| all (900)"))
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    assert cells[1] == "70.0 [67.1, 72.8]" and cells[2] == "84"  # paper's 4773 row
+
+
+def test_differences_list_paper_numbers_outside_our_interval() -> None:
+    facts = differences(_section())
+    # Figure 7 "all" sits beside the paper's 4773 row (84 / 9 / 90): saves and the on-goal
+    # share are outside our intervals, goals 10.0 [8.3, 12.0] hold the paper's 9.
+    assert facts[0] == (
+        "- Figure 7, all (900): saves 70.0 [67.1, 72.8] (n=1000) below the paper's 84; "
+        "saves/(goals+saves) 87.5 [85.0, 89.6] (n=800) below the paper's 90."
+    )
+    # Paper numbers inside our interval give no line: 100 examples, 57/33/63 vs ours 57/33/63.
+    assert not any(f.startswith("- Figure 7, 100:") for f in facts)
+    # No noise: the paper's 0% goals is inside our 0.0 [0.0, 0.4] at the printed precision.
+    assert not any(f.startswith("- Figure 8, 0 / NN:") for f in facts)
+    # Figure 8 at 0.1: the paper's NN 49% is far above our 27%.
+    row = next(f for f in facts if f.startswith("- Figure 8, 0.1 / NN:"))
+    assert row.startswith(
+        "- Figure 8, 0.1 / NN: saves 27.0 [24.3, 29.8] (n=1000) below the paper's 49;"
+    )
+    # The random-TA defender fails to stop 85.0% (goals and misses), the paper says 76%.
+    assert facts[-1] == (
+        "- Training drill, Random TA: trials the random-TA defender fails to stop (%) "
+        "85.0 [82.7, 87.1] (n=1000) above the paper's 76."
+    )
+
+
+def test_claims_are_checked_with_their_numbers() -> None:
+    lines = claims(_section())
+    assert lines[0].startswith("- PASS: noise .05, the net saves +33.0 points")
+    assert lines[1] == "- FAIL: net ≥ straight at every noise level above 0 (not at 0.1)."
+    assert lines[2].startswith("- PASS: no noise, both near 100% (net 100.0%, straight 99.0%")
+
+
+def test_net_lead_is_given_per_noise_level_beside_the_papers() -> None:
+    assert net_lead_line(_section()) == (
+        "Net minus straight, saves in points, by ball noise: 0: +1.0 (paper +0), "
+        "0.05: +33.0 (paper +33), 0.1: -1.0 (paper +21)."
+    )
+
+
+def test_report_has_every_section_and_the_differences() -> None:
+    text = report_markdown("Layer 1", ["intro line"], [_section()], [("F7", "plots/figure7.png")])
+    for heading in (
+        "# Layer 1",
+        "## Plots",
+        "![F7](plots/figure7.png)",
+        "## soccer_server (`soccer_server_1996`)",
+        "### Figure 7",
+        "### Figure 8",
+        "### Table 1",
+        "### Training-drill checks",
+        "## Where we differ from the paper",
+    ):
+        assert heading in text, heading
+    assert "| Lookup Table | 83.0 [80.5, 85.2] | 83 |" in text
+
+
+# ----------------------------------------------------------------------------- plans
+
+
+def test_full_plan_runs_the_papers_1000_trials_and_every_condition() -> None:
+    plan = full_plan()
+    assert plan.eval_trials == 1000
+    assert plan.training_sizes == (100, 200, 300, 400, 500, 750, 1000)
+    assert plan.include_all and plan.net_examples == 750 and plan.epochs == 3000
+    assert plan.noises == (0.0, 0.05, 0.06, 0.07, 0.08, 0.09, 0.1)
+    assert plan.latencies_s == (0.0, 0.05, 0.1)
+    assert plan.aim_offset_deg == 4.0 and plan.noise == 0.05
+    assert set(plan.collect_trials) == {"soccer_server", "robot_physics"}
+
+
+def test_quick_plan_is_smaller_in_every_trial_count() -> None:
+    quick, full = quick_plan(), full_plan()
+    assert quick.eval_trials == 200
+    for model, n in quick.collect_trials.items():
+        assert n < full.collect_trials[model]
+    assert quick.noises == full.noises and quick.training_sizes == full.training_sizes
+
+
+def test_training_sizes_are_capped_by_the_saves_and_include_all() -> None:
+    plan = full_plan()
+    assert training_sizes(plan, 620) == [100, 200, 300, 400, 500, 620]
+    assert training_sizes(plan, 750) == [100, 200, 300, 400, 500, 750]
+    assert training_sizes(plan, 40) == [40]
+
+
+def _plan_of(field_model: str, latency_s: float | None):
+    plan = full_plan()
+    nets = {n: Path(f"/m/net_{n}.npz") for n in (*plan.training_sizes, 4500)}
+    trained = Trained(nets, 750, Path("/m/lookup.json"))
+    base = base_spec(field_model, "p", seed=7, ta_mode="hold")
+    return plan, experiments(plan, base, trained, latency_s)
+
+
+def test_full_plan_conditions_on_the_soccer_server() -> None:
+    _, plan_of = _plan_of("soccer_server", None)
+    assert list(plan_of) == [
+        "Figure 7",
+        "Figure 8",
+        "Table 1",
+        "4° wide",
+        "checks (still, straight)",
+    ]
+    assert len(plan_of["Figure 7"]) == 8 and len(plan_of["Figure 8"]) == 14
+    unique = unique_conditions(plan_of)
+    # Shared: net750 at .05 (Figure 7, 8, Table 1), straight at .05 (Figure 8, Table 1, checks).
+    assert len(unique) == 8 + 13 + 2 + 2 + 1
+    assert all(c.n_trials == 1000 for c in unique.values())
+    # Common random numbers: one evaluation seed for every behaviour and noise.
+    assert {c.spec.seed for c in unique.values()} == {7}
+    net = unique["net750_noise0.05"].spec
+    assert dict(net.drill_options) == {
+        "behaviour": "net",
+        "model": str(Path("/m/net_750.npz").resolve()),
+        "ta_mode": "hold",
+    }
+    assert net.ball_noise == 0.05 and net.camera_latency_s is None
+    wide = dict(unique["straight_noise0_aim4"].spec.drill_options)
+    assert wide["aim_offset_deg"] == 4.0 and unique["straight_noise0_aim4"].spec.ball_noise == 0
+    assert dict(unique["lookup750_noise0.05"].spec.drill_options)["model"].endswith("lookup.json")
+
+
+def test_full_plan_adds_camera_latency_on_robots() -> None:
+    _, plan_of = _plan_of("robot_physics", 0.05)
+    keys = [key for key, _ in plan_of["camera latency"]]
+    assert keys == [(lat, b) for lat in (0.0, 0.05, 0.1) for b in ("net", "straight", "analytic")]
+    unique = unique_conditions(plan_of)
+    # The preset's own 50 ms runs once, shared with Table 1; 0 and 100 ms are new.
+    assert len(unique) == 26 + 6
+    assert unique["analytic_noise0.05_latency100ms"].spec.camera_latency_s == 0.1
+    assert unique["net750_noise0.05_latency0ms"].spec.camera_latency_s == 0.0
+
+
+def test_collection_and_evaluation_seeds_differ() -> None:
+    for seed in range(20):
+        seeds = seeds_for(seed)
+        assert seeds.evaluation == seed
+        assert seeds.collection != seed and seeds.collection == seeds_for(seed).collection
+
+
+# ----------------------------------------------------------------------------- end to end
+
+
+TINY = Layer1Plan(
+    name="tiny",
+    eval_trials=24,
+    collect_trials={"soccer_server": 400},
+    training_sizes=(10, 20),
+    net_examples=20,
+    noises=(0.0, 0.05),
+    epochs=30,
+    record_saves=1,
+    record_goals=1,
+)
+
+
+def test_tiny_pipeline_writes_report_plots_models_and_results(tmp_path) -> None:
+    out = tmp_path / "run"
+    lines: list[str] = []
+    report, sections = run_layer1(
+        [("soccer_server", None)], TINY, out, seed=3, workers=1, log=lines.append
+    )
+    assert report == out / "report.md"
+    text = report.read_text()
+    assert "### Figure 7" in text and "### Table 1" in text and "## Where we differ" in text
+    assert (out / "plots" / "figure7.png").stat().st_size > 1000
+    assert (out / "plots" / "figure8.png").stat().st_size > 1000
+    models = out / "models" / "soccer_server"
+    assert (models / "net_10.npz").exists() and (models / "net_20.npz").exists()
+    assert (models / "lookup.json").exists()
+    dataset = InterceptionDataset.load(out / "datasets" / "soccer_server" / "train.npz")
+    provenance = dataset.provenance
+    assert provenance.field_model == "soccer_server" and provenance.preset == "soccer_server_1996"
+    assert provenance.behaviour == "random" and provenance.ball_noise == 0.05
+    assert provenance.seed == seeds_for(3).collection and provenance.n_trials == 400
+    assert len(dataset) == provenance.extra["saves"] - provenance.extra["saves_without_decision"]
+    assert LookupTable.load(models / "lookup.json").built_from["net"] == "net_20.npz"
+    results = out / "results" / "soccer_server"
+    csv = (results / "net20_noise0.05.csv").read_text().splitlines()
+    assert len(csv) == 1 + TINY.eval_trials
+    config = json.loads((out / "config.json").read_text())
+    assert config["plan"]["name"] == "tiny" and config["seed"] == 3
+    assert "straight_noise0.05" in config["conditions"]["soccer_server"]
+    section = sections[0]
+    assert section.figure8[(0.05, "net")].n == TINY.eval_trials
+    assert len(list((out / "recordings" / "soccer_server").glob("*.rrd"))) >= 1
+
+    # A second run resumes: nothing new to run, the same counts.
+    _, sections2 = run_layer1(
+        [("soccer_server", None)], TINY, out, seed=3, workers=1, log=lines.append
+    )
+    assert sections2[0].figure8 == section.figure8
+    assert all(stage.trials == 0 for stage in sections2[0].stages if stage.name != "record")
+
+    # Another seed into the same folder is refused.
+    with pytest.raises(PipelineError, match="another plan"):
+        run_layer1([("soccer_server", None)], TINY, out, seed=4, workers=1, log=lines.append)
+
+
+def test_cli_learn_and_reproduce_refuse_bad_input_in_one_line() -> None:
+    for args in (
+        ("learn", "intercept"),
+        ("learn", "intercept", "--field", "mars"),
+        ("learn", "pass", "--field", "soccer_server"),
+        ("reproduce", "--workers", "0"),
+        ("learn", "intercept", "--field", "soccer_server", "--field-preset", "nope"),
+    ):
+        done = subprocess.run(
+            [sys.executable, "-m", "robotsoccer.cli", *args],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        assert done.returncode == 2, args
+        assert "Traceback" not in done.stderr
+        assert len(done.stderr.strip().splitlines()) == 1, done.stderr
