@@ -188,7 +188,7 @@ class InterceptionModel:
         """
         _check_params(self.get_params())
         rows = scale_distances(x, self.distance_scale_m)
-        targets = np.asarray(y, dtype=np.float64)
+        targets = np.array(y, dtype=np.float64)  # a copy: torch wants writeable arrays
         if targets.shape != (rows.shape[0],) or rows.shape[0] < 2:
             raise ValueError(
                 f"need >= 2 rows and y of shape (N,) = ({len(rows)},), got {targets.shape}"

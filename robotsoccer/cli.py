@@ -61,6 +61,15 @@ def build_parser() -> argparse.ArgumentParser:
     trace.add_argument("--seed", type=int, default=0)
     trace.add_argument("--trial", type=int, default=0, help="trial index")
     trace.add_argument("--player", default=None, help="client to trace, e.g. left1")
+    trace.add_argument("--ball-noise", type=float, default=None, help="override ball noise")
+    trace.add_argument(
+        "--option",
+        action="append",
+        default=[],
+        type=_drill_option,
+        metavar="NAME=VALUE",
+        help="drill option, e.g. behaviour=net (repeatable)",
+    )
 
     replay = commands.add_parser("replay", help="open a recording in the rerun viewer")
     replay.add_argument("file", type=Path)
@@ -98,6 +107,21 @@ def _add_run_options(p: argparse.ArgumentParser, default_trials: int) -> None:
     p.add_argument("--resume", action="store_true", help="keep finished trials in --out")
     p.add_argument("--perfect-perception", action="store_true", help="camera without noise")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+
+
+def _drill_option(text: str) -> tuple[str, str | float | int | bool]:
+    """``name=value`` → (name, value as bool, int, float or str)."""
+    name, sep, raw = text.partition("=")
+    if not sep or not name:
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    if raw.lower() in ("true", "false"):
+        return name, raw.lower() == "true"
+    for kind in (int, float):
+        try:
+            return name, kind(raw)
+        except ValueError:
+            pass
+    return name, raw
 
 
 def _positive_int(text: str) -> int:
@@ -238,7 +262,13 @@ def cmd_trace(args: argparse.Namespace) -> int:
     from robotsoccer.trace import trace_trial
 
     preset = args.field_preset or DEFAULT_PRESETS[args.field]
-    spec = TrialSpec(drill=args.drill, field_model=args.field, preset=preset, seed=args.seed)
+    spec = TrialSpec(
+        drill=args.drill,
+        field_model=args.field,
+        preset=preset,
+        seed=args.seed,
+        ball_noise=args.ball_noise,
+    ).with_options(**dict(args.option))
     client = _player(args.player) if args.player else None
     for line in trace_trial(spec, args.trial, client):
         print(line)

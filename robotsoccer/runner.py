@@ -134,11 +134,16 @@ def play(
     return drill.timeout(arena)
 
 
-def run_trial(spec: TrialSpec, index: int) -> TrialResult:
-    """Run trial `index` of `spec` and return its result."""
+def build_trial(
+    spec: TrialSpec, index: int, *, keep_events: bool = False, trace: bool = False
+) -> tuple[TrialRngs, Drill, Arena]:
+    """The generators, drill and arena of trial `index` of `spec`, before the coach places.
+
+    The one place a trial is put together, so that a run, a recording and a trace of the same
+    spec and index are the same trial.
+    """
     rngs = TrialRngs.for_trial(spec.seed, index)
     drill = make_drill(spec.drill, dict(spec.drill_options))
-    recording = spec.record_dir is not None and index < spec.record_trials
     settings = drill.arena_settings(spec.field_model, spec.preset)
     noise_period = spec.ball_noise_period_s or settings.get("ball_noise_period_s")
     arena = make_arena(
@@ -147,11 +152,19 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
         drill.players(),
         rngs,
         perfect=spec.perfect_perception,
-        keep_events=recording,
+        keep_events=keep_events,
+        trace=trace,
         ball_noise=spec.ball_noise,
         camera_latency_s=spec.camera_latency_s,
         ball_noise_period_s=noise_period,
     )
+    return rngs, drill, arena
+
+
+def run_trial(spec: TrialSpec, index: int) -> TrialResult:
+    """Run trial `index` of `spec` and return its result."""
+    recording = spec.record_dir is not None and index < spec.record_trials
+    rngs, drill, arena = build_trial(spec, index, keep_events=recording)
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
     if recording:

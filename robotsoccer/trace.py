@@ -13,10 +13,7 @@ import math
 
 from field_models.protocol import Percept, PlayerRef
 from robotsoccer.arena import Arena
-from robotsoccer.arenas import make_arena
-from robotsoccer.drills import make_drill
-from robotsoccer.runner import TrialSpec, play
-from robotsoccer.seeding import TrialRngs
+from robotsoccer.runner import TrialSpec, build_trial, play
 
 
 def trace_trial(spec: TrialSpec, index: int, client: PlayerRef | None = None) -> list[str]:
@@ -25,14 +22,12 @@ def trace_trial(spec: TrialSpec, index: int, client: PlayerRef | None = None) ->
     Raises:
         ValueError: when `client` is not a player of the drill.
     """
-    rngs = TrialRngs.for_trial(spec.seed, index)
-    drill = make_drill(spec.drill)
+    rngs, drill, arena = build_trial(spec, index, trace=True)
     players = drill.players()
     client = client or players[0]
     if client not in players:
         known = ", ".join(map(str, players))
         raise ValueError(f"no player {client} in drill {spec.drill!r} (players: {known})")
-    arena = make_arena(spec.field_model, spec.preset, players, rngs, trace=True)
     drill.setup(arena, rngs)
     lines: list[str] = []
 
