@@ -63,6 +63,39 @@ def read_toml(path: Path) -> dict[str, Any]:
         raise PresetError(f"{path}: not valid TOML ({exc})") from None
 
 
+def read_preset(path: Path, prefix: str, _seen: tuple[Path, ...] = ()) -> dict[str, Any]:
+    """Read a preset file, resolving ``base = "<preset>"``: the base's tables, then this file's.
+
+    A variant preset names its base and states only what differs, so a one-key change is not a
+    copy of the whole file. Tables merge key by key (recursively); ``base`` itself is consumed.
+
+    Raises:
+        PresetError: for an unreadable file, a base that is not a string, or a cycle of bases.
+    """
+    table = read_toml(path)
+    base = table.pop("base", None)
+    if base is None:
+        return table
+    if not isinstance(base, str):
+        raise PresetError(f"{path}: key 'base': expected a preset name, got {_kind(base)}")
+    base_path = preset_path(base, prefix)
+    if base_path.resolve() in (*_seen, path.resolve()):
+        raise PresetError(f"{path}: key 'base': {base!r} leads back to this file (a cycle)")
+    merged = read_preset(base_path, prefix, (*_seen, path.resolve()))
+    merged.pop("name", None)  # a variant is its own preset, named after its file by default
+    return _merge(merged, table)
+
+
+def _merge(base: dict[str, Any], override: dict[str, Any]) -> dict[str, Any]:
+    out = dict(base)
+    for key, value in override.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = _merge(out[key], value)
+        else:
+            out[key] = value
+    return out
+
+
 def preset_path(name_or_path: str, prefix: str) -> Path:
     """Resolve a preset name (``small_size_1997``) or a path to a ``.toml`` file.
 

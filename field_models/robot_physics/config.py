@@ -19,7 +19,7 @@ from field_models.presets import (
     positive,
     preset_path,
     probability,
-    read_toml,
+    read_preset,
 )
 from field_models.protocol import Pitch
 
@@ -172,11 +172,13 @@ class RobotPhysicsPreset:
 def load_preset(name_or_path: str = DEFAULT_PRESET) -> RobotPhysicsPreset:
     """Load a robot-physics preset by name (``small_size_1997``, ``vss``) or path.
 
+    A file may start from another preset with ``base = "<name>"`` and state only what differs.
+
     Raises:
         PresetError: naming the file and the key when the file is missing or wrong.
     """
     path = preset_path(name_or_path, "robot_physics")
-    table = read_toml(path)
+    table = read_preset(path, "robot_physics")
     table.setdefault("name", Path(path).stem)
     preset = load_record(RobotPhysicsPreset, {**table, "source": str(path)}, file=path)
     _validate(preset)

@@ -82,6 +82,8 @@ class BatchSoccerServer:
         rngs: Sequence[np.random.Generator],
     ) -> None:
         p = preset.dynamics
+        if p.swept_ball_collisions:
+            raise ValueError("batch mode does not support swept_ball_collisions")
         self.preset = preset
         self.params = p
         self.players = tuple(players)

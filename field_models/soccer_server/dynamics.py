@@ -405,7 +405,12 @@ class SoccerServerModel:
         if self.play_mode == BEFORE_KICK_OFF:
             self._hold_players()
         else:
-            self._move_objects(r)
+            if self.params.swept_ball_collisions:
+                x0, y0 = list(self.x), list(self.y)
+                self._move_objects(r)
+                self._catch_passing_ball(x0, y0)
+            else:
+                self._move_objects(r)
             if self._any_overlap():
                 self._resolve_collisions()
             if self.params.referee:
@@ -536,6 +541,35 @@ class SoccerServerModel:
             if dx * dx + dy * dy < reach2:
                 return True
         return False
+
+    def _catch_passing_ball(self, x0: list[float], y0: list[float]) -> None:
+        """Swept ball–player check (``swept_ball_collisions``): rewind a pair that met mid-cycle.
+
+        Both objects moved on straight lines during the cycle; if their relative path came
+        closer than the sum of radii although they no longer overlap, both are put back where
+        they were at the closest approach, so that :meth:`_resolve_collisions` treats the pair
+        as overlapping (push apart, velocities × −0.1) — "moved back until they do not overlap"
+        in the manual's words (§4).
+        """
+        x, y = self.x, self.y
+        for a, b, reach2, _ in self._pairs:
+            if a != 0:
+                continue  # ball (row 0) against a player only
+            ex, ey = x[b] - x[a], y[b] - y[a]
+            if ex * ex + ey * ey < reach2:
+                continue  # overlapping at the end: the ordinary check handles it
+            sx, sy = x0[b] - x0[a], y0[b] - y0[a]
+            dx, dy = ex - sx, ey - sy
+            d2 = dx * dx + dy * dy
+            if d2 == 0.0:
+                continue
+            t = min(1.0, max(0.0, -(sx * dx + sy * dy) / d2))
+            cx, cy = sx + t * dx, sy + t * dy
+            if cx * cx + cy * cy >= reach2:
+                continue
+            for i in (a, b):
+                x[i] = x0[i] + t * (x[i] - x0[i])
+                y[i] = y0[i] + t * (y[i] - y0[i])
 
     def _resolve_collisions(self) -> None:
         """Push overlapping pairs apart (mean of proposals, ≤ 10 passes), velocities × −0.1."""

@@ -27,7 +27,7 @@ from field_models.presets import (
     positive,
     preset_path,
     probability,
-    read_toml,
+    read_preset,
 )
 from field_models.protocol import Pitch
 from field_models.soccer_server.sensing_params import SensingParams
@@ -80,6 +80,12 @@ class DynamicsParams:
             0 in the paper's Figure 4, where both messages carry the same time).
         referee: goal detection and the after-goal sequence on (``server::coach`` off); off, the
             coach alone decides (the play mode then changes only by ``change_mode``).
+        swept_ball_collisions: also catch a ball that passes *through* a player within a cycle
+            (closest approach of the two straight paths closer than the sum of radii), which the
+            real server misses because it checks overlaps only at the end of the cycle (§4:
+            "a fast ball may pass through a player"). Off in both shipped presets (the real
+            server); on, the pair is moved back to the moment of closest approach and resolved
+            as a collision. Not supported by batch mode.
     """
 
     simulator_step_ms: int = field(metadata=positive("server.conf simulator_step"))
@@ -118,6 +124,7 @@ class DynamicsParams:
     maxmoment_rad: float
     after_goal_wait_cycles: int = field(metadata=non_negative())
     referee: bool = True
+    swept_ball_collisions: bool = False
 
     def __post_init__(self) -> None:
         if self.noise_model not in NOISE_MODELS:
@@ -187,12 +194,13 @@ def load_server_preset(name_or_path: str = DEFAULT_PRESET) -> ServerPreset:
     """Load a Soccer Server preset by name (``soccer_server_1996``, ``rcssserver_19``) or path.
 
     Keys ending in ``_deg`` fill the record's ``_rad`` field of the same stem, converted once.
+    A file may start from another preset with ``base = "<name>"`` and state only what differs.
 
     Raises:
         PresetError: naming the file and the dotted key when the file is missing or wrong.
     """
     path = preset_path(name_or_path, "soccer_server")
-    table = read_toml(path)
+    table = read_preset(path, "soccer_server")
     unknown = sorted(set(table) - {"name", "era", "dynamics", "sensing"})
     if unknown:
         raise PresetError(f"{path}: key '{unknown[0]}': unknown key for ServerPreset")

@@ -317,3 +317,22 @@ def test_cli_learn_and_reproduce_refuse_bad_input_in_one_line() -> None:
         assert done.returncode == 2, args
         assert "Traceback" not in done.stderr
         assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
+def test_the_soccer_server_gets_a_pass_through_check_on_the_swept_preset() -> None:
+    plan = full_plan()
+    nets = {n: Path(f"/m/net_{n}.npz") for n in plan.training_sizes}
+    trained = Trained(nets, 750, Path("/m/lookup.json"))
+    base = base_spec("soccer_server", "soccer_server_1996", seed=7, ta_mode="hold")
+    plan_of = experiments(plan, base, trained, None)
+    swept = plan_of["swept collisions"]
+    assert [key for key, _ in swept] == [
+        (0.0, "net"),
+        (0.0, "straight"),
+        (0.05, "net"),
+        (0.05, "straight"),
+    ]
+    for _, cond in swept:
+        assert cond.spec.preset == "soccer_server_1996_swept"
+        assert cond.name.endswith("_swept")
+    assert "swept collisions" not in _plan_of("robot_physics", 0.05)[1]
