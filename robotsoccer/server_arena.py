@@ -22,10 +22,22 @@ shows exactly what the client acted on.
 
 from __future__ import annotations
 
+import math
 from collections import deque
 from functools import lru_cache
 
-from field_models.protocol import Action, BodyState, Heard, Percept, PlayerRef, Say, Truth
+from field_models.protocol import (
+    Action,
+    BodyState,
+    Dash,
+    Heard,
+    Kick,
+    Percept,
+    PlayerRef,
+    Say,
+    Truth,
+    Turn,
+)
 from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.messages import parse_see, render_hear, render_see
 from field_models.soccer_server.params import ServerPreset, load_server_preset
@@ -203,15 +215,19 @@ class SoccerServerArena:
 
 
 def _server_text(action: Action) -> str:
-    """A body action as the client would send it, in the server's degrees and sign."""
-    from robotsoccer.runner import describe_action
+    """A body action as the client would send it: the server's degrees, clockwise-positive."""
+    if isinstance(action, Turn):
+        return f"(turn {_server_degrees(action.angle_rad)})"
+    if isinstance(action, Dash):
+        return f"(dash {action.power:.0f})"
+    if isinstance(action, Kick):
+        return f"(kick {action.power:.0f} {_server_degrees(action.direction_rad)})"
+    raise TypeError(f"not a body action: {action!r}")
 
-    words = describe_action(action).split()
-    if words[0] in ("turn", "kick"):  # the server's angles are clockwise: flip the sign
-        words[-1] = f"{-float(words[-1]) + 0.0:g}"  # + 0.0 turns -0 into 0
-    if words[0] == "dash":
-        words[-1] = f"{float(words[-1]):g}"
-    return "(" + " ".join(words) + ")"
+
+def _server_degrees(angle_rad: float) -> str:
+    """Our CCW radians as the server's clockwise degrees, to 0.1° (no "-0")."""
+    return f"{round(-math.degrees(angle_rad), 1) + 0.0:g}"
 
 
 SCHEDULE_CYCLES = 6000
