@@ -2,7 +2,7 @@
 
 Targets (issue 3): >= 30,000 cycles/s for 2 players + ball in one process *including sensing*
 (`arena`), and >= 2,000,000 object-cycles/s in batch mode. Prints JSON; medians of 3 repeats.
-The measuring code is `robotsoccer/server_bench.py`, shared with `robotsoccer bench`.
+The measuring code is `robotsoccer/bench.py`, shared with `robotsoccer bench`.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import statistics
 
-from robotsoccer.server_bench import (
+from robotsoccer.bench import (
     arena_cycles_per_s,
     batch_object_cycles_per_s,
     dynamics_cycles_per_s,

@@ -6,6 +6,11 @@ median of several repeats, and no test asserts a speed.
 * ``robot_physics.realtime_factor.N_robots`` — one process, N robots (two teams) all chasing the
   ball with full camera, host, link and firmware running; simulated seconds per wall second.
 * ``demo.trials_per_s.K_worker(s)`` — the shootout demo drill through the process pool.
+* ``soccer_server.cycles_per_s.2_players`` — one trial at a time through the arena: 2 players
+  and the ball, both receiving percepts on their see timer and acting on them (dynamics,
+  sensing, hearing and the command queue all running).
+* ``soccer_server.object_cycles_per_s.batch`` — many trials stepped together as arrays
+  (`field_models.soccer_server.batch`), objects × cycles per second.
 * ``intercept.trials_per_s.<field model>`` — the layer-1 interception drill (straight
   defender, ball noise 0.05) through the pool with 2 workers, pool start included; enough trials
   that start-up is a small share.
@@ -21,11 +26,17 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from field_models.protocol import LEFT, RIGHT, Action, Dash, Percept, PlayerRef, Turn
+from field_models.soccer_server.batch import BatchSoccerServer
+from field_models.soccer_server.dynamics import SoccerServerModel
+from field_models.soccer_server.params import load_server_preset
 from robotsoccer.arenas import make_arena
-from robotsoccer.pool import run_trials
+from robotsoccer.pool import default_workers, run_trials
 from robotsoccer.runner import TrialSpec
 from robotsoccer.seeding import TrialRngs
+from robotsoccer.server_arena import SoccerServerArena
 
 
 @dataclass
@@ -113,26 +124,85 @@ def run_benchmarks(quick: bool = False) -> dict[str, Any]:
             ),
         }
     }
-    results.update(_soccer_server_benchmarks(quick))
+    results.update(soccer_server_benchmarks(quick))
     results["machine"] = {
         "python": platform.python_version(),
-        "cpu_count": _cpus(),
+        "cpu_count": default_workers(),
         "repeats": repeats,
         "statistic": "median",
     }
     return results
 
 
-def _soccer_server_benchmarks(quick: bool) -> dict[str, Any]:
-    """Soccer Server figures, when that field model is present."""
-    try:
-        from robotsoccer.server_bench import soccer_server_benchmarks
-    except ImportError:
-        return {}
-    return soccer_server_benchmarks(quick)
+# ----------------------------------------------------------------------------- Soccer Server
+
+PLAYERS = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1))
 
 
-def _cpus() -> int:
-    from robotsoccer.pool import default_workers
+def arena_cycles_per_s(cycles: int, preset: str = "soccer_server_1996", seed: int = 0) -> float:
+    """Cycles per wall second of a 2-player arena whose players chase the ball."""
+    rngs = TrialRngs.for_trial(seed, 0)
+    arena = SoccerServerArena.from_preset(preset, PLAYERS, rngs)
+    minds = {ref: ChaseMind() for ref in PLAYERS}
+    rng = rngs["placement"]
+    start = time.perf_counter()
+    done = 0
+    while done < cycles:
+        # A fresh rally every 200 cycles (5% of the time in placement): the ball is kicked off
+        # from a random spot so the players keep running, turning and seeing a moving ball.
+        arena.place_ball(float(rng.uniform(-30, 30)), float(rng.uniform(-20, 20)), 2.0, 1.0)
+        arena.place_player(PLAYERS[0], -40.0, 0.0, 0.0)
+        arena.place_player(PLAYERS[1], 40.0, 0.0, math.pi)
+        for _ in range(200):
+            for percept in arena.step():
+                arena.submit(percept.player, minds[percept.player].act(percept))
+        done += 200
+    return done / (time.perf_counter() - start)
 
-    return default_workers()
+
+def _drill_like_trial(model: SoccerServerModel | BatchSoccerServer, cycles: int) -> None:
+    """A shooter kicks, a defender dashes every cycle and turns every fifth (noise, referee on)."""
+    model.move_ball(-20.0, 0.0)
+    model.move_player(1, -20.5, 0.0, 0.0)
+    model.move_player(2, 5.0, 1.0, math.pi)
+    model.kick(1, 80.0, 0.0)
+    for t in range(cycles):
+        if t % 5 == 0:
+            model.turn(2, 0.05)
+        else:
+            model.dash(2, 60.0)
+        model.step()
+
+
+def dynamics_cycles_per_s(cycles: int, preset: str = "soccer_server_1996") -> float:
+    """Cycles per wall second of the bare dynamics (no sensing) for 2 players + ball."""
+    model = SoccerServerModel(load_server_preset(preset), PLAYERS, np.random.default_rng(0))
+    start = time.perf_counter()
+    for _ in range(max(1, cycles // 100)):
+        _drill_like_trial(model, 100)
+    return max(1, cycles // 100) * 100 / (time.perf_counter() - start)
+
+
+def batch_object_cycles_per_s(
+    cycles: int, trials: int = 2000, preset: str = "soccer_server_1996"
+) -> float:
+    """Object-cycles per wall second of `trials` 2-player trials stepped as arrays."""
+    rngs = [np.random.default_rng([1, k]) for k in range(trials)]
+    batch = BatchSoccerServer(load_server_preset(preset), PLAYERS, rngs)
+    start = time.perf_counter()
+    _drill_like_trial(batch, cycles)
+    return trials * (len(PLAYERS) + 1) * cycles / (time.perf_counter() - start)
+
+
+def soccer_server_benchmarks(quick: bool = False) -> dict[str, Any]:
+    """The Soccer Server figures (medians of 3 repeats; 1 when `quick`)."""
+    repeats = 1 if quick else 3
+    cycles = 4000 if quick else 20000
+    single = median_of(repeats, lambda: arena_cycles_per_s(cycles))
+    batch = median_of(repeats, lambda: batch_object_cycles_per_s(100 if quick else 300))
+    return {
+        "soccer_server": {
+            "cycles_per_s": {"2_players": round(single)},
+            "object_cycles_per_s": {"batch": round(batch)},
+        }
+    }
