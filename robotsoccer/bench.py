@@ -29,14 +29,14 @@ from typing import Any
 import numpy as np
 
 from field_models.protocol import LEFT, RIGHT, Action, Dash, Percept, PlayerRef, Turn
+from field_models.registry import make_arena
+from field_models.seeding import TrialRngs
+from field_models.soccer_server.arena import SoccerServerArena
 from field_models.soccer_server.batch import BatchSoccerServer
 from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.params import load_server_preset
-from robotsoccer.arenas import make_arena
-from robotsoccer.pool import default_workers, run_trials
-from robotsoccer.runner import TrialSpec
-from robotsoccer.seeding import TrialRngs
-from robotsoccer.server_arena import SoccerServerArena
+from robotsoccer.runs.pool import default_workers, run_trials
+from robotsoccer.runs.runner import TrialSpec
 
 
 @dataclass

@@ -23,10 +23,10 @@ from typing import NoReturn
 
 from field_models.presets import PresetError
 from field_models.protocol import PlayerRef
-from robotsoccer.arenas import DEFAULT_PRESETS, FIELD_MODELS
+from field_models.registry import DEFAULT_PRESETS, FIELD_MODELS
 from robotsoccer.drills import DRILLS, make_drill
-from robotsoccer.pool import default_workers, run_trials
-from robotsoccer.runner import TrialResult, TrialSpec
+from robotsoccer.runs.pool import default_workers, run_trials
+from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
 
 
@@ -213,8 +213,8 @@ def cmd_demo(args: argparse.Namespace) -> int:
 
 def _check_spec(spec: TrialSpec) -> None:
     """Build one arena up front so a bad preset fails here with one line, not in a worker."""
-    from robotsoccer.arenas import make_arena
-    from robotsoccer.seeding import TrialRngs
+    from field_models.registry import make_arena
+    from field_models.seeding import TrialRngs
 
     drill = make_drill(spec.drill)
     make_arena(spec.field_model, spec.preset, drill.players(), TrialRngs.for_trial(spec.seed, 0))
@@ -259,7 +259,7 @@ def _flatten(tree: dict[str, object], prefix: str = "") -> list[tuple[str, objec
 
 def cmd_trace(args: argparse.Namespace) -> int:
     """Print the trace of one trial for one client."""
-    from robotsoccer.trace import trace_trial
+    from robotsoccer.replay.trace import trace_trial
 
     preset = args.field_preset or DEFAULT_PRESETS[args.field]
     spec = TrialSpec(
@@ -286,7 +286,7 @@ def _player(text: str) -> PlayerRef:
 
 def cmd_replay(args: argparse.Namespace) -> int:
     """Open (or, headless, verify and explain how to open) a recording."""
-    from robotsoccer.recording import replay
+    from robotsoccer.replay.recording import replay
 
     return replay(args.file)
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol
 
+from field_models.arena import Arena
 from field_models.protocol import Mind, PlayerRef
-from robotsoccer.arena import Arena
-from robotsoccer.seeding import TrialRngs
+from field_models.seeding import TrialRngs
 
 
 @dataclass(frozen=True, slots=True)

@@ -87,13 +87,13 @@ import functools
 import math
 from dataclasses import dataclass
 
+from field_models.arena import Arena
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
+from field_models.registry import DEFAULT_PRESETS, robot_preset, server_preset
 from field_models.robot_physics.config import RobotPhysicsPreset
+from field_models.seeding import TrialRngs
 from field_models.soccer_server.params import ServerPreset
-from robotsoccer.arena import Arena
-from robotsoccer.arenas import DEFAULT_PRESETS, robot_preset, server_preset
 from robotsoccer.drills.base import Verdict
-from robotsoccer.seeding import TrialRngs
 from robotsoccer.skills.intercept import (
     TA_MODES,
     DefenderMind,

@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from field_models.arena import Arena
 from field_models.protocol import (
     LEFT,
     RIGHT,
@@ -35,9 +36,8 @@ from field_models.protocol import (
     PlayerRef,
     Turn,
 )
-from robotsoccer.arena import Arena
+from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
-from robotsoccer.seeding import TrialRngs
 
 SHOOTER = PlayerRef(LEFT, 1)
 GOALIE = PlayerRef(RIGHT, 1)

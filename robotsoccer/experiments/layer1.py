@@ -10,7 +10,7 @@ The pipeline for one field model, as small functions:
    Subsets are *prefixes* in trial order: the net on 300 saves learns what the drill had produced
    after its 300th save, as if collection had stopped there, and the subsets are nested.
 3. :func:`evaluate` — one condition (behaviour, model file, noise, aim, latency) for the plan's
-   trials through :func:`robotsoccer.pool.run_trials`: parallel, streamed to
+   trials through :func:`robotsoccer.runs.pool.run_trials`: parallel, streamed to
    ``<out>/results/<model>/<condition>.csv`` and resumable.
 4. :func:`run_layer1` — the orchestration: per field model the stages above, then a few rerun
    recordings of the net's saves and goals, ``report.md``, the Figure 7/8 plots and
@@ -45,13 +45,13 @@ from typing import Any
 import numpy as np
 
 from field_models.presets import PresetError, preset_path
+from field_models.registry import DEFAULT_PRESETS, robot_preset
 from learning.datasets import InterceptionDataset, Provenance
 from learning.lookup import PAPER_GRID_DEG, LookupTable
-from robotsoccer.arenas import DEFAULT_PRESETS, robot_preset
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.report import Counts, ModelSection, StageTiming
-from robotsoccer.pool import run_trials
-from robotsoccer.runner import TrialResult, TrialSpec, run_trial
+from robotsoccer.runs.pool import run_trials
+from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 
 Log = Callable[[str], None]
 """Where progress lines go (the CLI prints them)."""
@@ -767,7 +767,7 @@ def intro_lines(
     workers: int | None,
 ) -> list[str]:
     """The report's introduction: what ran, seeds, presets, noise meaning, training set-up."""
-    from robotsoccer.pool import default_workers
+    from robotsoccer.runs.pool import default_workers
 
     presets = ", ".join(f"{m} `{p}`" for m, p in models)
     collected = ", ".join(f"{m}: {plan.collect_trials[m]}" for m, _ in models)

@@ -28,7 +28,7 @@ Details the paper leaves open, chosen here:
 * **Turn tolerance**: a turn smaller than ``turn_tolerance_rad`` is left out (a dash alone, or
   nothing before the trigger). 0 (the default, the Soccer Server) never leaves one out, as the
   paper's client; robots use a few times the camera's heading noise, because a robot stops to
-  spin for a whole camera period on every turn however small (:mod:`robotsoccer.host`).
+  spin for a whole camera period on every turn however small (:mod:`field_models.robot_physics.host`).
 
 **Behaviours** (:data:`BEHAVIOURS`), each a small :class:`TurnPolicy`:
 

@@ -5,13 +5,13 @@ from __future__ import annotations
 import dataclasses
 from functools import lru_cache
 
+from field_models.arena import Arena
 from field_models.protocol import PlayerRef
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.config import load_preset as _load_robot_preset
+from field_models.seeding import TrialRngs
 from field_models.soccer_server.params import ServerPreset
 from field_models.soccer_server.params import load_server_preset as _load_server_preset
-from robotsoccer.arena import Arena
-from robotsoccer.seeding import TrialRngs
 
 FIELD_MODELS = ("robot_physics", "soccer_server")
 """Field models an arena can be built for."""
@@ -44,12 +44,12 @@ def make_arena(
         field_models.presets.PresetError: for a missing or wrong preset.
     """
     if field_model == "robot_physics":
-        from robotsoccer.robot_arena import RobotArena
+        from field_models.robot_physics.arena import RobotArena
 
         robot = robot_preset(preset, ball_noise, camera_latency_s, ball_noise_period_s)
         return RobotArena(robot, players, rngs, perfect=perfect, keep_events=keep_events or trace)
     if field_model == "soccer_server":
-        from robotsoccer.server_arena import SoccerServerArena
+        from field_models.soccer_server.arena import SoccerServerArena
 
         if camera_latency_s is not None or ball_noise_period_s is not None:
             raise ValueError("camera latency and ball-noise period are robot_physics settings")

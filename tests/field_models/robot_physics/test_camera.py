@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef, wrap_angle
+from field_models.robot_physics.camera import BallDetection, Frame, OverheadCamera, RobotDetection
 from field_models.robot_physics.config import CameraConfig, load_preset
-from robotsoccer.camera import BallDetection, Frame, OverheadCamera, RobotDetection
 
 PRESET = load_preset()
 REFS = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1), PlayerRef(RIGHT, 2))

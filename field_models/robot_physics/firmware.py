@@ -2,7 +2,7 @@
 
 The paper's mini-robots "perform the physical navigation actions, decode commands, and can
 respond to positioning requests" (§2). This firmware turns the link's primitives
-(`robotsoccer.link.Primitive`) into left/right wheel-speed targets; the world applies the motor
+(`field_models.robot_physics.link.Primitive`) into left/right wheel-speed targets; the world applies the motor
 ramp and tyre grip to them (shared `specs/robot_physics.md` §3.2, §5 item 2).
 
 Behaviour:
@@ -38,7 +38,7 @@ import math
 
 from field_models.protocol import PlayerRef
 from field_models.robot_physics.config import FirmwareConfig, RobotConfig
-from robotsoccer.link import Command, Primitive
+from field_models.robot_physics.link import Command, Primitive
 
 _NEVER = 1 << 62
 """A tick that never comes."""

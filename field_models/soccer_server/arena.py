@@ -26,6 +26,7 @@ import math
 from collections import deque
 from functools import lru_cache
 
+from field_models.arena import ArenaEvent
 from field_models.protocol import (
     Action,
     BodyState,
@@ -38,6 +39,7 @@ from field_models.protocol import (
     Truth,
     Turn,
 )
+from field_models.seeding import TrialRngs
 from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.messages import parse_see, render_hear, render_see
 from field_models.soccer_server.params import ServerPreset, load_server_preset
@@ -50,12 +52,10 @@ from field_models.soccer_server.sensing import (
     referee_hear,
 )
 from field_models.soccer_server.sensing_params import SensingParams
-from robotsoccer.arena import ArenaEvent
-from robotsoccer.seeding import TrialRngs
 
 
 class SoccerServerArena:
-    """The Soccer Server field model behind the :class:`~robotsoccer.arena.Arena` interface."""
+    """The Soccer Server field model behind the :class:`~field_models.arena.Arena` interface."""
 
     model_name = "soccer_server"
 

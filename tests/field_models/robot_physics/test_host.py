@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, Dash, Kick, PlayerRef, Say, Turn
+from field_models.robot_physics.camera import BallDetection, Frame, RobotDetection
 from field_models.robot_physics.config import KickerConfig, RobotPhysicsPreset, load_preset
-from robotsoccer.camera import BallDetection, Frame, RobotDetection
-from robotsoccer.firmware import Firmware
-from robotsoccer.host import PUSH_HALF_ANGLE_RAD, CentralHost
-from robotsoccer.link import Command, Link, Primitive
+from field_models.robot_physics.firmware import Firmware
+from field_models.robot_physics.host import PUSH_HALF_ANGLE_RAD, CentralHost
+from field_models.robot_physics.link import Command, Link, Primitive
 
 PRESET = load_preset()
 A = PlayerRef(LEFT, 1)
@@ -388,9 +388,9 @@ def test_turn_then_dash_reaches_the_firmware_as_the_turn_ends() -> None:
 
 
 def test_robot_arena_releases_the_dash_of_a_decision() -> None:
-    from robotsoccer.arenas import make_arena
-    from robotsoccer.robot_arena import RobotArena
-    from robotsoccer.seeding import TrialRngs
+    from field_models.registry import make_arena
+    from field_models.robot_physics.arena import RobotArena
+    from field_models.seeding import TrialRngs
 
     arena = make_arena(
         "robot_physics", "small_size_1997", (A, C), TrialRngs.for_trial(3, 0), keep_events=True

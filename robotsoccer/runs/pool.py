@@ -22,7 +22,7 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from pathlib import Path
 from typing import TextIO
 
-from robotsoccer.runner import TrialResult, TrialSpec, run_trial
+from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 
 
 def default_workers() -> int:
@@ -34,10 +34,10 @@ def default_workers() -> int:
 
 
 PRELOAD = (
-    "robotsoccer.pool",
+    "robotsoccer.runs.pool",
     "robotsoccer.drills",
-    "robotsoccer.robot_arena",
-    "robotsoccer.server_arena",
+    "field_models.robot_physics.arena",
+    "field_models.soccer_server.arena",
 )
 """Modules the fork server imports once, so that every worker starts with them loaded."""
 

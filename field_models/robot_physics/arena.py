@@ -4,7 +4,7 @@ One tick (``1/physics_hz`` s), in this order (paper §2, Figures 1–2; DESIGN.m
 
 1. the world steps (wheel ramps, grip, contacts, rolling ball);
 2. the host sends the body actions of earlier decisions that are due now (a decision's later
-   actions, e.g. the Dash after a Turn: :mod:`robotsoccer.host`); packets that arrive this
+   actions, e.g. the Dash after a Turn: :mod:`field_models.robot_physics.host`); packets that arrive this
    tick reach the firmware of the robot they address (or all, for a
    broadcast); each robot's firmware turns its newest command into wheel-speed targets, and fires
    the kicker if the command was a KICK;
@@ -20,19 +20,19 @@ from __future__ import annotations
 
 import dataclasses
 
+from field_models.arena import ArenaEvent
 from field_models.protocol import Action, BodyState, Percept, Pitch, PlayerRef, Truth
+from field_models.robot_physics.camera import OverheadCamera
 from field_models.robot_physics.config import RobotPhysicsPreset
+from field_models.robot_physics.firmware import Firmware
+from field_models.robot_physics.host import CentralHost
+from field_models.robot_physics.link import Link
 from field_models.robot_physics.world import RobotWorld
-from robotsoccer.arena import ArenaEvent
-from robotsoccer.camera import OverheadCamera
-from robotsoccer.firmware import Firmware
-from robotsoccer.host import CentralHost
-from robotsoccer.link import Link
-from robotsoccer.seeding import TrialRngs
+from field_models.seeding import TrialRngs
 
 
 class RobotArena:
-    """The mini-robot testbed behind the :class:`~robotsoccer.arena.Arena` interface."""
+    """The mini-robot testbed behind the :class:`~field_models.arena.Arena` interface."""
 
     model_name = "robot_physics"
 

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import pytest
 
-import robotsoccer.pool as pool
-from robotsoccer.pool import read_results, run_trials
-from robotsoccer.runner import TrialResult, TrialSpec
+import robotsoccer.runs.pool as pool
+from robotsoccer.runs.pool import read_results, run_trials
+from robotsoccer.runs.runner import TrialResult, TrialSpec
 
 SPEC = TrialSpec(seed=11)
 

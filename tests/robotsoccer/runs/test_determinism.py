@@ -5,10 +5,10 @@ from __future__ import annotations
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
-from robotsoccer.arenas import make_arena
-from robotsoccer.pool import run_trials
-from robotsoccer.runner import TrialSpec, run_trial
-from robotsoccer.seeding import TrialRngs
+from field_models.registry import make_arena
+from field_models.seeding import TrialRngs
+from robotsoccer.runs.pool import run_trials
+from robotsoccer.runs.runner import TrialSpec, run_trial
 
 SPEC = TrialSpec(seed=7)
 

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from field_models.arena import ArenaEvent
 from field_models.protocol import (
     LEFT,
     RIGHT,
@@ -22,9 +23,8 @@ from field_models.protocol import (
     SeenPlayer,
     Truth,
 )
-from robotsoccer import recording
-from robotsoccer.arena import ArenaEvent
-from robotsoccer.recording import (
+from robotsoccer.replay import recording
+from robotsoccer.replay.recording import (
     TrialRecorder,
     egocentric_to_field,
     outline_template,
@@ -256,7 +256,7 @@ def test_outline_geometry() -> None:
 
 
 def test_import_does_not_load_rerun() -> None:
-    code = "import sys, robotsoccer.recording; print('rerun' in sys.modules)"
+    code = "import sys, robotsoccer.replay.recording; print('rerun' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
 

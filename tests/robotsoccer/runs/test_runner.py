@@ -6,7 +6,7 @@ import pytest
 
 from field_models.protocol import Percept
 from robotsoccer.drills.shootout import GOALIE, SHOOTER, ShootoutDrill
-from robotsoccer.runner import TrialResult, TrialSpec, build_trial, play
+from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial, play
 
 
 class Counting:

@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import math
 
+from field_models.arena import Arena
 from field_models.protocol import Percept, PlayerRef
-from robotsoccer.arena import Arena
-from robotsoccer.runner import TrialSpec, build_trial, play
+from robotsoccer.runs.runner import TrialSpec, build_trial, play
 
 
 def trace_trial(spec: TrialSpec, index: int, client: PlayerRef | None = None) -> list[str]:

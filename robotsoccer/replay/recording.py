@@ -51,8 +51,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from field_models.arena import ArenaEvent
 from field_models.protocol import LEFT, RIGHT, BodyState, Percept, Pitch, PlayerRef, Truth
-from robotsoccer.arena import ArenaEvent
 
 if TYPE_CHECKING:
     import rerun as rr

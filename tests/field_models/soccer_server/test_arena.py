@@ -7,15 +7,15 @@ import math
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, Dash, PlayerRef, Say, Turn
+from field_models.seeding import TrialRngs
+from field_models.soccer_server.arena import SoccerServerArena
 from field_models.soccer_server.messages import parse_see
 from field_models.soccer_server.params import load_server_preset
 from robotsoccer.cli import main
 from robotsoccer.drills import make_drill
-from robotsoccer.pool import run_trials
-from robotsoccer.runner import TrialSpec, play, run_trial
-from robotsoccer.seeding import TrialRngs
-from robotsoccer.server_arena import SoccerServerArena
-from robotsoccer.trace import trace_trial
+from robotsoccer.replay.trace import trace_trial
+from robotsoccer.runs.pool import run_trials
+from robotsoccer.runs.runner import TrialSpec, play, run_trial
 
 SPEC = TrialSpec(field_model="soccer_server", preset="soccer_server_1996", seed=5)
 A, B = PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1)

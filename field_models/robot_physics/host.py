@@ -2,7 +2,7 @@
 
 The paper's off-board computer (§2, Figures 1–2) makes the camera's perception available to one
 client mind per robot, and sends each mind's navigation commands to its robot over the wireless
-link. Here the host sits between :mod:`robotsoccer.camera` and :mod:`robotsoccer.link`:
+link. Here the host sits between :mod:`field_models.robot_physics.camera` and :mod:`field_models.robot_physics.link`:
 
 **Percepts** (DESIGN.md §2). On each delivered frame, :meth:`CentralHost.percepts` builds one
 :class:`~field_models.protocol.Percept` per robot, in `refs` order:
@@ -62,6 +62,7 @@ from __future__ import annotations
 
 import math
 
+from field_models.arena import ArenaEvent
 from field_models.protocol import (
     Action,
     Dash,
@@ -75,10 +76,9 @@ from field_models.protocol import (
     SeenPlayer,
     Turn,
 )
+from field_models.robot_physics.camera import Frame
 from field_models.robot_physics.config import RobotPhysicsPreset
-from robotsoccer.arena import ArenaEvent
-from robotsoccer.camera import Frame
-from robotsoccer.link import Command, Link, Primitive
+from field_models.robot_physics.link import Command, Link, Primitive
 
 PUSH_HALF_ANGLE_RAD = 0.2
 """A kicker-less robot pushes the ball only when the kick direction is this close to its heading

@@ -6,10 +6,10 @@ import math
 
 import pytest
 
-from robotsoccer.arenas import make_arena
+from field_models.registry import make_arena
+from field_models.seeding import TrialRngs
 from robotsoccer.drills.shootout import GOALIE, SHOOTER, ShootoutDrill
-from robotsoccer.runner import play
-from robotsoccer.seeding import TrialRngs
+from robotsoccer.runs.runner import play
 
 
 def scripted(ball_y: float, goalie_y: float, speed: float = 1.5, aim_y: float | None = None):

@@ -7,7 +7,7 @@ import numpy as np
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
 from field_models.robot_physics.config import LinkConfig, load_preset
-from robotsoccer.link import Command, Link, Primitive
+from field_models.robot_physics.link import Command, Link, Primitive
 
 PRESET = load_preset()
 A = PlayerRef(LEFT, 1)

@@ -6,8 +6,8 @@ import pytest
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef, wrap_angle
 from field_models.robot_physics.config import load_preset
-from robotsoccer.firmware import Firmware
-from robotsoccer.link import Command, Primitive
+from field_models.robot_physics.firmware import Firmware
+from field_models.robot_physics.link import Command, Primitive
 
 PRESET = load_preset()
 ROBOT = PRESET.robot

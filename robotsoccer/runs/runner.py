@@ -13,11 +13,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from field_models.arena import Arena, ArenaEvent
 from field_models.protocol import Action, Dash, Kick, Mind, Percept, PlayerRef, Say, Turn
-from robotsoccer.arena import Arena, ArenaEvent
-from robotsoccer.arenas import make_arena
+from field_models.registry import make_arena
+from field_models.seeding import TrialRngs
 from robotsoccer.drills import Drill, Verdict, make_drill
-from robotsoccer.seeding import TrialRngs
 
 Observer = Callable[[Arena, list[Percept]], None]
 """Called after every tick with the arena and the percepts of that tick (recordings, traces)."""
@@ -179,7 +179,7 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
 def _play_recorded(
     arena: Arena, drill: Drill, minds: dict[PlayerRef, Mind], spec: TrialSpec, index: int
 ) -> Verdict:
-    from robotsoccer.recording import TrialRecorder  # rerun loads only when recording
+    from robotsoccer.replay.recording import TrialRecorder  # rerun loads only when recording
 
     assert spec.record_dir is not None
     path = Path(spec.record_dir) / f"trial_{index:04d}.rrd"

@@ -322,7 +322,7 @@ def test_loading_a_net_for_the_skill_does_not_import_torch(tmp_path: Path) -> No
     path = net_file(tmp_path / "net.npz")
     code = (
         "import sys\n"
-        "from robotsoccer.runner import TrialSpec, run_trial\n"
+        "from robotsoccer.runs.runner import TrialSpec, run_trial\n"
         "from robotsoccer.skills.intercept import load_net_function\n"
         f"f = load_net_function({str(path)!r})\n"
         "assert isinstance(f(12.0, 0.01, 13.0), float)\n"

@@ -7,13 +7,13 @@ import math
 
 import pytest
 
+from field_models.arena import Arena
 from field_models.protocol import Action, Percept
-from robotsoccer.arena import Arena
-from robotsoccer.arenas import make_arena
+from field_models.registry import make_arena
+from field_models.seeding import TrialRngs
 from robotsoccer.drills import DRILLS, make_drill
 from robotsoccer.drills.intercept import DEFENDER, SHOOTER, InterceptDrill, launch_plan
-from robotsoccer.runner import TrialSpec, play, run_trial
-from robotsoccer.seeding import TrialRngs
+from robotsoccer.runs.runner import TrialSpec, play, run_trial
 from robotsoccer.skills.intercept import ShooterMind
 
 MODELS = {"soccer_server": "soccer_server_1996", "robot_physics": "small_size_1997"}
@@ -284,9 +284,9 @@ def test_trials_are_a_function_of_their_seed(field_model: str) -> None:
 
 
 def test_robots_with_a_kicker_shoot_at_the_planned_speed() -> None:
+    from field_models.registry import robot_preset
+    from field_models.robot_physics.arena import RobotArena
     from field_models.robot_physics.config import KickerConfig
-    from robotsoccer.arenas import robot_preset
-    from robotsoccer.robot_arena import RobotArena
 
     base = robot_preset("small_size_1997", 0.0)
     kicker = KickerConfig(reach_m=0.01, max_speed_mps=3.0, half_angle_rad=0.3)
