@@ -1,0 +1,126 @@
+"""Client commands as text: the one way an action is written down, and read back.
+
+The shared action vocabulary is the Soccer Server's (DESIGN.md §2), so its text form is the
+server's client command syntax (shared `specs/soccer_server.md` §2): ``(turn Moment)``,
+``(dash Power [Direction])``, ``(kick Power Direction)`` and ``(say Message)``. Traces,
+recordings and event logs of both field models write actions this way, and
+:func:`parse_command` reads a client's command text back into an action.
+
+This is the Soccer Server's message edge, so angles here are the server's: degrees, positive
+clockwise on our y-up field (the server's y axis points down). ``Turn(+0.5 rad)``, a left turn,
+is written ``(turn -28.6)``. :func:`render_command` rounds angles to 0.1° and powers to 0.1, as a
+client would print them; :func:`parse_command` accepts any number the server would.
+"""
+
+from __future__ import annotations
+
+import math
+
+from field_models.protocol import Action, Dash, Kick, Say, Turn
+
+_RAD2DEG = 180.0 / math.pi
+
+
+class CommandParseError(ValueError):
+    """A client command's text is not a turn, dash, kick or say the server would accept."""
+
+    def __init__(self, reason: str, text: str) -> None:
+        super().__init__(f"{reason}: {text!r}")
+        self.reason = reason
+        self.text = text
+
+
+def server_degrees(angle_rad: float) -> float:
+    """Our counter-clockwise radians as the server's clockwise degrees, to 0.1° (never -0)."""
+    return round(-angle_rad * _RAD2DEG, 1) + 0.0
+
+
+def _number(value: float) -> str:
+    """A power or angle as a client prints it: at most one decimal, no trailing zeros."""
+    return f"{round(value, 1) + 0.0:g}"
+
+
+def render_command(action: Action) -> str:
+    """The command a client sends for `action`, e.g. ``(dash 100)`` or ``(kick 80 -30)``.
+
+    >>> render_command(Turn(math.radians(30)))
+    '(turn -30)'
+    >>> render_command(Dash(100.0, math.radians(-90)))
+    '(dash 100 90)'
+    """
+    if isinstance(action, Turn):
+        return f"(turn {_number(server_degrees(action.angle_rad))})"
+    if isinstance(action, Dash):
+        if action.direction_rad == 0.0:
+            return f"(dash {_number(action.power)})"
+        return f"(dash {_number(action.power)} {_number(server_degrees(action.direction_rad))})"
+    if isinstance(action, Kick):
+        return f"(kick {_number(action.power)} {_number(server_degrees(action.direction_rad))})"
+    if isinstance(action, Say):
+        return f"(say {action.text})"
+    raise TypeError(f"not an action: {action!r}")
+
+
+def parse_command(text: str) -> Action:
+    """The action of one client command: ``(turn 45)``, ``(dash 100 30)``, ``(say hi)``, ...
+
+    Angles come back in our frame (radians, counter-clockwise). A say message may be quoted
+    (``(say "hi")``, protocol >= 7) or bare; it keeps its inner spaces and parentheses.
+
+    >>> parse_command("(kick 80 -30)")
+    Kick(power=80.0, direction_rad=0.5235987755982988)
+
+    Raises:
+        CommandParseError: Not a single parenthesised command, an unknown command, the wrong
+            number of arguments, or an argument that is not a finite number.
+    """
+    inner = _inner(text)
+    name, _, rest = inner.partition(" ")
+    if name == "say":
+        return Say(_say_text(rest.strip(), text))
+    args = [_float(token, text) for token in rest.split()]
+    if name == "turn":
+        _arity(args, 1, 1, text)
+        return Turn(-math.radians(args[0]) + 0.0)
+    if name == "dash":
+        _arity(args, 1, 2, text)
+        direction = -math.radians(args[1]) + 0.0 if len(args) == 2 else 0.0
+        return Dash(args[0], direction)
+    if name == "kick":
+        _arity(args, 2, 2, text)
+        return Kick(args[0], -math.radians(args[1]) + 0.0)
+    raise CommandParseError(f"unknown command {name!r} (known: turn, dash, kick, say)", text)
+
+
+def _inner(text: str) -> str:
+    stripped = text.strip().rstrip("\0")
+    if len(stripped) < 2 or stripped[0] != "(" or stripped[-1] != ")":
+        raise CommandParseError("expected one command in parentheses", text)
+    inner = stripped[1:-1].strip()
+    if not inner:
+        raise CommandParseError("empty command", text)
+    return inner
+
+
+def _say_text(message: str, text: str) -> str:
+    if len(message) >= 2 and message[0] == '"' and message[-1] == '"':
+        message = message[1:-1]
+    if not message:
+        raise CommandParseError("say without a message", text)
+    return message
+
+
+def _float(token: str, text: str) -> float:
+    try:
+        value = float(token)
+    except ValueError:
+        raise CommandParseError(f"{token!r} is not a number", text) from None
+    if not math.isfinite(value):
+        raise CommandParseError(f"{token!r} is not a finite number", text)
+    return value
+
+
+def _arity(args: list[float], low: int, high: int, text: str) -> None:
+    if not low <= len(args) <= high:
+        want = str(low) if low == high else f"{low} or {high}"
+        raise CommandParseError(f"expected {want} argument(s), got {len(args)}", text)
