@@ -7,6 +7,8 @@ units (`mass_kg`, `latency_s`). Constraints live in the field's metadata:
 * ``non_negative``: >= 0;
 * ``probability``: in [0, 1].
 
+An option is typed ``Literal["a", "b"]``: the value must be one of the literal's values.
+
 A wrong file raises :class:`PresetError` naming the file, the dotted key and what was expected.
 Unknown keys are errors too: a misspelt key must not silently fall back to a default.
 """
@@ -144,12 +146,42 @@ def load_record(cls: type[T], table: Any, *, file: Path | str, key: str = "") ->
     return cls(**values)
 
 
+def load_field(cls: type, name: str, value: Any, *, file: Path | str, key: str) -> Any:
+    """One field `name` of dataclass `cls` from a value: its type and range checks.
+
+    For loaders that fill a record from another format (e.g. a server's own configuration)
+    and name the key as that format spells it.
+
+    Raises:
+        PresetError: naming the file, `key` and what was expected.
+    """
+    fld = {f.name: f for f in dataclasses.fields(cls)}[name]
+    converted = convert_value(typing.get_type_hints(cls)[name], value, file=file, key=key)
+    _check(fld, converted, file=file, key=key)
+    return converted
+
+
+def convert_value(hint: Any, value: Any, *, file: Path | str, key: str) -> Any:
+    """A TOML value checked against the type `hint` (numbers, strings, options, tables).
+
+    Raises:
+        PresetError: naming the file, the key and what was expected.
+    """
+    return _convert(hint, value, file=file, key=key)
+
+
 def _join(key: str, name: str) -> str:
     return f"{key}.{name}" if key else name
 
 
 def _convert(hint: Any, value: Any, *, file: Path | str, key: str) -> Any:
     origin = typing.get_origin(hint)
+    if origin is typing.Literal:
+        allowed = typing.get_args(hint)
+        if isinstance(value, bool) or value not in allowed:
+            shown = ", ".join(str(a) for a in allowed)
+            raise PresetError(f"{file}: key '{key}': expected one of {shown}; got {value!r}")
+        return value
     if origin in (typing.Union, types.UnionType):
         options = [a for a in typing.get_args(hint) if a is not type(None)]
         if len(options) == 1:

@@ -11,6 +11,10 @@ Modules (specs/soccer_server.md):
   cycles (commands, movement with noise, collisions, goals and referee messages).
 * :mod:`~field_models.soccer_server.batch` — :class:`BatchSoccerServer`: K trials as numpy
   arrays, equal to K single models seed for seed.
+* :mod:`~field_models.soccer_server.server_conf` — :func:`load_server_conf`: a preset from a
+  real server's ``server.conf`` or ``(server_param ...)`` message.
+* :mod:`~field_models.soccer_server.sensing`, :mod:`~field_models.soccer_server.messages`,
+  :mod:`~field_models.soccer_server.percepts` — see and hear contents, their text, percepts.
 
 Typical use (noise from the trial's own generator)::
 
@@ -26,7 +30,7 @@ from field_models.soccer_server.batch import BatchSoccerServer
 from field_models.soccer_server.dynamics import (
     PLAY_MODES,
     SoccerServerModel,
-    goal_side,
+    dash_rate,
     kick_effectiveness,
 )
 from field_models.soccer_server.params import (
@@ -35,15 +39,18 @@ from field_models.soccer_server.params import (
     load_server_preset,
 )
 from field_models.soccer_server.sensing_params import SensingParams
+from field_models.soccer_server.server_conf import ServerConf, load_server_conf
 
 __all__ = [
     "PLAY_MODES",
     "BatchSoccerServer",
     "DynamicsParams",
     "SensingParams",
+    "ServerConf",
     "ServerPreset",
     "SoccerServerModel",
-    "goal_side",
+    "dash_rate",
     "kick_effectiveness",
+    "load_server_conf",
     "load_server_preset",
 ]

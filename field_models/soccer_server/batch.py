@@ -1,16 +1,16 @@
-"""Many independent Soccer Server trials stepped at once as numpy arrays (issue 3, item 5).
+"""Many independent Soccer Server trials stepped at once as numpy arrays.
 
 :class:`BatchSoccerServer` holds K trials of the same preset and the same players, each with
 its own generator, as arrays of shape (K, N+1) (row 0 the ball, rows 1..N the players). A step
 does for all trials what :meth:`SoccerServerModel.step
 <field_models.soccer_server.dynamics.SoccerServerModel.step>` does for one, with the same
 operations in the same order on the same random numbers, so trial k equals a single model
-built with generator k, seed for seed (``tests/field_models/test_ss_batch.py``).
+built with generator k, seed for seed (``tests/field_models/soccer_server/test_batch.py``).
 
-What batch mode supports: the ball and the players; dash, turn and kick with the server's
-clamping and one body command per cycle; the trainer's moves and ``change_mode``; movement
-noise, turn noise, kick noise; collisions; the referee's goals and kick-offs. What it does not
-support: say/hear and sensing (no see messages; read the state arrays instead).
+What batch mode supports: the ball and the players; dash (with direction), turn and kick with
+the server's clamping and one body command per cycle; the trainer's moves and ``change_mode``;
+movement noise, turn noise, kick noise; collisions; the referee's goals and kick-offs. What it
+does not support: say/hear and sensing (no see messages; read the state arrays instead).
 
 Numbers: positions [m] and stored velocities [m/cycle] in :attr:`BatchSoccerServer.x` etc.;
 command arguments as in the single model (power in server units, angles in radians, counter-
@@ -25,7 +25,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from field_models.protocol import BodyState, PlayerRef, wrap_angle
+from field_models.protocol import BodyState, PlayerRef, end_line_crossing, wrap_angle
 from field_models.soccer_server.dynamics import (
     AFTER_GOAL_MODES,
     BEFORE_KICK_OFF,
@@ -33,6 +33,7 @@ from field_models.soccer_server.dynamics import (
     COLLISION_VELOCITY_FACTOR,
     DASH,
     EPS,
+    HALF_PI,
     KICK,
     NO_COMMAND,
     PLAY_MODES,
@@ -126,6 +127,7 @@ class BatchSoccerServer:
         self._side = np.array([0] + [side_of(ref) for ref in self.players])
         self._has_left = bool((self._side == 1).any())
         self._has_right = bool((self._side == -1).any())
+        self._pitch = p.pitch()
         self._layout = row_layout(n - 1)
         self._rows = np.empty((self.k, BATCH_BLOCK_CYCLES, self._layout.width))
         self._block_row = BATCH_BLOCK_CYCLES
@@ -225,10 +227,25 @@ class BatchSoccerServer:
 
     # ------------------------------------------------------------------ player commands
 
-    def dash(self, i: int, power: FloatArg, mask: np.ndarray | None = None) -> np.ndarray:
-        """Queue ``(dash power)`` for player row `i`; returns the trials that accepted it."""
+    def dash(
+        self,
+        i: int,
+        power: FloatArg,
+        direction_rad: FloatArg = 0.0,
+        mask: np.ndarray | None = None,
+    ) -> np.ndarray:
+        """Queue ``(dash power direction)`` for player row `i`; returns the trials that took it.
+
+        Power and direction are clamped (and the direction rounded) as in the single model
+        (:func:`~field_models.soccer_server.dynamics.dash_direction`).
+        """
         p = self.params
-        return self._queue(i, DASH, np.clip(power, p.min_dash_power, p.max_dash_power), 0.0, mask)
+        power = np.clip(power, p.min_dash_power, p.max_dash_power)
+        d = -np.clip(np.negative(direction_rad), p.min_dash_angle_rad, p.max_dash_angle_rad)
+        step = p.dash_angle_step_rad
+        if step > 0.0:
+            d = step * np.round(d / step)  # half to even, as the single model's round
+        return self._queue(i, DASH, power, d + 0.0, mask)
 
     def turn(self, i: int, angle_rad: FloatArg, mask: np.ndarray | None = None) -> np.ndarray:
         """Queue a turn by `angle_rad` (left positive), clamped in the server's sign."""
@@ -317,8 +334,23 @@ class BatchSoccerServer:
                 messages.setdefault(trial, []).append(PLAY_ON)
 
     def _do_dash(self, i: int, m: np.ndarray) -> None:
-        a = self._arg1[:, i] * self.params.dash_power_rate_m_per_cycle2
+        """The single model's ``_do_dash`` elementwise: rate 1 and no turn for direction 0."""
+        p = self.params
+        d = self._arg2[:, i]
+        power, dpr = self._arg1[:, i], p.dash_power_rate_m_per_cycle2
         h = self.heading[:, i]
+        a = power * dpr
+        directed = d != 0.0
+        if directed.any():
+            a_abs = np.abs(d)
+            side, back = p.side_dash_rate, p.back_dash_rate
+            rate = np.where(
+                a_abs > HALF_PI,
+                back - (back - side) * (1.0 - (a_abs - HALF_PI) / HALF_PI),
+                side + (1.0 - side) * (1.0 - a_abs / HALF_PI),
+            )
+            a = np.where(directed, power * np.clip(rate, 0.0, 1.0) * dpr, a)
+            h = np.where(directed, h + d, h)
         self._ax[:, i] = np.where(m, self._ax[:, i] + a * np.cos(h), self._ax[:, i])
         self._ay[:, i] = np.where(m, self._ay[:, i] + a * np.sin(h), self._ay[:, i])
 
@@ -326,8 +358,7 @@ class BatchSoccerServer:
         vx, vy = self.vx[:, i], self.vy[:, i]
         speed = np.sqrt(vx * vx + vy * vy)
         inertia = self.params.inertia_moment_cycle_per_m
-        h = self.heading[:, i] + factor * self._arg1[:, i] / (1.0 + inertia * speed)
-        h = np.where(h >= math.pi, h - 2.0 * math.pi, np.where(h < -math.pi, h + 2.0 * math.pi, h))
+        h = wrap_angle(self.heading[:, i] + factor * self._arg1[:, i] / (1.0 + inertia * speed))
         self.heading[:, i] = np.where(m, h, self.heading[:, i])
 
     def _do_kick(self, i: int, m: np.ndarray, r: int) -> np.ndarray:
@@ -478,23 +509,30 @@ class BatchSoccerServer:
         ready = after & (self._after_goal >= self.params.after_goal_wait_cycles)
         for trial in np.flatnonzero(ready).tolist():
             self._kick_off(trial, messages)
-        side = self._goal_side(bx0, by0) * (moving & ~after)
+        side = self._goal_side(bx0, by0, moving & ~after)
         for trial in np.flatnonzero(side).tolist():
             self._score(trial, int(side[trial]), messages)
         kick_off = moving & ~after & (side == 0) & ((mode == _KICK_OFF_L) | (mode == _KICK_OFF_R))
         if kick_off.any():
             self._keep_halves(kick_off, np.where(mode == _KICK_OFF_L, 1, -1))
 
-    def _goal_side(self, x0: np.ndarray, y0: np.ndarray) -> np.ndarray:
-        p = self.params
+    def _goal_side(self, x0: np.ndarray, y0: np.ndarray, judged: np.ndarray) -> np.ndarray:
+        """Per trial +1 (goal at +x, for the left team), -1 (at -x) or 0, among `judged`.
+
+        A vector test picks the trials whose ball crossed an end line this cycle; only those
+        go through the scalar rule, ``field_models.protocol.end_line_crossing``.
+        """
         x1, y1 = self.x[:, 0], self.y[:, 0]
-        line = 0.5 * p.pitch_length_m + p.ball_size_m
-        crossed = ~(np.abs(x0) > line) & ~(np.abs(x1) <= line)
-        edge = np.where(x1 > 0.0, line, -line)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            y_cross = y0 + (edge - x0) * (y1 - y0) / (x1 - x0)
-        between = ~(np.abs(y_cross) > 0.5 * p.goal_width_m + p.goal_post_radius_m)
-        return np.where(crossed & between, np.where(x1 > 0.0, 1, -1), 0)
+        line = 0.5 * self._pitch.length_m + self._pitch.ball_radius_m
+        crossed = judged & (np.abs(x1) > line) & ~(np.abs(x0) > line)
+        side = np.zeros(self.k, dtype=int)
+        for trial in np.flatnonzero(crossed).tolist():
+            crossing = end_line_crossing(
+                self._pitch, float(x0[trial]), float(y0[trial]), float(x1[trial]), float(y1[trial])
+            )
+            if crossing.is_goal:
+                side[trial] = int(crossing)
+        return side
 
     def _score(self, trial: int, side: int, messages: dict[int, list[str]]) -> None:
         said = messages.setdefault(trial, [])

@@ -5,7 +5,8 @@ Follows specs/soccer_server.md §1 (cycle and per-object update), §2 (dash, tur
 100 ms cycle:
 
 1. the body commands queued since the last step run against the state at the start of the
-   cycle: dash pushes the player, turn sets its new heading, kick pushes the ball (§1.1);
+   cycle: dash pushes the player (along its heading plus the dash direction, see
+   :func:`dash_rate`), turn sets its new heading, kick pushes the ball (§1.1, §2);
 2. every object, in a freshly shuffled order, accelerates (with caps), gets movement noise,
    moves, decays and forgets its acceleration (§1.2, §1.3);
 3. overlaps are pushed apart, velocities of colliding objects × −0.1 (§4);
@@ -14,10 +15,12 @@ Follows specs/soccer_server.md §1 (cycle and per-object update), §2 (dash, tur
 Frames and units. The model runs in our field frame (x toward the right goal, y up, angles
 counter-clockwise). The server's frame has y down and clockwise angles; the dynamics are
 mirror-symmetric, so only command arguments change sign: a ``Turn(+a)`` is the server's
-``(turn -a)``, a ``Kick(p, +d)`` its ``(kick p -d)``, and the ranges ``minmoment``/``maxmoment``
-are applied in the server's convention. Object rows: 0 is the ball, 1..N the players in the
-order given. The raw lists :attr:`SoccerServerModel.x`, ``y``, ``vx``, ``vy``, ``heading`` hold
-metres, metres per *cycle* (the server's stored, post-decay velocity) and radians; the coach
+``(turn -a)``, a ``Kick(p, +d)`` its ``(kick p -d)``, a ``Dash(p, +d)`` its ``(dash p -d)``, and
+the ranges ``minmoment``/``maxmoment`` and ``min_dash_angle``/``max_dash_angle`` are applied in
+the server's convention. Headings are wrapped by ``field_models.protocol.wrap_angle``. Object
+rows: 0 is the ball, 1..N the players in the order given. The raw lists
+:attr:`SoccerServerModel.x`, ``y``, ``vx``, ``vy``, ``heading`` hold metres, metres per
+*cycle* (the server's stored, post-decay velocity) and radians; the coach
 accessors :meth:`~SoccerServerModel.ball_state`, :meth:`~SoccerServerModel.player_state` and
 the trainer's :meth:`~SoccerServerModel.move_ball` / :meth:`~SoccerServerModel.move_player`
 speak m/s.
@@ -41,11 +44,15 @@ Choices where the spec leaves one open (or where we simplify), each documented h
 * In restart modes either team may kick (the server's kick-off faults are not modelled).
 * Objects whose centres coincide in a collision are separated along +x, not at a random
   angle, so collisions draw no random numbers (§4).
-* No stamina, effort or recovery: effort is 1 (§2.7 is not modelled).
+* No stamina, effort or recovery: effort is 1 (§2.7 is not modelled). A dash is therefore
+  rcssserver 19's two-leg dash with both legs alike and unlimited stamina (:func:`dash_rate`);
+  ``slowness_on_top_for_*`` (1 by default) is not modelled.
 * No goal posts as obstacles, no ball-out, offside, catch or ball-stuck rules. The referee
-  (``DynamicsParams.referee``) only scores goals and restarts: after ``goal_l_N`` the ball
-  stops, kicks are refused, and ``after_goal_wait_cycles`` later the ball goes to the centre and
-  the mode becomes ``kick_off_r`` (mirror for the right team). In kick-off modes players are
+  (``DynamicsParams.referee``) only scores goals (the project's one goal-line rule,
+  ``field_models.protocol.end_line_crossing``, on the pitch with the post radius) and
+  restarts: after ``goal_l_N`` the ball stops, kicks are refused, and
+  ``after_goal_wait_cycles`` later the ball goes to the centre and the mode becomes
+  ``kick_off_r`` (mirror for the right team). In kick-off modes players are
   kept in their own half and the defending team out of the centre circle every cycle (the
   server's ``forbid_kick_off_offside``). In any restart mode (kick-off, free kick, ...) an
   accepted kick turns the mode into ``play_on`` and announces it. With the referee off, the
@@ -76,6 +83,7 @@ from field_models.protocol import (
     PlayerRef,
     Say,
     Turn,
+    end_line_crossing,
     wrap_angle,
 )
 from field_models.soccer_server.params import DynamicsParams, ServerPreset
@@ -113,6 +121,8 @@ PLAY_MODES = (BEFORE_KICK_OFF, PLAY_ON, *AFTER_GOAL_MODES, *RESTART_MODES)
 
 NO_COMMAND, DASH, TURN, KICK = 0, 1, 2, 3
 """Codes of the pending body command of a player."""
+HALF_PI = 0.5 * math.pi
+"""A side dash's direction [rad]: 90° in the server's ``dir_rate`` formula."""
 
 
 # ----------------------------------------------------------------------------- random rows
@@ -188,6 +198,48 @@ def kick_effectiveness(gap_m: float, dir_diff_rad: float, kickable_margin_m: flo
     return 1.0 - 0.25 * dir_diff_rad / math.pi - 0.25 * gap_m / kickable_margin_m
 
 
+def dash_direction(direction_rad: float, params: DynamicsParams) -> float:
+    """The direction a dash runs in, relative to the heading, as the server normalises it.
+
+    rcssserver 19.0.0 (commit ce87001) ``src/leg.cpp`` ``normalize_dash_angle`` (lines 44-60,
+    called by ``Leg::dash``): the direction is clamped to [``min_dash_angle``,
+    ``max_dash_angle``] and then, unless ``dash_angle_step`` is below EPS, rounded to a
+    multiple of it with ``rint`` (round half to even, as Python's ``round``). The clamp is in
+    the server's clockwise sign, so ours is negated around it. Defaults
+    (``src/serverparam.cpp`` lines 352-358): [-180°, 180°], step 1° (45° in 14.0 to 15.5,
+    90° in 13.x).
+
+    Args:
+        direction_rad: The requested direction, counter-clockwise from the heading [rad].
+        params: ``min_dash_angle_rad``, ``max_dash_angle_rad``, ``dash_angle_step_rad``.
+    """
+    d = -clamp(-direction_rad, params.min_dash_angle_rad, params.max_dash_angle_rad)
+    step = params.dash_angle_step_rad
+    if step > 0.0:
+        d = step * round(d / step)
+    return d + 0.0
+
+
+def dash_rate(direction_rad: float, side_dash_rate: float, back_dash_rate: float) -> float:
+    """The factor on a dash's power for its direction (§2.1, rcssserver >= 13).
+
+    rcssserver 19.0.0 ``src/leg.cpp`` ``Leg::calcDashAccel`` (lines 157-163; the same formula
+    as the disabled one-leg code of ``Player::dash`` in ``src/player.cpp``, lines 1130-1136):
+    for |dir| <= 90°, ``side + (1 - side)·(1 - |dir|/90)``; beyond,
+    ``back - (back - side)·(1 - (|dir| - 90)/90)``; clamped to [0, 1]. So 1 straight ahead,
+    ``side_dash_rate`` (0.4) at ±90°, ``back_dash_rate`` (0.7) at 180°, linear between.
+
+    >>> dash_rate(math.pi / 2, 0.4, 0.7), dash_rate(math.pi, 0.4, 0.7)
+    (0.4, 0.7)
+    """
+    a = abs(direction_rad)
+    if a > HALF_PI:
+        rate = back_dash_rate - (back_dash_rate - side_dash_rate) * (1.0 - (a - HALF_PI) / HALF_PI)
+    else:
+        rate = side_dash_rate + (1.0 - side_dash_rate) * (1.0 - a / HALF_PI)
+    return clamp(rate, 0.0, 1.0)
+
+
 def clamp(value: float, low: float, high: float) -> float:
     """`value` limited to [low, high], as the server clamps command arguments (§2)."""
     return low if value < low else high if value > high else value
@@ -249,6 +301,9 @@ class SoccerServerModel:
         self._amax = [p.ball_accel_max_m_per_cycle2] + [p.player_accel_max_m_per_cycle2] * (n - 1)
         self._smax = [p.ball_speed_max_m_per_cycle] + [p.player_speed_max_m_per_cycle] * (n - 1)
         self._side = [0] + [side_of(ref) for ref in self.players]
+        self._pitch = p.pitch()
+        self._goal_line = 0.5 * p.pitch_length_m + p.ball_size_m
+        self._straight_dash = p.min_dash_angle_rad <= 0.0 <= p.max_dash_angle_rad
         self._pairs = _collision_pairs(self._size)
         self._kind = [NO_COMMAND] * n
         self._arg1 = [0.0] * n
@@ -271,7 +326,7 @@ class SoccerServerModel:
 
     def pitch(self) -> Pitch:
         """Field geometry."""
-        return self.params.pitch()
+        return self._pitch
 
     def row(self, ref: PlayerRef) -> int:
         """Row (1..N) of player `ref`."""
@@ -340,7 +395,7 @@ class SoccerServerModel:
         combines with one.
         """
         if isinstance(action, Dash):
-            return self.dash(i, action.power)
+            return self.dash(i, action.power, action.direction_rad)
         if isinstance(action, Turn):
             return self.turn(i, action.angle_rad)
         if isinstance(action, Kick):
@@ -349,10 +404,18 @@ class SoccerServerModel:
             return self.say(i, action.text)
         raise TypeError(f"not a Soccer Server action: {action!r}")
 
-    def dash(self, i: int, power: float) -> bool:
-        """Queue ``(dash power)``, power clamped to [min_dash_power, max_dash_power] (§2.1)."""
+    def dash(self, i: int, power: float, direction_rad: float = 0.0) -> bool:
+        """Queue ``(dash power direction)`` (§2.1; direction counter-clockwise from the heading).
+
+        The power is clamped to [min_dash_power, max_dash_power]; the direction is clamped and
+        rounded by :func:`dash_direction`. At the step the player is pushed toward heading +
+        direction by power · :func:`dash_rate` · dash_power_rate.
+        """
         p = self.params
-        return self._queue(i, DASH, clamp(power, p.min_dash_power, p.max_dash_power), 0.0)
+        power = clamp(power, p.min_dash_power, p.max_dash_power)
+        if direction_rad == 0.0 and self._straight_dash:
+            return self._queue(i, DASH, power, 0.0)  # what dash_direction gives, for less
+        return self._queue(i, DASH, power, dash_direction(direction_rad, p))
 
     def turn(self, i: int, angle_rad: float) -> bool:
         """Queue a turn by `angle_rad` (left positive), clamped in the server's sign (§2.2)."""
@@ -442,7 +505,7 @@ class SoccerServerModel:
         for i in sorted(self._pending):
             kind = self._kind[i]
             if kind == DASH:
-                self._do_dash(i, self._arg1[i])
+                self._do_dash(i, self._arg1[i], self._arg2[i])
             elif kind == TURN:
                 self._do_turn(i, self._arg1[i], self._noise[2][r][i - 1])
             elif kind == KICK:
@@ -453,10 +516,24 @@ class SoccerServerModel:
             self.play_mode = PLAY_ON
             messages.append(PLAY_ON)
 
-    def _do_dash(self, i: int, power: float) -> None:
-        """Push the player along its heading: power · dash_power_rate, effort 1 (§2.1)."""
-        a = power * self.params.dash_power_rate_m_per_cycle2
+    def _do_dash(self, i: int, power: float, direction: float) -> None:
+        """Push the player toward heading + direction: power · dir rate · dash_power_rate.
+
+        Effort is 1 (stamina is not modelled, §2.7). With both legs dashing alike and stamina
+        to spare, rcssserver 19's ``Player::applyDashEffect`` (``src/player.cpp`` lines
+        1205-1254: the mean of the legs' accelerations, no turn) reduces to one
+        ``Leg::calcDashAccel`` (``src/leg.cpp`` lines 150-181): magnitude
+        |power · dir_rate · dash_power_rate| toward body + direction, reversed for a negative
+        power (possible only where ``min_dash_power`` < 0).
+        """
+        p = self.params
         h = self.heading[i]
+        if direction == 0.0:
+            a = power * p.dash_power_rate_m_per_cycle2
+        else:
+            rate = dash_rate(direction, p.side_dash_rate, p.back_dash_rate)
+            a = power * rate * p.dash_power_rate_m_per_cycle2
+            h = h + direction
         self._ax[i] += a * math.cos(h)
         self._ay[i] += a * math.sin(h)
 
@@ -467,7 +544,7 @@ class SoccerServerModel:
         h = self.heading[i] + factor * angle / (
             1.0 + self.params.inertia_moment_cycle_per_m * speed
         )
-        self.heading[i] = _wrap_once(h)
+        self.heading[i] = wrap_angle(h)
 
     def _do_kick(self, i: int, power: float, direction: float, r: int) -> bool:
         """Push the ball if it is within the kickable area; True if the kick was taken (§2.3)."""
@@ -612,14 +689,19 @@ class SoccerServerModel:
             if self._after_goal_cycles >= self.params.after_goal_wait_cycles:
                 self._kick_off(mode, messages)
             return
-        side = goal_side(self.params, bx0, by0, self.x[0], self.y[0])
-        if side:
-            self._score(side, messages)
+        bx1, line = self.x[0], self._goal_line
+        crossing = (
+            end_line_crossing(self._pitch, bx0, by0, bx1, self.y[0])
+            if abs(bx1) > line and not abs(bx0) > line  # a cheap test first: crossed at all
+            else None
+        )
+        if crossing is not None and crossing.is_goal:
+            self._score(int(crossing), messages)
         elif mode in ("kick_off_l", "kick_off_r"):
             self._keep_halves(1 if mode == "kick_off_l" else -1)
 
     def _score(self, side: int, messages: list[str]) -> None:
-        """Count the goal, stop the ball, enter the after-goal mode (§6)."""
+        """Count the goal (`side` +1: at +x, for the left team), stop the ball (§6)."""
         if side > 0:
             self.score_left += 1 if 1 in self._side else 0
             messages.append(f"goal_l_{self.score_left}")
@@ -654,22 +736,6 @@ class SoccerServerModel:
 
 
 # ----------------------------------------------------------------------------- helpers
-
-
-def goal_side(params: DynamicsParams, x0: float, y0: float, x1: float, y1: float) -> int:
-    """+1 if the ball's move (x0, y0) → (x1, y1) scored for the left team, -1 right, else 0.
-
-    The centre must cross the line |x| = pitch_length/2 + ball_size from inside, between the
-    posts: |y| ≤ goal_width/2 + goal_post_radius at the crossing (§6).
-    """
-    line = 0.5 * params.pitch_length_m + params.ball_size_m
-    if abs(x0) > line or abs(x1) <= line:
-        return 0
-    edge = line if x1 > 0.0 else -line
-    y_cross = y0 + (edge - x0) * (y1 - y0) / (x1 - x0)
-    if abs(y_cross) > 0.5 * params.goal_width_m + params.goal_post_radius_m:
-        return 0
-    return 1 if x1 > 0.0 else -1
 
 
 def _collision_pairs(sizes: list[float]) -> list[tuple[int, int, float, float]]:
@@ -717,15 +783,6 @@ def _out_of_circle(x: float, y: float, radius: float) -> tuple[float, float]:
     if r == 0.0:
         return radius, 0.0
     return x * (radius / r), y * (radius / r)
-
-
-def _wrap_once(angle: float) -> float:
-    """Wrap into [-π, π) an angle at most 2π outside it (a heading plus one turn)."""
-    if angle >= math.pi:
-        return angle - 2.0 * math.pi
-    if angle < -math.pi:
-        return angle + 2.0 * math.pi
-    return angle
 
 
 def _kick_noise_radius(

@@ -21,6 +21,8 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+from field_models.soccer_server.sensing_params import LandmarkSet
+
 PITCH_HALF_LENGTH_M = 52.5
 """Half the pitch length (goal line at x = ±52.5) [m]."""
 PITCH_HALF_WIDTH_M = 34.0
@@ -125,7 +127,7 @@ LINES: tuple[Line, ...] = (
 """The four lines in the order the server tests them (left, right, top, bottom)."""
 
 
-def landmarks_for(landmark_set: str) -> tuple[Landmark, ...]:
+def landmarks_for(landmark_set: LandmarkSet) -> tuple[Landmark, ...]:
     """The flags and goals of a landmark set (``"full"`` or ``"1996"``)."""
     if landmark_set == "full":
         return FLAGS_FULL

@@ -1,7 +1,7 @@
-"""The Soccer Server's text messages: render and parse see, hear and sense_body.
+"""The Soccer Server's text messages: render and parse see and hear.
 
-Formats follow shared `specs/soccer_server.md` §3.7 (see), §2.6 (hear), §2.8 (sense_body) and
-rcssserver's serializers; the paper's Figure 4 trace is the 1996 example. Rendering takes the
+Formats follow shared `specs/soccer_server.md` §3.7 (see), §2.6 (hear) and rcssserver's
+serializers; the paper's Figure 4 trace is the 1996 example. Rendering takes the
 client protocol version (``SensingParams.protocol_version``: 3 for the paper's era, 19 today);
 parsing detects the form by itself.
 
@@ -17,12 +17,12 @@ Version differences that matter here:
   >= 8 ``(hear T Dir our Unum "Msg")``, ``(hear T Dir opp "Msg")`` and the short forms
   ``(hear T our Unum)``, ``(hear T opp)``; ``(hear T self Msg)`` and ``(hear T referee Msg)``
   in every version.
-* sense_body: the groups of versions 1, 5 (head_angle, turn_neck), 6 (speed direction),
-  7 (catch, move, change_view) and 13 (stamina capacity). Later groups (arm, focus, tackle,
-  collision, foul, focus point) are not rendered; the parser skips any group it does not know.
 
-Numbers are printed like C++ streams print doubles (``%g``, 6 significant digits), so a
-rendered message parses back to the same record. Any malformed text raises
+Numbers are printed like C++ streams print doubles (``%g``, 6 significant digits), which is
+exact for the server's quantised values, so a rendered message parses back to the same record.
+A value ``%g`` would change (the exact floats of a perfect-perception see) is printed with
+``repr`` instead, which parses back to the same double; directions may then be decimals. Any
+malformed text raises
 :class:`MessageParseError` (a ValueError) naming the position and showing the text; parsing
 never raises anything else.
 """
@@ -34,7 +34,7 @@ import re
 from typing import TypeAlias
 
 from field_models.soccer_server.landmarks import is_known_name, long_name, short_name
-from field_models.soccer_server.sensing import HearInfo, SeeInfo, SeenObject, SenseBody
+from field_models.soccer_server.sensing import HearInfo, SeeInfo, SeenObject
 
 MAX_DEPTH = 8
 """Deepest nesting the parser accepts (real messages nest at most 4 levels)."""
@@ -165,8 +165,15 @@ def _show(token: SExpr) -> str:
 
 
 def _num(value: float) -> str:
-    """A double as a C++ stream prints it (``%g``); -0 prints as 0."""
-    return f"{value + 0.0:g}"
+    """A number as the server prints it (``%g``; -0 as 0), or ``repr`` where ``%g`` would round.
+
+    Integers (the server's directions) print as integers.
+    """
+    if type(value) is int:
+        return str(value)
+    value += 0.0
+    text = f"{value:g}"
+    return text if float(text) == value else repr(value)
 
 
 # ----------------------------------------------------------------------------- see
@@ -212,24 +219,24 @@ def _render_numbers(obj: SeenObject) -> str:
     if distance is None:
         if dist_chg is not None or dir_chg is not None or body is not None or head is not None:
             raise ValueError(f"{obj}: changes without a distance cannot be written")
-        return str(direction)
-    text = f"{distance + 0.0:g} {direction}"
+        return _num(direction)
+    text = f"{_num(distance)} {_num(direction)}"
     if dist_chg is None:
         if dir_chg is not None or body is not None or head is not None:
             raise ValueError(f"{obj}: a missing value before a present one cannot be written")
         return text
-    text += f" {dist_chg + 0.0:g}"
+    text += f" {_num(dist_chg)}"
     if dir_chg is None:
         if body is not None or head is not None:
             raise ValueError(f"{obj}: a missing value before a present one cannot be written")
         return text
-    text += f" {dir_chg + 0.0:g}"
+    text += f" {_num(dir_chg)}"
     if body is None:
         if head is not None:
             raise ValueError(f"{obj}: a missing value before a present one cannot be written")
         return text
-    text += f" {body}"
-    return text if head is None else f"{text} {head}"
+    text += f" {_num(body)}"
+    return text if head is None else f"{text} {_num(head)}"
 
 
 _SEE_CANONICAL = re.compile(r"\(see ([0-9]{1,12})((?: \(\([^()]*\)(?: [^\s()\"]+)+\))*)\)\0?")
@@ -339,12 +346,20 @@ def _object(ident: _Ident, values: list[SExpr], text: str) -> SeenObject:
     return SeenObject(name, distance, direction, dist_chg, dir_chg, team, unum, body, head)
 
 
-def _angle(token: SExpr, name: str, field: str, text: str) -> int:
-    """An integer direction in [-180, 180]; the error names the object and field."""
+def _angle(token: SExpr, name: str, field: str, text: str) -> float:
+    """A direction in [-180, 180]; the error names the object and field.
+
+    An integer as the server sends it, or a decimal (a perfect-perception see).
+    """
     if type(token) is str and len(token) <= 12 and _INT.fullmatch(token):
         value = int(token)
         if -180 <= value <= 180:
             return value
+    if type(token) is str and not _INT.fullmatch(token) and _FLOAT.fullmatch(token):
+        exact = _value(token, name, field, text)
+        if -180.0 <= exact <= 180.0:
+            return exact
+        raise MessageParseError(f"{name} {field}: {exact} outside [-180, 180]", text)
     return _int(token, f"{name} {field}", text, -180, 180)  # raises with the reason
 
 
@@ -479,99 +494,3 @@ def _nonempty(message: str, text: str) -> str:
     if not message:
         raise MessageParseError("hear: empty message", text)
     return message
-
-
-# ----------------------------------------------------------------------------- sense_body
-
-
-def render_sense_body(info: SenseBody, protocol: int = 19) -> str:
-    """The sense_body text for `info` with the groups of the given protocol version."""
-    v = protocol
-    parts = [f"(sense_body {info.time}", f"(view_mode {info.view_quality} {info.view_width})"]
-    stamina = f"(stamina {_num(info.stamina)} {_num(info.effort)}"
-    if v >= 13 and info.stamina_capacity is not None:
-        stamina += f" {_num(info.stamina_capacity)}"
-    parts.append(stamina + ")")
-    if v >= 6 and info.speed_dir is not None:
-        parts.append(f"(speed {_num(info.speed)} {info.speed_dir})")
-    else:
-        parts.append(f"(speed {_num(info.speed)})")
-    if v >= 5:
-        parts.append(f"(head_angle {info.head_angle or 0})")
-    parts += [f"(kick {info.kick})", f"(dash {info.dash})", f"(turn {info.turn})"]
-    parts.append(f"(say {info.say})")
-    if v >= 5:
-        parts.append(f"(turn_neck {info.turn_neck or 0})")
-    if v >= 7:
-        parts.append(f"(catch {info.catch or 0}) (move {info.move or 0})")
-        parts.append(f"(change_view {info.change_view or 0})")
-    return " ".join(parts) + ")"
-
-
-_COUNTS = ("kick", "dash", "turn", "say", "turn_neck", "catch", "move", "change_view")
-
-
-def parse_sense_body(text: str) -> SenseBody:
-    """Parse a sense_body message; groups this model does not use are skipped.
-
-    Raises:
-        MessageParseError: a malformed message or a missing required group.
-    """
-    tree = parse_sexpr(text)
-    if len(tree) < 2 or tree[0] != "sense_body":
-        raise MessageParseError("expected '(sense_body Time ...)'", text, 0)
-    time = _int(tree[1], "time", text, 0)
-    groups: dict[str, list[SExpr]] = {}
-    for item in tree[2:]:
-        if not isinstance(item, list) or not item or not isinstance(item[0], str):
-            raise MessageParseError(
-                f"sense_body: expected '(name values...)', got {_show(item)}", text
-            )
-        if item[0] in groups:
-            raise MessageParseError(f"sense_body: group {item[0]!r} twice", text)
-        groups[item[0]] = item[1:]
-    for need in ("view_mode", "stamina", "speed", "kick", "dash", "turn", "say"):
-        if need not in groups:
-            raise MessageParseError(f"sense_body: missing ({need} ...)", text)
-    quality, width = _view_mode(groups["view_mode"], text)
-    stamina = groups["stamina"]
-    speed = groups["speed"]
-    if len(stamina) not in (2, 3) or len(speed) not in (1, 2):
-        raise MessageParseError("sense_body: stamina/speed: wrong number of values", text)
-    counts = {k: _count(groups[k], k, text) if k in groups else None for k in _COUNTS}
-    head = groups.get("head_angle")
-    return SenseBody(
-        time=time,
-        view_quality=quality,
-        view_width=width,
-        stamina=_float(stamina[0], "stamina", text),
-        effort=_float(stamina[1], "effort", text),
-        speed=_float(speed[0], "speed", text, non_negative=True),
-        speed_dir=_int(speed[1], "speed direction", text, -180, 180) if len(speed) > 1 else None,
-        head_angle=_count(head, "head_angle", text, -180) if head is not None else None,
-        kick=counts["kick"] or 0,
-        dash=counts["dash"] or 0,
-        turn=counts["turn"] or 0,
-        say=counts["say"] or 0,
-        turn_neck=counts["turn_neck"],
-        catch=counts["catch"],
-        move=counts["move"],
-        change_view=counts["change_view"],
-        stamina_capacity=_float(stamina[2], "stamina capacity", text) if len(stamina) > 2 else None,
-    )
-
-
-def _view_mode(values: list[SExpr], text: str) -> tuple[str, str]:
-    """``(view_mode high normal)`` → ("high", "normal")."""
-    if len(values) != 2 or values[0] not in ("high", "low"):
-        raise MessageParseError("sense_body: view_mode: expected high|low and a width", text)
-    if values[1] not in ("narrow", "normal", "wide"):
-        raise MessageParseError("sense_body: view_mode: expected narrow|normal|wide", text)
-    return str(values[0]), str(values[1])
-
-
-def _count(values: list[SExpr], what: str, text: str, lo: int = 0) -> int:
-    """A one-integer group such as ``(kick 3)``."""
-    if len(values) != 1:
-        raise MessageParseError(f"sense_body: ({what} ...): expected one integer", text)
-    return _int(values[0], what, text, lo)

@@ -6,10 +6,12 @@ names with a unit suffix. Units: metres and radians; speeds and accelerations st
 server's equations are written per cycle (§0); the model's accessors convert to m/s. Angles are
 given in the preset in degrees (``maxmoment_deg``) and converted to radians once, on load.
 
-:class:`ServerPreset` bundles the dynamics with the sensing record of helper ss-sense
-(:class:`~field_models.soccer_server.sensing_params.SensingParams`) and is loaded from
-``field_models/presets/soccer_server/<name>.toml`` by :func:`load_server_preset`. A wrong file
-raises :class:`~field_models.presets.PresetError` naming the file and the dotted key.
+:class:`ServerPreset` bundles the dynamics with the sensing record
+(:class:`~field_models.soccer_server.sensing_params.SensingParams`) and is loaded by
+:func:`load_server_preset` from ``field_models/presets/soccer_server/<name>.toml``, from a TOML
+file, or from a real server's own configuration (a ``server.conf`` file or a
+``(server_param ...)`` message, :mod:`~field_models.soccer_server.server_conf`). A wrong file
+raises :class:`~field_models.presets.PresetError` naming the file and the key.
 """
 
 from __future__ import annotations
@@ -18,10 +20,11 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from field_models.presets import (
     PresetError,
+    convert_value,
     load_record,
     non_negative,
     positive,
@@ -32,10 +35,10 @@ from field_models.presets import (
 from field_models.protocol import Pitch
 from field_models.soccer_server.sensing_params import SensingParams
 
-NOISE_MODELS = ("box", "polar")
-"""Allowed :attr:`DynamicsParams.noise_model` values: ≤ 11.x per-axis uniform, ≥ 12 polar (§1.3)."""
-ERAS = ("1996", "19")
-"""Allowed :attr:`ServerPreset.era` values."""
+NoiseModel = Literal["box", "polar"]
+"""Movement and kick noise: per-axis uniform (≤ 11.x) or polar (≥ 12) (§1.3, §2.3)."""
+Era = Literal["1996", "19"]
+"""Which servers a preset stands for: the paper's (1996) or rcssserver 19."""
 DEFAULT_PRESET = "soccer_server_1996"
 
 
@@ -56,8 +59,9 @@ class DynamicsParams:
         simulator_step_ms: ``simulator_step``: cycle length [ms].
         pitch_length_m: Goal line to goal line [m]. pitch_width_m: touchline to touchline [m].
         goal_width_m: ``goal_width`` [m]. goal_depth_m: goal depth (drawing only) [m].
-        goal_post_radius_m: ``goal_post_radius``: widens the goal-line test by one post radius
-            (§6); posts as obstacles (§1.4) are not modelled. 0 for the post-less 1990s.
+        goal_post_radius_m: the server's compiled-in goal-post radius (0.06 m): widens the
+            goal-line test by one post radius (§6); posts as obstacles (§1.4) are not modelled.
+            0 for the post-less 1990s.
         center_circle_radius_m: kick-off clear distance for the non-kicking team [m].
         ball_size_m, player_size_m: ``ball_size``, ``player_size``: radii [m].
         ball_decay, player_decay: ``ball_decay``, ``player_decay``: velocity factor per cycle.
@@ -76,6 +80,13 @@ class DynamicsParams:
         min_dash_power, max_dash_power: dash power range [power units].
         minmoment_rad, maxmoment_rad: turn moment and kick direction range, in the server's
             (clockwise-on-our-field) sign convention [rad]; preset keys ``*_deg``.
+        side_dash_rate: ``side_dash_rate``: dash power factor at ±90° (§2.1, rcssserver >= 13).
+        back_dash_rate: ``back_dash_rate``: dash power factor at 180°.
+        dash_angle_step_rad: ``dash_angle_step``: dash directions are rounded to multiples of
+            it; 0 = any direction [rad]; preset key ``dash_angle_step_deg``.
+        min_dash_angle_rad, max_dash_angle_rad: ``min_dash_angle``/``max_dash_angle``: dash
+            direction range in the server's sign [rad]; 0 and 0 for servers without a dash
+            direction (every dash runs straight); preset keys ``*_deg``.
         after_goal_wait_cycles: cycles between ``goal_l_N`` and the kick-off (50 today;
             0 in the paper's Figure 4, where both messages carry the same time).
         referee: goal detection and the after-goal sequence on (``server::coach`` off); off, the
@@ -93,7 +104,7 @@ class DynamicsParams:
     pitch_width_m: float = field(metadata=positive())
     goal_width_m: float = field(metadata=positive("server.conf goal_width"))
     goal_depth_m: float = field(metadata=positive())
-    goal_post_radius_m: float = field(metadata=non_negative("server.conf goal_post_radius"))
+    goal_post_radius_m: float = field(metadata=non_negative("compiled in: 0.06 m today"))
     center_circle_radius_m: float = field(metadata=non_negative())
     ball_size_m: float = field(metadata=positive("server.conf ball_size"))
     ball_decay: float = field(metadata=probability("server.conf ball_decay"))
@@ -115,23 +126,27 @@ class DynamicsParams:
     kickable_margin_m: float = field(metadata=positive("server.conf kickable_margin"))
     kick_reduction: bool
     kick_rand: float = field(metadata=non_negative("server.conf kick_rand"))
-    noise_model: str
+    noise_model: NoiseModel
     minpower: float
     maxpower: float = field(metadata=positive("server.conf maxpower"))
     min_dash_power: float
     max_dash_power: float
     minmoment_rad: float
     maxmoment_rad: float
+    side_dash_rate: float = field(metadata=non_negative("server.conf side_dash_rate"))
+    back_dash_rate: float = field(metadata=non_negative("server.conf back_dash_rate"))
+    dash_angle_step_rad: float = field(metadata=non_negative("server.conf dash_angle_step"))
+    min_dash_angle_rad: float
+    max_dash_angle_rad: float
     after_goal_wait_cycles: int = field(metadata=non_negative())
     referee: bool = True
     swept_ball_collisions: bool = False
 
     def __post_init__(self) -> None:
-        if self.noise_model not in NOISE_MODELS:
-            raise ParamError("noise_model", f"expected one of {', '.join(NOISE_MODELS)}")
         _ordered("minpower", self.minpower, self.maxpower)
         _ordered("min_dash_power", self.min_dash_power, self.max_dash_power)
         _ordered("minmoment_rad", self.minmoment_rad, self.maxmoment_rad)
+        _ordered("min_dash_angle_rad", self.min_dash_angle_rad, self.max_dash_angle_rad)
         if self.goal_width_m >= self.pitch_width_m:
             raise ParamError("goal_width_m", "expected less than pitch_width_m")
 
@@ -154,6 +169,7 @@ class DynamicsParams:
             goal_depth_m=self.goal_depth_m,
             ball_radius_m=self.ball_size_m,
             player_radius_m=self.player_size_m,
+            goal_post_radius_m=self.goal_post_radius_m,
         )
 
     def replace(self, **changes: Any) -> DynamicsParams:
@@ -175,12 +191,12 @@ class ServerPreset:
         era: ``"1996"`` (the paper's servers, 1998 values where 1996 ones are unknown) or
             ``"19"`` (rcssserver 19.0.0 defaults).
         dynamics: Movement, commands, collisions, referee.
-        sensing: See and hear parameters (helper ss-sense's record).
+        sensing: See and hear parameters.
         source: The file it came from.
     """
 
     name: str
-    era: str
+    era: Era
     dynamics: DynamicsParams
     sensing: SensingParams
     source: str = ""
@@ -189,25 +205,37 @@ class ServerPreset:
         """A copy whose dynamics have some fields changed (e.g. ``ball_rand=0.0``)."""
         return dataclasses.replace(self, dynamics=self.dynamics.replace(**changes))
 
+    def replace_sensing(self, **changes: Any) -> ServerPreset:
+        """A copy whose sensing has some fields changed (e.g. ``perfect=True``)."""
+        return dataclasses.replace(self, sensing=self.sensing.replace(**changes))
+
 
 def load_server_preset(name_or_path: str = DEFAULT_PRESET) -> ServerPreset:
     """Load a Soccer Server preset by name (``soccer_server_1996``, ``rcssserver_19``) or path.
 
     Keys ending in ``_deg`` fill the record's ``_rad`` field of the same stem, converted once.
     A file may start from another preset with ``base = "<name>"`` and state only what differs.
+    A real server's configuration loads too, over the ``rcssserver_19`` preset: a path ending
+    in ``.conf`` (a ``server.conf`` file) or the text of a ``(server_param ...)`` message
+    (:func:`~field_models.soccer_server.server_conf.load_server_conf`).
 
     Raises:
-        PresetError: naming the file and the dotted key when the file is missing or wrong.
+        PresetError: naming the file and the key when the file is missing or wrong.
     """
+    if name_or_path.lstrip().startswith("(server_param") or name_or_path.endswith(".conf"):
+        # Imported here: server_conf builds on this module's records.
+        from field_models.soccer_server.server_conf import load_server_conf
+
+        return load_server_conf(name_or_path).preset
     path = preset_path(name_or_path, "soccer_server")
     table = read_preset(path, "soccer_server")
     unknown = sorted(set(table) - {"name", "era", "dynamics", "sensing"})
     if unknown:
         raise PresetError(f"{path}: key '{unknown[0]}': unknown key for ServerPreset")
     name = _top_string(table, "name", path, default=Path(path).stem)
-    era = _top_string(table, "era", path)
-    if era not in ERAS:
-        raise PresetError(f"{path}: key 'era': expected one of {', '.join(ERAS)}, got {era!r}")
+    if "era" not in table:
+        raise PresetError(f"{path}: key 'era': missing (required by ServerPreset)")
+    era = convert_value(Era, table["era"], file=path, key="era")
     dynamics = _load_table(DynamicsParams, table, "dynamics", path)
     sensing = _load_table(SensingParams, table, "sensing", path)
     if sensing.simulator_step_ms != dynamics.simulator_step_ms:
@@ -218,10 +246,8 @@ def load_server_preset(name_or_path: str = DEFAULT_PRESET) -> ServerPreset:
     return ServerPreset(name=name, era=era, dynamics=dynamics, sensing=sensing, source=str(path))
 
 
-def _top_string(table: dict[str, Any], key: str, path: Path, default: str | None = None) -> str:
+def _top_string(table: dict[str, Any], key: str, path: Path, default: str) -> str:
     if key not in table:
-        if default is None:
-            raise PresetError(f"{path}: key '{key}': missing (required by ServerPreset)")
         return default
     value = table[key]
     if not isinstance(value, str):

@@ -5,7 +5,7 @@ A percept (``field_models.protocol.Percept``) is what the paper's clients work f
 
 * directions: the server's integer degrees, clockwise-positive in our frame, become radians
   counter-clockwise positive: ``angle_rad = -radians(direction)``;
-* distances stay quantised exactly as the message gives them;
+* distances stay exactly as the message gives them (quantised, or exact in perfect perception);
 * changes: ``dist_change`` [m/cycle] / cycle length → m/s, ``dir_change`` [deg/cycle] → rad/s
   with the sign flipped like directions;
 * the ball is the ``(b)`` entry, or the felt ``(B)`` when it is behind the player within
@@ -18,8 +18,10 @@ A percept (``field_models.protocol.Percept``) is what the paper's clients work f
 
 Two routes give the same percept: text (``render_see`` → ``parse_see`` →
 :func:`percept_from_see`) and the structured fast path :func:`percept_from_state`, which skips
-the text and, by default, every landmark but the goals. ``tests/field_models/test_ss_percepts.py``
-proves they agree.
+the text and, by default, every landmark but the goals;
+``tests/field_models/soccer_server/test_percepts.py`` proves they agree. In perfect perception
+(``SensingParams.perfect``) the see carries exact values and so does the percept, by either
+route.
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from field_models.protocol import Heard, Percept, PlayerRef, SeenBall, SeenLandmark, SeenPlayer
-from field_models.soccer_server.sensing import HearInfo, SeeInfo, SeenObject, observe
+from field_models.soccer_server.sensing import HearInfo, LandmarkMode, SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SensingParams
 
 _DEG2RAD = math.pi / 180.0
@@ -120,7 +122,7 @@ def percept_from_state(
     *,
     tick: int,
     heard: tuple[Heard, ...] = (),
-    landmarks: str = "goals",
+    landmarks: LandmarkMode = "goals",
 ) -> Percept:
     """The structured fast path: the percept a see at `time` gives, without any text.
 

@@ -1,8 +1,7 @@
-"""Soccer Server sensing as pure functions of the state: see, hear and sense_body contents.
+"""Soccer Server sensing as pure functions of the state: see and hear contents.
 
-Implements shared `specs/soccer_server.md` §3 (visual sensing), §2.6 (say/hear) and §2.8
-(sense_body), following rcssserver's ``VisualSenderPlayerV1`` family line by line where the
-spec is silent:
+Implements shared `specs/soccer_server.md` §3 (visual sensing) and §2.6 (say/hear), following
+rcssserver's ``VisualSenderPlayerV1`` family line by line where the spec is silent:
 
 * the view cone: an object is seen when ``|direction| < half-angle`` (unrounded angle, strict),
   otherwise it is "felt" as ``(F)``/``(G)``/``(B)``/``(P)`` when within ``visible_distance``;
@@ -18,14 +17,21 @@ spec is silent:
 
 Frames and units. Inputs are in OUR frame (x toward the right goal, y up, heading CCW from +x,
 radians), positions in metres and **velocities in metres per cycle** (what the server stores
-between steps and what ss-dyn's raw lists hold). Outputs are in the SERVER's conventions —
-degrees, with the server's sign: its y axis points down, so a direction the server reports as
-``+d`` is ``-d`` degrees in our CCW frame. Computations run in server coordinates (y negated,
-heading negated) so that every formula reads as the server's.
+between steps, as :class:`~field_models.soccer_server.dynamics.SoccerServerModel` holds them).
+Outputs are in the SERVER's conventions — degrees, with the server's sign: its y axis points
+down, so a direction the server reports as ``+d`` is ``-d`` degrees in our CCW frame.
+Computations run in server coordinates (y negated, heading negated) so that every formula reads
+as the server's. Angles are wrapped by ``field_models.protocol.wrap_angle`` into [-π, π).
 
 Exactness. Every number in a :class:`SeenObject` is the value the text message carries:
 distances are multiples of 0.1 m held as the nearest double to the decimal, so rendering with
 ``%g`` and parsing back gives bit-identical values (the percept fast path relies on it).
+
+Perfect perception (``SensingParams.perfect``): distances, directions (in degrees, server sign)
+and changes are the exact floats of the geometry, the team and number are always shown and
+changes are always included where the era reports them (``report_changes``, high quality);
+the view cone, the felt objects and the see timing are unchanged. The same random numbers are
+drawn as in a normal see.
 
 Landmark modes (``observe(..., landmarks=...)``): ``"all"`` (flags, goals and lines: the full
 see message), ``"goals"`` (only the two goals, what a robot host also gives; the cheap choice
@@ -37,23 +43,21 @@ Choices: 1996 sees carry no changes and use a reduced landmark set (``SensingPar
 fields ``report_changes``, ``landmark_set``); see timing follows the server's asynchronous
 timer (synch-see mode is not modelled); the neck angle is always 0 (the 1996 servers had no
 neck and our action set has no ``turn_neck``); player entries never carry a pointing
-direction, goalie or tackle mark.
-
-Speed (2-core dev box, 2 players + ball): ``landmarks="none"`` ~7 µs, ``"goals"`` ~7-10 µs,
-``"all"`` ~13 µs for the 1996 set and ~31 µs on average (~35 µs looking at a goal) for the 55
-flags of today's set; the flag loop is written out inline for that reason.
+direction, goalie or tackle mark. The flag loop, the costliest part of a full see, is written
+out inline.
 """
 
 from __future__ import annotations
 
 import math
+import typing
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import NamedTuple
+from typing import Literal, NamedTuple
 
 import numpy as np
 
-from field_models.protocol import PlayerRef
+from field_models.protocol import PlayerRef, wrap_angle
 from field_models.soccer_server.landmarks import (
     LINES,
     PITCH_HALF_LENGTH_M,
@@ -67,6 +71,11 @@ EPS = 1.0e-10
 _TWO_PI = 2.0 * math.pi
 _HALF_PI = 0.5 * math.pi
 _RAD2DEG = 180.0 / math.pi
+
+LandmarkMode = Literal["all", "goals", "none"]
+"""Which landmarks :func:`observe` reports: flags, goals and lines; the goals; none."""
+LANDMARK_MODES: tuple[LandmarkMode, ...] = typing.get_args(LandmarkMode)
+"""The values of :data:`LandmarkMode`, for callers that check a setting at run time."""
 
 SAY_ALLOWED_CHARS = frozenset(
     "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 ().+*/?<>_-"
@@ -83,8 +92,9 @@ class SeenObject(NamedTuple):
     Attributes:
         name: Short name without parentheses: ``"b"``, ``"p"``, ``"f r t"``, ``"g l"``,
             ``"l r"``, or a close (felt) object ``"B"``, ``"P"``, ``"F"``, ``"G"``.
-        distance: Quantised distance [m]; None in low quality.
-        direction: Direction in integer degrees, server sign (positive = clockwise in our frame).
+        distance: Quantised distance [m] (exact in perfect perception); None in low quality.
+        direction: Direction in degrees, server sign (positive = clockwise in our frame): an
+            integer, or the exact float in perfect perception.
         dist_change: Distance change [m/cycle], when reported.
         dir_change: Direction change [deg/cycle, server sign], when reported.
         team: The seen player's team name, when shown.
@@ -95,13 +105,13 @@ class SeenObject(NamedTuple):
 
     name: str
     distance: float | None
-    direction: int
+    direction: float
     dist_change: float | None = None
     dir_change: float | None = None
     team: str | None = None
     unum: int | None = None
-    body_dir: int | None = None
-    head_dir: int | None = None
+    body_dir: float | None = None
+    head_dir: float | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -140,48 +150,6 @@ class HearInfo(NamedTuple):
     unum: int | None = None
 
 
-class SenseBody(NamedTuple):
-    """The content of one sense_body message (§2.8), with values as printed.
-
-    Attributes:
-        time: Server time (cycle).
-        view_quality: ``"high"`` or ``"low"``.
-        view_width: ``"narrow"``, ``"normal"`` or ``"wide"``.
-        stamina: Stamina.
-        effort: Effort.
-        speed: Speed, quantised to 0.01 [m/cycle].
-        speed_dir: Direction of motion relative to the view [deg, server sign] (protocol >= 6).
-        head_angle: Neck angle relative to the body [deg] (protocol >= 5).
-        kick: Kick commands executed so far.
-        dash: Dash commands executed so far.
-        turn: Turn commands executed so far.
-        say: Say commands executed so far.
-        turn_neck: turn_neck commands so far (protocol >= 5).
-        catch: catch commands so far (protocol >= 7).
-        move: move commands so far (protocol >= 7).
-        change_view: change_view commands so far (protocol >= 7).
-        stamina_capacity: Remaining stamina capacity (protocol >= 13).
-    """
-
-    time: int
-    view_quality: str
-    view_width: str
-    stamina: float
-    effort: float
-    speed: float
-    speed_dir: int | None
-    head_angle: int | None
-    kick: int
-    dash: int
-    turn: int
-    say: int
-    turn_neck: int | None = None
-    catch: int | None = None
-    move: int | None = None
-    change_view: int | None = None
-    stamina_capacity: float | None = None
-
-
 # ----------------------------------------------------------------------------- numbers
 
 
@@ -213,17 +181,6 @@ def degrees(angle_rad: float, truncate: bool) -> int:
     """Radians to the server's integer degrees: truncated toward zero or rounded half to even."""
     deg = angle_rad * _RAD2DEG
     return int(deg) if truncate else round(deg)
-
-
-def normalize_angle(angle: float) -> float:
-    """The server's ``normalize_angle``: into [-pi, pi] (ends kept as they come)."""
-    if abs(angle) > _TWO_PI:
-        angle = math.fmod(angle, _TWO_PI)
-    if angle < -math.pi:
-        angle += _TWO_PI
-    if angle > math.pi:
-        angle -= _TWO_PI
-    return angle
 
 
 def far_probability(distance_m: float, far_m: float, too_far_m: float) -> float:
@@ -265,6 +222,7 @@ class _Consts:
     rel_step: float
     chg_dec: int
     res_div: float  # 10**res_dec when the resolution is a power of ten, else 0
+    perfect: bool
     table: dict[int, float]  # memo: log index -> quantised distance, step quantize_step
     table_l: dict[int, float]  # the same for quantize_step_l
     # Per flag: index (for its random draw), x, server y (down), name, close name.
@@ -273,7 +231,6 @@ class _Consts:
 
 
 _CACHE: dict[int, tuple[SensingParams, _Consts]] = {}
-_LANDMARK_MODES = ("all", "goals", "none")
 
 
 def _power_of_ten_divisor(step: float, decimals: int) -> float:
@@ -313,6 +270,7 @@ def _consts(params: SensingParams) -> _Consts:
         rel_step=params.dist_change_rel_step,
         chg_dec=res_dec + _decimals(params.dist_change_rel_step),
         res_div=_power_of_ten_divisor(params.distance_resolution_m, res_dec),
+        perfect=params.perfect,
         table={},
         table_l={},
         flags=rows,
@@ -339,7 +297,7 @@ def observe(
     params: SensingParams,
     rng: np.random.Generator,
     *,
-    landmarks: str = "all",
+    landmarks: LandmarkMode = "all",
 ) -> SeeInfo:
     """What player row `observer` sees now: the content of its see message (§3).
 
@@ -371,11 +329,12 @@ def observe(
     oth = -heading[observer]
     draws = rng.random(1 + 2 * n).tolist()
     objects: list[SeenObject] = []
-    if landmarks not in _LANDMARK_MODES:
-        raise ValueError(f"landmarks: expected one of {_LANDMARK_MODES}; got {landmarks!r}")
+    if landmarks not in LANDMARK_MODES:
+        raise ValueError(f"landmarks: expected one of {LANDMARK_MODES}; got {landmarks!r}")
     if landmarks != "none":
         rows = c.flags if landmarks == "all" else c.goals
-        objects.extend(_see_flags(c, rows, ox, osy, ovx, ovy, oth, rng))
+        see_flags = _see_flags_exact if c.perfect else _see_flags
+        objects.extend(see_flags(c, rows, ox, osy, ovx, ovy, oth, rng))
     ball = _see_ball(c, ox, osy, ovx, ovy, oth, x[0], -y[0], vx[0], -vy[0], draws[0])
     if ball is not None:
         objects.append(ball)
@@ -406,6 +365,8 @@ def _changes(
     ex, ey = dx / d, dy / d
     dist_chg = wx * ex + wy * ey
     dir_chg = (wy * ex - wx * ey) / d * _RAD2DEG
+    if c.perfect:
+        return dist_chg + 0.0, dir_chg + 0.0
     dir_q = 0.0 if dir_chg == 0.0 else round(round(dir_chg / c.dir_step) * c.dir_step, c.dir_dec)
     if abs(dir_q) >= 1e5:  # objects nearly on top of each other: keep what %g prints
         dir_q = _printed(dir_q)
@@ -413,8 +374,18 @@ def _changes(
     return round(qd * rel, c.chg_dec) + 0.0, dir_q + 0.0
 
 
+def _printed(value: float) -> float:
+    """The value as the server prints it (6 significant digits, ``%g``)."""
+    return float(f"{value:g}") + 0.0
+
+
 def _quant(c: _Consts, d: float, step: float) -> float:
-    """Quantised distance (see :func:`quantize_distance`), memoised on the log index."""
+    """Quantised distance (see :func:`quantize_distance`), memoised on the log index.
+
+    In perfect perception, the exact distance.
+    """
+    if c.perfect:
+        return d
     table = c.table_l if step == c.q_l else c.table
     m = round(math.log(d + EPS) / step)
     qd = table.get(m)
@@ -427,6 +398,13 @@ def _from_log_index(c: _Consts, m: int, step: float) -> float:
     """``Q(exp(m · step), resolution)`` as the double the message prints."""
     k = round(math.exp(m * step) / c.res)
     return k / c.res_div if c.res_div else round(k * c.res, c.res_dec)
+
+
+def _direction(c: _Consts, angle_rad: float) -> float:
+    """A direction as the see reports it: :func:`degrees`, or exact degrees when perfect."""
+    if c.perfect:
+        return angle_rad * _RAD2DEG
+    return degrees(angle_rad, c.truncate)
 
 
 def _decide(prob: float, u: float) -> bool:
@@ -451,8 +429,8 @@ def _see_flags(
     """Flags and goals: in the cone with quantised distance, or felt when close (``sendHighFlag``).
 
     One tight loop (this is the costliest part of a see): the angle wrap, degree conversion and
-    distance quantisation of :func:`normalize_angle`, :func:`degrees` and
-    :func:`quantize_distance` are written out inline, with the same operations in the same order.
+    distance quantisation of ``wrap_angle``, :func:`degrees` and :func:`quantize_distance` are
+    written out inline, with the same operations in the same order.
     """
     out: list[SeenObject] = []
     append = out.append
@@ -466,10 +444,8 @@ def _see_flags(
         dx = fx - ox
         dy = fy - oy
         ang = atan2(dy, dx) - oth
-        if ang > pi:
-            ang -= two_pi
-        elif ang < -pi:
-            ang += two_pi
+        if not -pi <= ang < pi:
+            ang = (ang + pi) % two_pi - pi
         if -half < ang < half:
             deg = ang * _RAD2DEG
             direction = int(deg) if trunc else round(deg)
@@ -501,6 +477,38 @@ def _see_flags(
     return out
 
 
+def _see_flags_exact(
+    c: _Consts,
+    rows: tuple[tuple[int, float, float, str, str], ...],
+    ox: float,
+    oy: float,
+    ovx: float,
+    ovy: float,
+    oth: float,
+    rng: np.random.Generator,
+) -> list[SeenObject]:
+    """:func:`_see_flags` in perfect perception: exact values, changes whenever reported."""
+    out: list[SeenObject] = []
+    if c.changes and c.high:
+        rng.random(len(c.flags))  # the draws of a normal see, so the stream stays the same
+    for _, fx, fy, name, close in rows:
+        dx, dy = fx - ox, fy - oy
+        ang = wrap_angle(math.atan2(dy, dx) - oth)
+        direction = ang * _RAD2DEG
+        d = math.sqrt(dx * dx + dy * dy)
+        if -c.half_angle < ang < c.half_angle:
+            if not c.high:
+                out.append(SeenObject(name, None, direction))
+            elif c.changes:
+                dist_chg, dir_chg = _changes(c, dx, dy, -ovx, -ovy, d, d)
+                out.append(SeenObject(name, d, direction, dist_chg, dir_chg))
+            else:
+                out.append(SeenObject(name, d, direction))
+        elif dx * dx + dy * dy <= c.vis_dist2:
+            out.append(SeenObject(close, d if c.high else None, direction))
+    return out
+
+
 def _see_ball(
     c: _Consts,
     ox: float,
@@ -516,21 +524,23 @@ def _see_ball(
 ) -> SeenObject | None:
     """The ball (``sendHighBall`` / ``sendLowBall``)."""
     dx, dy = bx - ox, by - oy
-    ang = normalize_angle(math.atan2(dy, dx) - oth)
+    ang = wrap_angle(math.atan2(dy, dx) - oth)
     d2 = dx * dx + dy * dy
     if -c.half_angle < ang < c.half_angle:
-        direction = degrees(ang, c.truncate)
+        direction = _direction(c, ang)
         if not c.high:
             return SeenObject("b", None, direction)
         d = math.sqrt(d2)
         qd = _quant(c, d, c.q)
-        if not c.changes or _decide(far_probability(qd, c.unum_far, c.unum_too_far), u):
+        if not c.changes or (
+            not c.perfect and _decide(far_probability(qd, c.unum_far, c.unum_too_far), u)
+        ):
             return SeenObject("b", qd, direction)
         dist_chg, dir_chg = _changes(c, dx, dy, bvx - ovx, bvy - ovy, d, qd)
         return SeenObject("b", qd, direction, dist_chg, dir_chg)
     if d2 <= c.vis_dist2:
         qd_close = _quant(c, math.sqrt(d2), c.q) if c.high else None
-        return SeenObject("B", qd_close, degrees(ang, c.truncate))
+        return SeenObject("B", qd_close, _direction(c, ang))
     return None
 
 
@@ -546,28 +556,28 @@ def _see_player(
     ox, oy, ovx, ovy, oth = me
     px, py, pvx, pvy, pth = it
     dx, dy = px - ox, py - oy
-    ang = normalize_angle(math.atan2(dy, dx) - oth)
+    ang = wrap_angle(math.atan2(dy, dx) - oth)
     d2 = dx * dx + dy * dy
-    trunc = c.truncate
     if not -c.half_angle < ang < c.half_angle:
         if d2 <= c.vis_dist2:
             qd_close = _quant(c, math.sqrt(d2), c.q) if c.high else None
-            return SeenObject("P", qd_close, degrees(ang, trunc))
+            return SeenObject("P", qd_close, _direction(c, ang))
         return None
     d = math.sqrt(d2)
     qd = _quant(c, d, c.q)
-    direction = degrees(ang, trunc)
+    direction = _direction(c, ang)
     shown = qd if c.high else None
-    if _decide(far_probability(qd, c.team_far, c.team_too_far), u_team):
-        return SeenObject("p", shown, direction)
-    if _decide(far_probability(qd, c.unum_far, c.unum_too_far), u_unum):
-        return SeenObject("p", shown, direction, None, None, who.team)
+    if not c.perfect:
+        if _decide(far_probability(qd, c.team_far, c.team_too_far), u_team):
+            return SeenObject("p", shown, direction)
+        if _decide(far_probability(qd, c.unum_far, c.unum_too_far), u_unum):
+            return SeenObject("p", shown, direction, None, None, who.team)
     if not c.high or not c.changes:
         return SeenObject("p", shown, direction, None, None, who.team, who.number)
     dist_chg, dir_chg = _changes(c, dx, dy, pvx - ovx, pvy - ovy, d, qd)
-    rel = normalize_angle(pth - oth)
-    body = degrees(rel, trunc) if c.body else None
-    head = degrees(rel, trunc) if c.head else None  # no neck: head = body
+    rel = wrap_angle(pth - oth)
+    body = _direction(c, rel) if c.body else None
+    head = body if c.head else None  # no neck: head = body
     return SeenObject("p", qd, direction, dist_chg, dir_chg, who.team, who.number, body, head)
 
 
@@ -609,14 +619,14 @@ def _see_line(c: _Consts, name: str, sx: float, sy: float, sth: float) -> SeenOb
     else:  # "l b", server y = +34
         normal = -_HALF_PI if sy > hw else _HALF_PI
         to_line, start, stop, vert = hw - sy, -hl, hl, False
-    s2l = normalize_angle(normal - sth)
+    s2l = wrap_angle(normal - sth)
     if abs(s2l) >= _HALF_PI:
         return None  # looking parallel to the line or away from it
     offset = to_line * math.tan(s2l)
     hit = sy - offset if vert else sx + offset
     if hit < start or hit > stop:
         return None
-    direction = degrees(s2l - _HALF_PI if s2l > 0 else s2l + _HALF_PI, c.truncate)
+    direction = _direction(c, s2l - _HALF_PI if s2l > 0 else s2l + _HALF_PI)
     if not c.high:
         return SeenObject(name, None, direction)
     return SeenObject(name, _quant(c, abs(to_line / math.cos(s2l)), c.q_l), direction)
@@ -824,70 +834,10 @@ def _player_hear(
     if not full:
         return HearInfo(time, "player", None, None, team, number) if protocol >= 8 else None
     # Direction from the listener's body, server sign: negate our CCW angle.
-    rel = normalize_angle(-(math.atan2(y[speaker] - y[row], x[speaker] - x[row]) - heading[row]))
+    rel = wrap_angle(-(math.atan2(y[speaker] - y[row], x[speaker] - x[row]) - heading[row]))
     return HearInfo(time, "player", text, degrees(rel, trunc), team, number)
 
 
 def referee_hear(time: int, message: str) -> HearInfo:
     """A referee announcement (``goal_l_1``, ``kick_off_r``, ...) as heard by every player."""
     return HearInfo(time, "referee", message)
-
-
-# ----------------------------------------------------------------------------- sense_body
-
-
-def _printed(value: float) -> float:
-    """The value as the server prints it (6 significant digits, ``%g``)."""
-    return float(f"{value:g}") + 0.0
-
-
-def sense_body(
-    time: int,
-    vx: float,
-    vy: float,
-    heading: float,
-    stamina: float,
-    effort: float,
-    counts: dict[str, int],
-    params: SensingParams,
-    stamina_capacity: float | None = None,
-) -> SenseBody:
-    """The content of a sense_body message for one player (§2.8, ``BodySenderPlayerV1..13``).
-
-    Args:
-        time: Server time (cycle).
-        vx: Player velocity x [m/cycle], our frame.
-        vy: Player velocity y [m/cycle], our frame.
-        heading: Body heading [rad], CCW, our frame.
-        stamina: Stamina.
-        effort: Effort.
-        counts: Commands executed so far: keys ``kick``, ``dash``, ``turn``, ``say`` and
-            optionally ``turn_neck``, ``catch``, ``move``, ``change_view`` (missing = 0).
-        params: Sensing parameters (protocol version, view mode).
-        stamina_capacity: Remaining capacity (shown from protocol 13).
-    """
-    v = params.protocol_version
-    speed = round(round(math.hypot(vx, vy) / 0.01) * 0.01, 2)
-    # Server frame: velocity angle and heading both negate; Rad2IDeg truncates in every version.
-    speed_dir = int(normalize_angle(-math.atan2(vy, vx) + heading) * _RAD2DEG) if v >= 6 else None
-    return SenseBody(
-        time=time,
-        view_quality=params.view_quality,
-        view_width=params.view_width,
-        stamina=_printed(stamina),
-        effort=_printed(effort),
-        speed=speed,
-        speed_dir=speed_dir,
-        head_angle=0 if v >= 5 else None,
-        kick=counts.get("kick", 0),
-        dash=counts.get("dash", 0),
-        turn=counts.get("turn", 0),
-        say=counts.get("say", 0),
-        turn_neck=counts.get("turn_neck", 0) if v >= 5 else None,
-        catch=counts.get("catch", 0) if v >= 7 else None,
-        move=counts.get("move", 0) if v >= 7 else None,
-        change_view=counts.get("change_view", 0) if v >= 7 else None,
-        stamina_capacity=(
-            _printed(stamina_capacity) if v >= 13 and stamina_capacity is not None else None
-        ),
-    )

@@ -21,6 +21,9 @@ Choices made where the spec leaves one open (each is a field, so a preset can ch
   1997 set was not found, §3.8).
 * ``send_step_ms`` for 1996: 250 ms (the paper's §5 "discrete intervals (250 msec)"); the
   Figure 4 trace's see every 5 cycles is ``send_step_ms = 500``.
+* ``perfect``: perfect perception, our own switch (no server has it): sees carry exact
+  distances, directions and changes, and always the team and number. The view cone and the see
+  timing stay, because they are what the player can see, not noise.
 """
 
 from __future__ import annotations
@@ -28,22 +31,22 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Literal
 
 from field_models.presets import non_negative, positive
 
-DIRECTION_MODES = ("truncate", "round")
-"""Allowed values of :attr:`SensingParams.direction_mode`."""
-VIEW_WIDTHS = ("narrow", "normal", "wide")
-"""Allowed values of :attr:`SensingParams.view_width` (the ``change_view`` width)."""
-VIEW_QUALITIES = ("high", "low")
-"""Allowed values of :attr:`SensingParams.view_quality` (the ``change_view`` quality)."""
-LANDMARK_SETS = ("full", "1996")
-"""Allowed values of :attr:`SensingParams.landmark_set`."""
+DirectionMode = Literal["truncate", "round"]
+"""How a direction becomes integer degrees: protocol < 7 truncates, >= 7 rounds (§3.2)."""
+ViewWidth = Literal["narrow", "normal", "wide"]
+"""The ``change_view`` width (§3.1)."""
+ViewQuality = Literal["high", "low"]
+"""The ``change_view`` quality (§3.1)."""
+LandmarkSet = Literal["full", "1996"]
+"""Which flags and goals the pitch has (§3.8)."""
 
-WIDTH_FACTOR = {"narrow": 0.5, "normal": 1.0, "wide": 2.0}
+WIDTH_FACTOR: dict[ViewWidth, float] = {"narrow": 0.5, "normal": 1.0, "wide": 2.0}
 """View-cone width and see-interval factor per view width (§3.1)."""
-QUALITY_FACTOR = {"high": 1.0, "low": 0.5}
+QUALITY_FACTOR: dict[ViewQuality, float] = {"high": 1.0, "low": 0.5}
 """See-interval factor per view quality (§3.1: low quality halves the interval)."""
 
 
@@ -71,17 +74,22 @@ class SensingParams:
         protocol_version: client protocol of the text messages (3 for 1996, 19 for today).
         report_changes: send distance/direction changes at all.
         landmark_set: ``"full"`` (55 flags/goals) or ``"1996"`` (the reduced early set).
-        unum_far_length_m: server.conf ``unum_far_length``: uniform number always shown [m].
-        unum_too_far_length_m: server.conf ``unum_too_far_length``: never shown beyond [m];
-            also the limit of ball/flag changes (protocol < 18, §3.4).
-        team_far_length_m: server.conf ``team_far_length``: team always shown [m].
-        team_too_far_length_m: server.conf ``team_too_far_length``: team never shown beyond [m].
+        unum_far_length_m: the player type's ``unum_far_length`` (not a server.conf
+            parameter): uniform number always shown [m].
+        unum_too_far_length_m: the player type's ``unum_too_far_length``: never shown beyond
+            [m]; also the limit of ball/flag changes (protocol < 18, §3.4).
+        team_far_length_m: the player type's ``team_far_length``: team always shown [m].
+        team_too_far_length_m: the player type's ``team_too_far_length``: team never shown
+            beyond [m].
         audio_cut_dist_m: server.conf ``audio_cut_dist``: hearing range of a say [m].
         say_msg_size: server.conf ``say_msg_size``: longest say message [characters].
         hear_max: server.conf ``hear_max``: hearing capacity ceiling.
         hear_inc: server.conf ``hear_inc``: capacity regained per cycle.
         hear_decay: server.conf ``hear_decay``: capacity one heard message costs.
         hear_per_team: separate capacities for teammates and opponents (since 8.0) or one.
+        perfect: perfect perception: exact distances, directions and changes (no quantisation,
+            rounding or random omission), team and number always shown; the cone and the see
+            timing as above.
     """
 
     send_step_ms: int = field(metadata=positive("server.conf send_step"))
@@ -89,14 +97,14 @@ class SensingParams:
     visible_distance_m: float = field(metadata=non_negative("server.conf visible_distance"))
     quantize_step: float = field(metadata=positive("server.conf quantize_step"))
     quantize_step_l: float = field(metadata=positive("server.conf quantize_step_l"))
-    direction_mode: str
+    direction_mode: DirectionMode
     protocol_version: int = field(metadata=positive("client protocol version"))
     report_changes: bool
-    landmark_set: str
-    unum_far_length_m: float = field(metadata=non_negative("server.conf unum_far_length"))
-    unum_too_far_length_m: float = field(metadata=non_negative("server.conf unum_too_far_length"))
-    team_far_length_m: float = field(metadata=non_negative("server.conf team_far_length"))
-    team_too_far_length_m: float = field(metadata=non_negative("server.conf team_too_far_length"))
+    landmark_set: LandmarkSet
+    unum_far_length_m: float = field(metadata=non_negative("player type unum_far_length"))
+    unum_too_far_length_m: float = field(metadata=non_negative("player type unum_too_far_length"))
+    team_far_length_m: float = field(metadata=non_negative("player type team_far_length"))
+    team_too_far_length_m: float = field(metadata=non_negative("player type team_too_far_length"))
     audio_cut_dist_m: float = field(metadata=non_negative("server.conf audio_cut_dist"))
     say_msg_size: int = field(metadata=positive("server.conf say_msg_size"))
     hear_max: int = field(metadata=non_negative("server.conf hear_max"))
@@ -105,17 +113,14 @@ class SensingParams:
     hear_per_team: bool
     simulator_step_ms: int = field(default=100, metadata=positive("server.conf simulator_step"))
     recv_step_ms: int = field(default=10, metadata=positive("server.conf recv_step"))
-    view_width: str = "normal"
-    view_quality: str = "high"
+    view_width: ViewWidth = "normal"
+    view_quality: ViewQuality = "high"
     distance_resolution_m: float = field(default=0.1, metadata=positive("compiled in: 0.1 m"))
     dir_change_step_deg: float = field(default=0.1, metadata=positive("compiled in: 0.1°"))
     dist_change_rel_step: float = field(default=0.02, metadata=positive("compiled in: 0.02"))
+    perfect: bool = False
 
     def __post_init__(self) -> None:
-        _one_of("direction_mode", self.direction_mode, DIRECTION_MODES)
-        _one_of("view_width", self.view_width, VIEW_WIDTHS)
-        _one_of("view_quality", self.view_quality, VIEW_QUALITIES)
-        _one_of("landmark_set", self.landmark_set, LANDMARK_SETS)
         if self.unum_too_far_length_m < self.unum_far_length_m:
             raise ValueError("unum_too_far_length_m must be >= unum_far_length_m")
         if self.team_too_far_length_m < self.team_far_length_m:
@@ -139,12 +144,6 @@ class SensingParams:
     def replace(self, **changes: Any) -> SensingParams:
         """A copy with some fields changed (validated again)."""
         return dataclasses.replace(self, **changes)
-
-
-def _one_of(name: str, value: str, allowed: tuple[str, ...]) -> None:
-    """Refuse a string field outside its allowed values, naming the field."""
-    if value not in allowed:
-        raise ValueError(f"{name}: expected one of {', '.join(allowed)}; got {value!r}")
 
 
 SENSING_19 = SensingParams(

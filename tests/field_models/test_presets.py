@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from pathlib import Path
+from typing import Literal
 
 import pytest
 
-from field_models.presets import PresetError
+from field_models.presets import PresetError, load_record
 from field_models.robot_physics.config import load_preset
 
 SHIPPED = Path(load_preset().source)
@@ -61,3 +63,30 @@ def test_unknown_preset_and_bad_toml(tmp_path) -> None:
         load_preset(str(bad))
     with pytest.raises(PresetError, match="not found"):
         load_preset(str(tmp_path / "absent.toml"))
+
+
+@dataclasses.dataclass(frozen=True)
+class _Options:
+    mode: Literal["fast", "exact"]
+    level: Literal[1, 2] = 1
+
+
+@pytest.mark.parametrize(
+    ("table", "message"),
+    [
+        ({"mode": "slow"}, "x.toml: key 'opts.mode': expected one of fast, exact; got 'slow'"),
+        ({"mode": 1}, "x.toml: key 'opts.mode': expected one of fast, exact; got 1"),
+        ({"mode": "fast", "level": 3}, "x.toml: key 'opts.level': expected one of 1, 2; got 3"),
+        ({"mode": "fast", "level": True}, "key 'opts.level': expected one of 1, 2; got True"),
+    ],
+)
+def test_an_option_outside_its_literal_names_the_key(table: dict, message: str) -> None:
+    with pytest.raises(PresetError) as err:
+        load_record(_Options, table, file="x.toml", key="opts")
+    assert message in str(err.value)
+
+
+def test_an_option_inside_its_literal_loads() -> None:
+    assert load_record(_Options, {"mode": "exact", "level": 2}, file="x.toml") == _Options(
+        "exact", 2
+    )

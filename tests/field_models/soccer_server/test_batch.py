@@ -1,4 +1,4 @@
-"""Batch mode equals one-at-a-time, seed for seed, noise included (issue 3, item 5)."""
+"""Batch mode equals one-at-a-time, seed for seed, noise included."""
 
 from __future__ import annotations
 
@@ -44,17 +44,23 @@ def command_all(
     a: np.ndarray,
     b: np.ndarray,
 ) -> None:
-    """kind per (trial, player): 0 none, 1 dash, 2 turn, 3 kick, 4 dash then turn (ignored)."""
+    """kind per (trial, player): 0 none, 1 dash, 2 turn, 3 kick, 4 dash then turn (ignored).
+
+    Dashes of kind 1 take the direction `b` (clamped and rounded by the preset), kind 4 none.
+    """
     for i in range(1, len(PLAYERS) + 1):
         kk, aa, bb = kind[:, i - 1], a[:, i - 1], b[:, i - 1]
         for k, m in enumerate(singles):
-            if kk[k] in (1, 4):
+            if kk[k] == 1:
+                m.dash(i, aa[k], bb[k])
+            if kk[k] == 4:
                 m.dash(i, aa[k])
             if kk[k] in (2, 4):
                 m.turn(i, bb[k])
             if kk[k] == 3:
                 m.kick(i, aa[k], bb[k])
-        batch.dash(i, aa, mask=(kk == 1) | (kk == 4))
+        batch.dash(i, aa, bb, mask=kk == 1)
+        batch.dash(i, aa, mask=kk == 4)
         batch.turn(i, bb, mask=(kk == 2) | (kk == 4))
         batch.kick(i, aa, bb, mask=kk == 3)
 
@@ -62,7 +68,7 @@ def command_all(
 def assert_same(singles: list[SoccerServerModel], batch: BatchSoccerServer) -> None:
     for name in ("x", "y", "vx", "vy", "heading"):
         single = np.array([getattr(m, name) for m in singles])
-        np.testing.assert_allclose(getattr(batch, name), single, rtol=0.0, atol=1e-12)
+        np.testing.assert_array_equal(getattr(batch, name), single)
     assert [m.play_mode for m in singles] == [batch.mode_name(k) for k in range(K)]
     assert [m.score_left for m in singles] == batch.score_left.tolist()
     assert [m.score_right for m in singles] == batch.score_right.tolist()
@@ -154,3 +160,25 @@ def test_change_mode_is_announced_per_trial() -> None:
     with pytest.raises(ValueError, match="unknown play mode"):
         batch.change_mode("half_time")
     assert "play_on" in PLAY_MODES
+
+
+@pytest.mark.parametrize("name", ["rcssserver_19", "soccer_server_1996"])
+def test_directed_dashes_equal_the_single_model(name: str) -> None:
+    preset = load_server_preset(name).replace_dynamics(player_rand=0.0, ball_rand=0.0)
+    directions = np.radians(np.linspace(-200.0, 200.0, K))  # beyond the range, off the step
+    singles = [SoccerServerModel(preset, PLAYERS, rng) for rng in rngs(4)]
+    batch = BatchSoccerServer(preset, PLAYERS, rngs(4))
+    for k, m in enumerate(singles):
+        m.move_player(1, -10.0, 0.0, 0.3)
+        assert m.dash(1, 80.0, float(directions[k]))
+    batch.move_player(1, -10.0, 0.0, 0.3)
+    assert batch.dash(1, 80.0, directions).all()
+    for m in singles:
+        m.step()
+    batch.step()
+    assert_same(singles, batch)
+    moved = np.hypot(batch.x[:, 1] + 10.0, batch.y[:, 1])
+    if name == "rcssserver_19":  # side and back dashes are slower than straight ones
+        assert moved.min() < 0.7 * moved.max()
+    else:  # no dash direction in 1996: every dash runs straight ahead
+        np.testing.assert_allclose(moved, 0.8, atol=1e-12)

@@ -14,7 +14,8 @@ from field_models.protocol import LEFT, RIGHT, Dash, Kick, PlayerRef, Say, Turn
 from field_models.soccer_server.dynamics import (
     PLAY_ON,
     SoccerServerModel,
-    goal_side,
+    dash_direction,
+    dash_rate,
     kick_effectiveness,
 )
 from field_models.soccer_server.params import ServerPreset, load_server_preset
@@ -187,6 +188,85 @@ def test_dash_follows_the_heading() -> None:
     m.step()
     assert m.y[1] - 10.0 == pytest.approx(0.6, abs=1e-12)
     assert m.x[1] == pytest.approx(0.0, abs=1e-12)
+
+
+def first_push(
+    name: str, direction_deg: float, power: float = 100.0, heading: float = 0.0
+) -> tuple[float, float]:
+    """The first-cycle displacement of a player at rest dashing `direction_deg` (ours, CCW)."""
+    m = model(name, referee=False)
+    m.move_ball(0.0, 30.0)  # out of the way
+    m.move_player(1, 0.0, 0.0, heading)
+    assert m.command(1, Dash(power, math.radians(direction_deg)))
+    m.step()
+    return m.x[1], m.y[1]
+
+
+@pytest.mark.parametrize(
+    ("direction_deg", "rate"),
+    [(0.0, 1.0), (45.0, 0.7), (-45.0, 0.7), (90.0, 0.4), (-90.0, 0.4), (135.0, 0.55), (180.0, 0.7)],
+)
+def test_directed_dash_rate_and_direction_today(direction_deg: float, rate: float) -> None:
+    # leg.cpp calcDashAccel: 1 ahead, 0.4 (side_dash_rate) at ±90°, 0.7 (back_dash_rate) at 180°,
+    # linear between; the push runs along heading + direction (ours CCW: +90° is to the left).
+    x, y = first_push("rcssserver_19", direction_deg)
+    push = 100.0 * 0.006 * rate
+    expected = (
+        push * math.cos(math.radians(direction_deg)),
+        push * math.sin(math.radians(direction_deg)),
+    )
+    assert (x, y) == pytest.approx(expected, abs=1e-12)
+    assert dash_rate(math.radians(direction_deg), 0.4, 0.7) == pytest.approx(rate, abs=1e-12)
+
+
+def test_side_dash_goes_sideways_relative_to_the_heading() -> None:
+    # Facing +y, a dash at +90° (our left) runs toward -x at 0.4 of the power.
+    x, y = first_push("rcssserver_19", 90.0, heading=math.pi / 2)
+    assert (x, y) == pytest.approx((-0.24, 0.0), abs=1e-12)
+    # The server's (dash 100 90) is to the player's right: our -90°.
+    x, y = first_push("rcssserver_19", -90.0, heading=math.pi / 2)
+    assert (x, y) == pytest.approx((0.24, 0.0), abs=1e-12)
+
+
+def test_dash_direction_is_rounded_to_the_step_and_clamped() -> None:
+    d = load_server_preset("rcssserver_19").dynamics
+    assert dash_direction(math.radians(30.4), d) == pytest.approx(math.radians(30.0), abs=1e-12)
+    assert dash_direction(math.radians(-30.6), d) == pytest.approx(math.radians(-31.0), abs=1e-12)
+    assert dash_direction(math.radians(0.5), d) == 0.0  # rint: half to even
+    assert dash_direction(math.radians(1.5), d) == pytest.approx(math.radians(2.0), abs=1e-12)
+    wide = d.replace(dash_angle_step_rad=math.radians(45.0))
+    assert dash_direction(math.radians(60.0), wide) == pytest.approx(math.pi / 4, abs=1e-12)
+    assert dash_direction(math.radians(70.0), wide) == pytest.approx(math.pi / 2, abs=1e-12)
+    free = d.replace(dash_angle_step_rad=0.0)
+    assert dash_direction(0.1234, free) == 0.1234  # step 0: any direction
+    # The range is the server's (clockwise) one: [-90, 30] server degrees is [-30, 90] ours.
+    narrow = d.replace(
+        min_dash_angle_rad=math.radians(-90.0), max_dash_angle_rad=math.radians(30.0)
+    )
+    assert dash_direction(math.radians(60.0), narrow) == pytest.approx(math.radians(60.0))
+    assert dash_direction(math.radians(-60.0), narrow) == pytest.approx(math.radians(-30.0))
+    assert dash_direction(math.radians(120.0), narrow) == pytest.approx(math.radians(90.0))
+    # A rounded direction moves the player exactly like the rounded request.
+    assert first_push("rcssserver_19", 44.6) == first_push("rcssserver_19", 45.0)
+
+
+def test_dash_rate_is_clamped_to_0_1() -> None:
+    assert dash_rate(math.pi, 0.4, 1.7) == 1.0
+    assert dash_rate(math.pi / 2, -0.5, 0.7) == 0.0
+
+
+def test_1996_preset_ignores_the_dash_direction() -> None:
+    # The paper's servers had no dash direction: min = max = 0 clamps it to a straight dash.
+    straight = first_push("soccer_server_1996", 0.0)
+    assert straight == pytest.approx((1.0, 0.0), abs=1e-12)
+    for direction in (90.0, -45.0, 180.0):
+        assert first_push("soccer_server_1996", direction) == straight
+    back = first_push("soccer_server_1996", 90.0, power=-30.0)
+    assert back == pytest.approx((-0.3, 0.0), abs=1e-12)  # a negative power still runs back
+
+
+def test_negative_dash_power_with_a_direction_today_does_nothing() -> None:
+    assert first_push("rcssserver_19", 90.0, power=-50.0) == (0.0, 0.0)  # min_dash_power 0
 
 
 @pytest.mark.parametrize(
@@ -374,8 +454,19 @@ def test_goal_for_the_right_team_and_a_wide_shot() -> None:
     m.move_ball(50.0, 7.5, vx_mps=15.0)  # outside the posts (7.07)
     for _ in range(3):
         assert m.step() == []
-    assert goal_side(m.params, 52.0, 7.0, 53.0, 7.0) == 1
-    assert goal_side(m.params, 52.0, 7.1, 53.0, 7.1) == 0
+    assert m.pitch().goal_post_radius_m == 0.06  # the goal test's mouth: 7.01 + 0.06
+
+
+def test_goal_between_the_posts_counts_the_post_radius() -> None:
+    # rcssserver_19: |y| <= 7.01 + 0.06 at the line is a goal; the 1996 servers had no posts.
+    for name, y, expected in [
+        ("rcssserver_19", 7.05, ["goal_l_1"]),
+        ("soccer_server_1996", 7.05, []),
+        ("soccer_server_1996", 7.0, ["goal_l_1", "kick_off_r"]),
+    ]:
+        m = model(name, players=(ME, THEM))
+        m.move_ball(52.0, y, vx_mps=10.0)
+        assert m.step() == expected, (name, y)
 
 
 def test_kick_in_a_restart_mode_starts_play() -> None:

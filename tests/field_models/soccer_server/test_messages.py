@@ -15,18 +15,15 @@ from field_models.soccer_server.messages import (
     parse_hear,
     parse_see,
     parse_see_general,
-    parse_sense_body,
     parse_sexpr,
     render_hear,
     render_see,
-    render_sense_body,
 )
 from field_models.soccer_server.sensing import (
     HearInfo,
     SeeInfo,
     SeenObject,
     observe,
-    sense_body,
 )
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 
@@ -210,40 +207,6 @@ def test_old_hear_keeps_parentheses_in_the_message() -> None:
     assert parse_hear("(hear 3 -20 pass (to) 7)") == HearInfo(3, "player", "pass (to) 7", -20)
 
 
-@pytest.mark.parametrize("protocol", [3, 5, 6, 7, 8, 13, 19])
-def test_sense_body_round_trip(protocol: int) -> None:
-    params = SENSING_19.replace(protocol_version=protocol)
-    counts = {"kick": 3, "dash": 40, "turn": 7, "say": 1, "turn_neck": 0, "move": 1}
-    for vx, vy, h in [(0.0, 0.0, 0.0), (0.31, -0.2, 1.0), (-0.05, 0.66, -2.9)]:
-        body = sense_body(17, vx, vy, h, 3456.789, 0.876543, counts, params, 120000.5)
-        text = render_sense_body(body, protocol)
-        assert parse_sense_body(text) == body, text
-
-
-def test_sense_body_text_and_unknown_groups() -> None:
-    body = sense_body(4, 0.3, -0.4, 0.0, 8000.0, 1.0, {"dash": 2}, SENSING_19, 130600.0)
-    assert render_sense_body(body, 19) == (
-        "(sense_body 4 (view_mode high normal) (stamina 8000 1 130600) (speed 0.5 53) "
-        "(head_angle 0) (kick 0) (dash 2) (turn 0) (say 0) (turn_neck 0) (catch 0) (move 0) "
-        "(change_view 0))"
-    )
-    real = (
-        "(sense_body 0 (view_mode high normal) (stamina 8000 1 130600) (speed 0 0) "
-        "(head_angle 0) (kick 0) (dash 0) (turn 0) (say 0) (turn_neck 0) (catch 0) (move 0) "
-        "(change_view 0) (arm (movable 0) (expires 0) (target 0 0) (count 0)) "
-        "(focus (target none) (count 0)) (tackle (expires 0) (count 0)) (collision none) "
-        "(foul  (charged 0) (card none)) (focus_point 0 0))"
-    )
-    parsed = parse_sense_body(real)
-    assert parsed.stamina == 8000.0 and parsed.speed_dir == 0 and parsed.change_view == 0
-    old = (
-        "(sense_body 12 (view_mode high normal) (stamina 1995 1) (speed 0.42) (kick 0) (dash 3) "
-        "(turn 1) (say 0))"
-    )
-    assert parse_sense_body(old).speed == 0.42
-    assert render_sense_body(parse_sense_body(old), 3) == old
-
-
 # ----------------------------------------------------------------------------- malformed input
 
 
@@ -256,7 +219,8 @@ def test_sense_body_text_and_unknown_groups() -> None:
         ("(see 1 ((b) 1 2)))", "after the closing"),
         ("(see x ((b) 1 2))", "time"),
         ("(see -1 ((b) 1 2))", "time"),
-        ("(see 1 ((b) 1 2.5))", "direction"),
+        ("(see 1 ((b) 1 2x))", "direction"),
+        ("(see 1 ((b) 1 180.5))", "outside"),
         ("(see 1 ((b) -1 2))", "distance"),
         ("(see 1 ((b) nan 2))", "distance"),
         ("(see 1 ((b) 1e999 2))", "finite"),
@@ -274,16 +238,10 @@ def test_sense_body_text_and_unknown_groups() -> None:
         ('(hear 1 3 "hi)', "quoted"),
         ("(hear 1 self )", "empty"),
         ("(hear x self hi)", "time"),
-        ("(sense_body 1 (view_mode high normal))", "missing (stamina"),
-        (
-            "(sense_body 1 (view_mode mid normal) (stamina 1 1) (speed 0) (kick 0) (dash 0) "
-            "(turn 0) (say 0))",
-            "view_mode",
-        ),
     ],
 )
 def test_malformed_messages_raise_a_clear_error(text: str, fragment: str) -> None:
-    parsers = {"(see": parse_see, "(hear": parse_hear, "(sense_body": parse_sense_body}
+    parsers = {"(see": parse_see, "(hear": parse_hear}
     parser = next((p for k, p in parsers.items() if text.startswith(k)), parse_see)
     with pytest.raises(MessageParseError) as err:
         parser(text)
@@ -308,14 +266,13 @@ VALID = (
     + [
         '(see 0 ((f c) 11.1 -27 0 0) ((p "left" 2) 5 0 0 -2.3 -30 -30) ((l r) 62.8 90))',
         '(hear 9 12 our 4 "pass 7")',
-        "(sense_body 4 (view_mode high normal) (stamina 8000 1) (speed 0.5 53) (head_angle 0) "
-        "(kick 0) (dash 2) (turn 0) (say 0))",
+        '(see 3 ((b) 11.180339887498949 -26.56505117707799 0.1 -0.25) ((p "left" 2) 5.5 1.5))',
     ]
 )
 
 
 def _parse_any(text: str) -> None:
-    for parser in (parse_see, parse_hear, parse_sense_body):
+    for parser in (parse_see, parse_hear):
         with contextlib.suppress(MessageParseError):
             parser(text)
     # The see fast path and the general parser agree: same record, or both refuse.

@@ -53,6 +53,14 @@ def test_19_preset_is_todays_defaults() -> None:
     assert d.kickable_area_m == pytest.approx(1.085)
     assert (d.min_dash_power, d.max_dash_power) == (0.0, 100.0)
     assert d.after_goal_wait_cycles == 50
+    assert (d.side_dash_rate, d.back_dash_rate) == (0.4, 0.7)
+    assert d.dash_angle_step_rad == pytest.approx(math.radians(1.0))
+    assert (d.min_dash_angle_rad, d.max_dash_angle_rad) == (-math.pi, math.pi)
+
+
+def test_1996_preset_has_no_dash_direction() -> None:
+    d = load_server_preset("soccer_server_1996").dynamics
+    assert (d.min_dash_angle_rad, d.max_dash_angle_rad, d.dash_angle_step_rad) == (0.0, 0.0, 0.0)
 
 
 def test_degrees_become_radians_once() -> None:
@@ -73,6 +81,8 @@ def test_pitch_from_params() -> None:
     pitch = load_server_preset("rcssserver_19").dynamics.pitch()
     assert (pitch.length_m, pitch.width_m, pitch.goal_width_m) == (105.0, 68.0, 14.02)
     assert pitch.player_radius_m == 0.3 and pitch.ball_radius_m == 0.085
+    assert pitch.goal_post_radius_m == 0.06  # the goal test's widening (§6)
+    assert load_server_preset("soccer_server_1996").dynamics.pitch().goal_post_radius_m == 0.0
 
 
 # ----------------------------------------------------------------------------- bad files
@@ -113,7 +123,8 @@ def test_negative_value_names_file_and_key(tmp_path: Path) -> None:
 
 def test_bad_noise_model_names_key(tmp_path: Path) -> None:
     path = _edited(tmp_path, 'noise_model = "polar"', 'noise_model = "gauss"')
-    assert "dynamics.noise_model" in _error(path)
+    message = _error(path)
+    assert "key 'dynamics.noise_model': expected one of box, polar; got 'gauss'" in message
 
 
 def test_degree_key_of_wrong_type_names_the_degree_key(tmp_path: Path) -> None:
@@ -133,7 +144,12 @@ def test_unknown_key_refused(tmp_path: Path) -> None:
 
 def test_sensing_check_names_key(tmp_path: Path) -> None:
     path = _edited(tmp_path, 'direction_mode = "round"', 'direction_mode = "sideways"')
-    assert "sensing.direction_mode" in _error(path)
+    message = _error(path)
+    assert (
+        "key 'sensing.direction_mode': expected one of truncate, round; got 'sideways'" in message
+    )
+    path = _edited(tmp_path, 'view_width = "normal"', "view_width = 1")
+    assert "key 'sensing.view_width': expected one of narrow, normal, wide; got 1" in _error(path)
 
 
 def test_missing_table_and_bad_era(tmp_path: Path) -> None:
@@ -142,7 +158,7 @@ def test_missing_table_and_bad_era(tmp_path: Path) -> None:
     no_sensing.write_text(text.split("[sensing]")[0])
     assert "'sensing'" in _error(no_sensing)
     path = _edited(tmp_path, 'era = "19"', 'era = "2024"')
-    assert "'era'" in _error(path)
+    assert "key 'era': expected one of 1996, 19; got '2024'" in _error(path)
 
 
 def test_unknown_preset_name_lists_the_known_ones() -> None:
@@ -154,4 +170,20 @@ def test_record_checks_apply_to_replace() -> None:
     d = load_server_preset("rcssserver_19").dynamics
     with pytest.raises(ParamError, match="minpower"):
         d.replace(minpower=200.0)
+    with pytest.raises(ParamError, match="min_dash_angle_rad"):
+        d.replace(min_dash_angle_rad=1.0, max_dash_angle_rad=0.5)
     assert d.replace(ball_rand=0.0).ball_rand == 0.0
+
+
+def test_dash_angles_in_degrees_and_their_order(tmp_path: Path) -> None:
+    path = _edited(tmp_path, "max_dash_angle_deg = 180.0", "max_dash_angle_deg = -190.0")
+    assert "key 'dynamics.min_dash_angle_rad': expected <= its maximum" in _error(path)
+    path = _edited(tmp_path, "dash_angle_step_deg = 1.0", "dash_angle_step_deg = -1.0")
+    assert "key 'dynamics.dash_angle_step_rad': expected a number >= 0" in _error(path)
+
+
+def test_replace_sensing() -> None:
+    preset = load_server_preset("rcssserver_19")
+    perfect = preset.replace_sensing(perfect=True)
+    assert perfect.sensing.perfect and not preset.sensing.perfect
+    assert perfect.dynamics == preset.dynamics

@@ -51,7 +51,7 @@ def text_route(
     st.lists(angle, min_size=4, max_size=4),
     st.integers(1, 3),
     st.integers(0, 2**32 - 1),
-    st.sampled_from(["19", "1996", "8", "low"]),
+    st.sampled_from(["19", "1996", "8", "low", "perfect", "perfect_1996", "perfect_low"]),
 )
 def test_text_route_equals_fast_path(
     xs: list[float],
@@ -69,6 +69,9 @@ def test_text_route_equals_fast_path(
             protocol_version=8, team_far_length_m=40.0, team_too_far_length_m=60.0
         ),
         "low": SENSING_19.replace(view_quality="low"),
+        "perfect": SENSING_19.replace(perfect=True),
+        "perfect_1996": SENSING_1996.replace(perfect=True),
+        "perfect_low": SENSING_19.replace(perfect=True, view_quality="low"),
     }[era]
     state = (xs, ys, vs[:4], vs[4:], hs)
     slow = text_route(observer, state, params, seed, tick=42)
@@ -235,3 +238,70 @@ def test_percept_carries_heard_messages() -> None:
     )
     assert fast.heard == heard
     assert fast.ball == SeenBall(5.0, 0.0)  # 1996: no changes
+
+
+# ----------------------------------------------------------------------------- perfect perception
+
+PERFECT = SENSING_19.replace(perfect=True)
+
+
+def perfect_scene() -> tuple[list[float], ...]:
+    """Observer 1 at (-10, 5) facing 20°, moving; the ball, two players and a goal in view."""
+    return (
+        [3.0, -10.0, 4.0, 7.0],
+        [2.0, 5.0, 9.5, 0.0],
+        [0.7, 0.2, -0.1, 0.3],
+        [-0.4, 0.1, 0.25, 0.0],
+        [0.0, math.radians(20.0), 2.0, -1.0],
+    )
+
+
+def test_perfect_see_equals_the_true_geometry() -> None:
+    x, y, vx, vy, h = perfect_scene()
+    for seed in range(5):  # no draw changes anything: identity and changes are always there
+        info = observe(1, x, y, vx, vy, h, PLAYERS, 7, PERFECT, np.random.default_rng(seed))
+        percept = percept_from_see(info, PLAYERS[0], 7, 7)
+        assert percept.ball is not None and len(percept.players) == 2
+        rows = {"b": 0, (PLAYERS[1].team, PLAYERS[1].number): 2, (PLAYERS[2].team, 1): 3}
+        seen = [("b", percept.ball.distance_m, percept.ball.angle_rad)]
+        seen += [((p.team, p.number), p.distance_m, p.angle_rad) for p in percept.players]
+        for who, dist, ang in seen:
+            i = rows[who]
+            dx, dy = x[i] - x[1], y[i] - y[1]
+            assert dist == pytest.approx(math.hypot(dx, dy), rel=1e-15)
+            assert ang == pytest.approx(math.atan2(dy, dx) - h[1], abs=1e-14)
+        # Distance change: relative velocity along the line of sight [m/cycle] -> m/s.
+        dx, dy = x[0] - x[1], y[0] - y[1]
+        d = math.hypot(dx, dy)
+        wx, wy = vx[0] - vx[1], vy[0] - vy[1]
+        assert percept.ball.distance_change_mps == pytest.approx((wx * dx + wy * dy) / d / 0.1)
+        assert percept.ball.angle_change_radps == pytest.approx((dx * wy - dy * wx) / d**2 / 0.1)
+        goal = percept.landmark("g r")  # at (52.5, 0)
+        assert goal is not None
+        assert goal.distance_m == pytest.approx(math.hypot(62.5, 5.0), rel=1e-15)
+        assert goal.angle_rad == pytest.approx(math.atan2(-5.0, 62.5) - h[1], abs=1e-14)
+
+
+def test_perfect_see_keeps_the_cone_and_the_far_details() -> None:
+    x, y, vx, vy, h = perfect_scene()
+    far = [*x[:3], 70.0]  # the opponent 80 m away: no number (nor changes) in a normal see
+    info = observe(1, far, y, vx, vy, h, PLAYERS, 7, PERFECT, np.random.default_rng(0))
+    them = [o for o in info.objects if o.name == "p" and o.team == "right"]
+    assert len(them) == 1 and them[0].unum == 1 and them[0].dist_change is not None
+    normal = observe(1, far, y, vx, vy, h, PLAYERS, 7, SENSING_19, np.random.default_rng(0))
+    last = [o for o in normal.objects if o.name == "p"][-1]
+    assert (last.team, last.unum, last.dist_change) == ("right", None, None)
+    behind = [*x]
+    behind[0] = -20.0  # the ball 10 m behind the observer: out of the cone in both
+    info = observe(1, behind, y, vx, vy, h, PLAYERS, 7, PERFECT, np.random.default_rng(0))
+    assert info.find("b") is None and info.find("B") is None
+
+
+def test_perfect_see_text_round_trips_exactly() -> None:
+    x, y, vx, vy, h = perfect_scene()
+    info = observe(1, x, y, vx, vy, h, PLAYERS, 7, PERFECT, np.random.default_rng(3))
+    text = render_see(info, PERFECT.protocol_version)
+    assert parse_see(text) == info
+    ball = info.find("b")
+    assert ball is not None and isinstance(ball.direction, float)
+    assert repr(ball.distance) in text  # exact, not %g's 6 digits

@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 
 from field_models.presets import PresetError, load_record
 from field_models.protocol import PlayerRef
+from field_models.soccer_server.params import load_server_preset
 from field_models.soccer_server.sensing import (
     far_probability,
     observe,
@@ -141,18 +142,20 @@ def test_bad_sensing_values_are_refused_with_the_key() -> None:
         load_record(SensingParams, {**table, "quantize_step": -0.1}, file="x.toml", key="sensing")
     with pytest.raises(PresetError, match=r"sensing\.say_msg_size"):
         load_record(SensingParams, {**table, "say_msg_size": "10"}, file="x.toml", key="sensing")
-    with pytest.raises(ValueError, match="direction_mode"):
-        dataclasses.replace(SENSING_19, direction_mode="floor")
-    with pytest.raises(ValueError, match="landmark_set"):
-        dataclasses.replace(SENSING_19, landmark_set="1997")
+    with pytest.raises(
+        PresetError, match=r"sensing\.direction_mode': expected one of truncate, round; got 'floor'"
+    ):
+        load_record(
+            SensingParams, {**table, "direction_mode": "floor"}, file="x.toml", key="sensing"
+        )
+    with pytest.raises(PresetError, match=r"x\.toml: key 'sensing\.landmark_set': expected one of"):
+        load_record(SensingParams, {**table, "landmark_set": "1997"}, file="x.toml", key="sensing")
+    with pytest.raises(PresetError, match=r"sensing\.view_width': expected one of narrow, normal"):
+        load_record(SensingParams, {**table, "view_width": 2}, file="x.toml", key="sensing")
     with pytest.raises(ValueError, match="team_too_far"):
         dataclasses.replace(SENSING_19, team_too_far_length_m=10.0)
 
 
 def test_shipped_presets_carry_these_sensing_values() -> None:
-    params_mod = pytest.importorskip("field_models.soccer_server.params")
-    load = getattr(params_mod, "load_server_preset", None)
-    if load is None:
-        pytest.skip("preset loader not available yet")
-    assert load("rcssserver_19").sensing == SENSING_19
-    assert load("soccer_server_1996").sensing == SENSING_1996
+    assert load_server_preset("rcssserver_19").sensing == SENSING_19
+    assert load_server_preset("soccer_server_1996").sensing == SENSING_1996

@@ -20,7 +20,6 @@ from field_models.soccer_server.sensing import (
     hearers,
     observe,
     say_allowed,
-    sense_body,
 )
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 
@@ -464,14 +463,3 @@ def test_hearing_capacity_per_era() -> None:
     assert budgets[1].teammates == 1  # regains hear_inc = 1 < hear_decay = 2
     budgets[1].new_cycle()
     assert budgets[1].take(same_team=False)
-
-
-def test_sense_body_contents() -> None:
-    counts = {"kick": 1, "dash": 5, "turn": 2, "say": 0}
-    body = sense_body(7, 0.3, -0.4, 0.0, 1999.87654, 1.0, counts, SENSING_19, 130600.0)
-    assert body.speed == 0.5
-    assert body.speed_dir == 53  # moving down-right in our frame = clockwise = +53 (server)
-    assert body.stamina == 1999.88  # 6 significant digits, as printed
-    assert (body.catch, body.move, body.change_view, body.head_angle) == (0, 0, 0, 0)
-    old = sense_body(7, 0.3, -0.4, 0.0, 2000.0, 1.0, counts, SENSING_1996)
-    assert old.speed_dir is None and old.head_angle is None and old.catch is None
