@@ -287,6 +287,9 @@ class Crossing(IntEnum):
         return abs(self) == 1
 
 
+_NO_CROSSING = Crossing.NONE  # looked up once: coaches call the rule every tick
+
+
 def end_line_crossing(pitch: Pitch, x0: float, y0: float, x1: float, y1: float) -> Crossing:
     """Whether the ball's step (x0, y0) → (x1, y1) took it wholly over an end line, and where.
 
@@ -303,7 +306,7 @@ def end_line_crossing(pitch: Pitch, x0: float, y0: float, x1: float, y1: float) 
     """
     line = 0.5 * pitch.length_m + pitch.ball_radius_m
     if abs(x1) <= line or abs(x0) > line:
-        return Crossing.NONE
+        return _NO_CROSSING
     edge = line if x1 > 0.0 else -line
     y_cross = y0 + (edge - x0) * (y1 - y0) / (x1 - x0)
     side = 1 if x1 > 0.0 else -1

@@ -1,91 +1,150 @@
-"""Build an arena for a field model by name: the one place that knows both models exist."""
+"""The registry of field models: build an arena, or read a field's facts, by model name.
+
+The one place (with the CLI's choices) that knows which field models exist. Each model has an
+entry module (``field_models.<model>.model``) with the same small interface,
+:class:`FieldModelEntry`; the registry imports it only when the model is first used, so naming
+the models costs nothing (the robot entry's arena loads pymunk).
+"""
 
 from __future__ import annotations
 
-import dataclasses
+import importlib
 from functools import lru_cache
+from typing import Any, Protocol, cast
 
-from field_models.arena import Arena
+from field_models.arena import Arena, FieldFacts, FieldOptions
+from field_models.presets import PRESET_DIR
 from field_models.protocol import PlayerRef
-from field_models.robot_physics.config import RobotPhysicsPreset
-from field_models.robot_physics.config import load_preset as _load_robot_preset
 from field_models.seeding import TrialRngs
-from field_models.soccer_server.params import ServerPreset
-from field_models.soccer_server.params import load_server_preset as _load_server_preset
 
-FIELD_MODELS = ("robot_physics", "soccer_server")
-"""Field models an arena can be built for."""
+_ENTRIES = {
+    "robot_physics": "field_models.robot_physics.model",
+    "soccer_server": "field_models.soccer_server.model",
+}
+FIELD_MODELS: tuple[str, ...] = tuple(_ENTRIES)
+"""Registered field models, by name."""
 
-DEFAULT_PRESETS = {"robot_physics": "small_size_1997", "soccer_server": "soccer_server_1996"}
-"""Each field model's default preset."""
+DEFAULT_OPTIONS = FieldOptions()
+"""Every preset value as it is."""
+
+PAPER_FIELD = ("soccer_server", "soccer_server_1996")
+"""The paper's own field (model, preset): the reference a drill carried to another field is
+matched to."""
+
+
+class FieldModelEntry(Protocol):
+    """What a field model's entry module provides (module-level names)."""
+
+    NAME: str
+    """The model's registered name."""
+    DEFAULT_PRESET: str
+    """The preset used when none is named."""
+
+    def load(self, preset: str, options: FieldOptions) -> Any:
+        """The named (or file) preset with `options` applied (cached; frozen, hashable).
+
+        Raises:
+            field_models.presets.PresetError: A missing or wrong preset file.
+            ValueError: An option the model cannot apply.
+        """
+        ...
+
+    def facts(self, preset: Any) -> FieldFacts:
+        """The facts of a loaded preset."""
+        ...
+
+    def build(
+        self,
+        preset: Any,
+        players: tuple[PlayerRef, ...],
+        rngs: TrialRngs,
+        *,
+        keep_events: bool,
+        trace: bool,
+    ) -> Arena:
+        """A fresh arena of a loaded preset with these players."""
+        ...
+
+    def benchmarks(self, quick: bool = False) -> dict[str, Any]:
+        """The model's own speed figures (nested dict of numbers; medians of repeats)."""
+        ...
+
+
+def entry(model: str) -> FieldModelEntry:
+    """The entry module of `model`.
+
+    Raises:
+        ValueError: An unknown field model (the message lists the known ones).
+    """
+    try:
+        module = _ENTRIES[model]
+    except KeyError:
+        raise ValueError(
+            f"unknown field model {model!r} (known: {', '.join(FIELD_MODELS)})"
+        ) from None
+    return cast(FieldModelEntry, importlib.import_module(module))
+
+
+def preload_modules() -> tuple[str, ...]:
+    """Every field model's entry and arena modules: what a worker process imports up front."""
+    entries = tuple(_ENTRIES.values())
+    return entries + tuple(name.rsplit(".", 1)[0] + ".arena" for name in entries)
+
+
+def default_preset(model: str) -> str:
+    """The preset `model` uses when none is named."""
+    return entry(model).DEFAULT_PRESET
+
+
+def shipped_presets(model: str) -> tuple[str, ...]:
+    """Names of the presets shipped for `model` (its folder under ``field_models/presets``)."""
+    entry(model)
+    return tuple(sorted(path.stem for path in (PRESET_DIR / model).glob("*.toml")))
+
+
+def has_preset(model: str, name: str) -> bool:
+    """Whether `model` ships a preset called `name`."""
+    return name in shipped_presets(model)
+
+
+@lru_cache(maxsize=64)
+def field_facts(
+    model: str, preset: str | None = None, options: FieldOptions = DEFAULT_OPTIONS
+) -> FieldFacts:
+    """The facts of `model` with `preset` (default: the model's) and `options` applied.
+
+    Raises:
+        ValueError: An unknown model or an option the model cannot apply.
+        field_models.presets.PresetError: A missing or wrong preset.
+    """
+    module = entry(model)
+    return module.facts(module.load(preset or module.DEFAULT_PRESET, options))
 
 
 def make_arena(
-    field_model: str,
-    preset: str,
+    model: str,
+    preset: str | None,
     players: tuple[PlayerRef, ...],
     rngs: TrialRngs,
+    options: FieldOptions = DEFAULT_OPTIONS,
     *,
-    perfect: bool = False,
     keep_events: bool = False,
     trace: bool = False,
-    ball_noise: float | None = None,
-    camera_latency_s: float | None = None,
-    ball_noise_period_s: float | None = None,
 ) -> Arena:
-    """A fresh arena of `field_model` loaded with `preset` and the given players.
+    """A fresh arena of `model` loaded with `preset` (default: the model's) and the players.
+
+    `keep_events` keeps commands and messages for :meth:`Arena.drain_events` (recordings);
+    `trace` also records every see and hear the clients get, as text.
 
     Raises:
-        ValueError: for an unknown field model.
-        field_models.presets.PresetError: for a missing or wrong preset.
-
-    `keep_events` keeps commands and messages for `Arena.drain_events` (recordings);
-    `trace` also renders the Soccer Server's messages as text (robots: same as keep_events).
-        field_models.presets.PresetError: for a missing or wrong preset.
+        ValueError: An unknown model or an option the model cannot apply.
+        field_models.presets.PresetError: A missing or wrong preset.
     """
-    if field_model == "robot_physics":
-        from field_models.robot_physics.arena import RobotArena
-
-        robot = robot_preset(preset, ball_noise, camera_latency_s, ball_noise_period_s)
-        return RobotArena(robot, players, rngs, perfect=perfect, keep_events=keep_events or trace)
-    if field_model == "soccer_server":
-        from field_models.soccer_server.arena import SoccerServerArena
-
-        if camera_latency_s is not None or ball_noise_period_s is not None:
-            raise ValueError("camera latency and ball-noise period are robot_physics settings")
-        server = server_preset(preset, ball_noise)
-        return SoccerServerArena(server, players, rngs, keep_events=keep_events, trace=trace)
-    raise ValueError(f"unknown field model {field_model!r} (known: {', '.join(FIELD_MODELS)})")
+    module = entry(model)
+    loaded = module.load(preset or module.DEFAULT_PRESET, options)
+    return module.build(loaded, players, rngs, keep_events=keep_events, trace=trace)
 
 
-@lru_cache(maxsize=32)
-def robot_preset(
-    name: str,
-    ball_noise: float | None = None,
-    camera_latency_s: float | None = None,
-    ball_noise_period_s: float | None = None,
-) -> RobotPhysicsPreset:
-    """A robot preset with optional overrides (loaded once per process: trials share it)."""
-    preset = _load_robot_preset(name)
-    if ball_noise is not None:
-        preset = dataclasses.replace(
-            preset, ball=dataclasses.replace(preset.ball, motion_noise=ball_noise)
-        )
-    if ball_noise_period_s is not None:
-        ball = dataclasses.replace(preset.ball, noise_period_s=ball_noise_period_s)
-        preset = dataclasses.replace(preset, ball=ball)
-        preset.ticks(ball_noise_period_s, "ball.noise_period_s")  # refuse a fraction of a tick
-    if camera_latency_s is not None:
-        camera = dataclasses.replace(preset.camera, latency_s=camera_latency_s)
-        preset = dataclasses.replace(preset, camera=camera)
-        preset.ticks(camera_latency_s, "camera.latency_s")  # refuse a fraction of a tick
-    return preset
-
-
-@lru_cache(maxsize=32)
-def server_preset(name: str, ball_noise: float | None = None) -> ServerPreset:
-    """A Soccer Server preset with an optional ``ball_rand`` override (loaded once per process)."""
-    preset = _load_server_preset(name)
-    if ball_noise is not None:
-        preset = preset.replace_dynamics(ball_rand=ball_noise)
-    return preset
+def paper_field_facts() -> FieldFacts:
+    """The facts of :data:`PAPER_FIELD`, with its presets' values as they are."""
+    return field_facts(*PAPER_FIELD)

@@ -3,6 +3,9 @@
 An experiment seed spawns one :class:`numpy.random.SeedSequence` per trial. Each trial splits its
 sequence into independent, *named* generators, so adding a new consumer never shifts the numbers
 an existing one draws. Nothing in the project uses module-level `random` or `np.random.*`.
+
+The names are declared in :data:`STREAMS`; asking for any other name is an error, so a misspelt
+stream fails loudly instead of silently drawing from a fresh, unrelated generator.
 """
 
 from __future__ import annotations
@@ -12,7 +15,8 @@ import zlib
 import numpy as np
 
 STREAMS = ("placement", "movement", "camera", "link", "sensing", "policy")
-"""The named random streams every trial owns."""
+"""The named random streams every trial owns: the coach's placement, the field's movement noise,
+the robots' camera and link, the Soccer Server's sensing, the minds' own choices."""
 
 
 def trial_sequence(experiment_seed: int, trial_index: int) -> np.random.SeedSequence:
@@ -43,6 +47,14 @@ class TrialRngs:
         return cls(trial_sequence(experiment_seed, trial_index))
 
     def __getitem__(self, name: str) -> np.random.Generator:
-        if name not in self._cache:
-            self._cache[name] = named_generator(self._seq, name)
-        return self._cache[name]
+        """The generator of stream `name` (one of :data:`STREAMS`).
+
+        Raises:
+            KeyError: `name` is not a declared stream.
+        """
+        generator = self._cache.get(name)
+        if generator is None:
+            if name not in STREAMS:
+                raise KeyError(f"unknown random stream {name!r} (declared: {', '.join(STREAMS)})")
+            generator = self._cache[name] = named_generator(self._seq, name)
+        return generator

@@ -2,7 +2,7 @@
 
 Takes arrays, returns arrays; imports no pymunk, no rerun and nothing from `robotsoccer`.
 
-Importing torch takes ~2.5 s, so the net's names (`InterceptionModel`, `InterceptionNet`, ...)
+Importing torch takes seconds, so the net's names (`InterceptionModel`, `InterceptionNet`, ...)
 are imported from :mod:`learning.interception` on first use; the features, datasets, lookup
 table and analytic predictor never load torch.
 """

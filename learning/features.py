@@ -10,7 +10,7 @@ The schema is versioned: every dataset and model file records :data:`SCHEMA_VERS
 column names, and loaders refuse a file written for another schema (:class:`SchemaError`).
 
 Distance scale (the transfer study): the Soccer Server field is 105 m long and the robot table
-2.74 m, about 40x apart. A model's distance inputs are the metre distances divided by its
+2.74 m, far apart. A model's distance inputs are the metre distances divided by its
 ``distance_scale_m`` (default 1, i.e. plain metres), so a model trained on one field can be
 applied to the other by giving it that field's scale (e.g. each field's length). Datasets always
 store plain metres; the scale belongs to the model that reads them.

@@ -14,11 +14,12 @@ What this module keeps and what it changes (the defaults of :class:`Interception
 * Inputs are standardised (mean 0, standard deviation 1 per column, the scaler stored in the model
   file). The paper fed raw distances and degrees, which is why it needed a learning rate as small
   as 1e-6; on standardised inputs the sigmoid units start in their linear range whatever the
-  field's size, and one learning rate suits both fields (distances differ ~40x between them).
-* Optimiser: Adam, learning rate 0.01, full batch (one update per epoch). The paper's plain
-  back-propagation at 1e-6 does not move in 3000 full-batch epochs on standardised inputs; Adam
-  at 0.01 fits 1000 saves in about two seconds on one CPU thread. ``optimizer="sgd"`` (default
-  rate 0.5) is there for comparison.
+  field's size, and one learning rate suits fields of every size.
+* Optimiser: Adam, learning rate 0.01, full batch (one update per epoch): a rate of 1e-6 is tuned
+  to raw inputs, not to standardised ones — there, plain gradient descent at 1e-6 barely moves
+  the loss in 3000 epochs, and the paper's weight decay lowers it only by shrinking the weights
+  (``tests/learning/test_interception.py`` checks both). ``optimizer="sgd"`` (default rate 0.5)
+  is there for comparison. ``robotsoccer bench`` times a 1000-save fit.
 * Precision: training runs in float64, so the saved weights, :meth:`InterceptionModel.predict`
   (numpy) and :meth:`InterceptionModel.as_function` (plain Python) agree to ~1e-15.
 
@@ -29,7 +30,8 @@ changes the float summation order (notes/tooling.md §4).
 Files are ``.npz`` archives of the weights and scaler plus JSON metadata (format tag, feature
 schema, hyper-parameters, provenance), read with ``allow_pickle=False``; a corrupt or mismatched
 file raises :class:`~learning.features.ModelFileError`. In the control loop, use
-:meth:`InterceptionModel.as_function`: a closure over plain floats, ~30x faster per call than torch.
+:meth:`InterceptionModel.as_function`: a closure over plain floats, far cheaper per call than
+torch on one sample (notes/tooling.md §4).
 The file layout, its validation and the plain-Python closure live in the torch-free
 :mod:`learning.interception_file` (one implementation), so a control loop can load a net with
 :func:`~learning.interception_file.load_turn_function` without importing torch.
@@ -265,7 +267,8 @@ class InterceptionModel:
 
         The distance scale, the standardisation and the sigmoid's halves are folded into one
         coefficient set per hidden unit, so a call is 4 ``math.tanh`` and a dozen multiply-adds
-        (about 1 µs; torch takes ~25 µs per single sample). Equals :meth:`predict` to 1e-9.
+        (notes/tooling.md §4: far cheaper than torch on one sample). Equals :meth:`predict` to
+        1e-9.
         """
         self._check_fitted()
         units, offset = self._folded()

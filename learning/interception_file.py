@@ -9,7 +9,7 @@ holds everything a control loop needs and imports nothing heavier than numpy:
   weights are finite, and raises :class:`~learning.features.ModelFileError` naming the file;
 * the folding of the distance scale, the standardisation and the sigmoid's halves into one
   coefficient set per hidden unit (:func:`fold_net`), and the closure over those plain floats
-  (:func:`turn_function`): 4 ``math.tanh`` and a dozen multiply-adds per call (about 1 µs);
+  (:func:`turn_function`): 4 ``math.tanh`` and a dozen multiply-adds per call;
 * :func:`load_turn_function`: path in, ``f(BD [m], BA [rad], previous BD [m]) -> TA [rad]`` out.
 
 :class:`learning.interception.InterceptionModel` saves, loads and evaluates through these same

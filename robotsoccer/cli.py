@@ -21,13 +21,29 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import NoReturn
 
+from field_models.arena import FieldOptions
 from field_models.presets import PresetError
 from field_models.protocol import PlayerRef
-from field_models.registry import DEFAULT_PRESETS, FIELD_MODELS
+from field_models.registry import FIELD_MODELS, default_preset
 from robotsoccer.drills import DRILLS, make_drill
 from robotsoccer.runs.pool import default_workers, run_trials
-from robotsoccer.runs.runner import TrialResult, TrialSpec
+from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial
 from robotsoccer.stats import wilson_interval
+
+DEMO_FIELD = "robot_physics"
+"""The field model the demo (and the demo benchmark) runs on by default: the paper's robots."""
+PAPER_MODELS = ("soccer_server", "robot_physics")
+"""The field models ``reproduce`` runs, in report order."""
+BENCH_TARGETS = {
+    "robot_physics.realtime_factor.2_robots": (">=", 300.0),
+    "robot_physics.realtime_factor.12_robots": (">=", 60.0),
+    "soccer_server.cycles_per_s.2_players": (">=", 30_000.0),
+    "soccer_server.object_cycles_per_s.batch": (">=", 2_000_000.0),
+    "intercept.trials_per_s.soccer_server": (">=", 3_000.0),
+    "intercept.trials_per_s.robot_physics": (">=", 100.0),
+    "training.net_1000_saves_s": ("<=", 5.0),
+}
+"""What ``robotsoccer bench`` checks each figure against."""
 
 
 class UsageError(Exception):
@@ -97,7 +113,7 @@ def _add_experiment_options(p: argparse.ArgumentParser) -> None:
 
 def _add_run_options(p: argparse.ArgumentParser, default_trials: int) -> None:
     p.add_argument("--trials", type=_positive_int, default=default_trials)
-    p.add_argument("--field", default="robot_physics", choices=FIELD_MODELS, help="field model")
+    p.add_argument("--field", default=DEMO_FIELD, choices=FIELD_MODELS, help="field model")
     p.add_argument("--field-preset", default=None, help="preset name or .toml path")
     p.add_argument("--seed", type=int, default=0, help="experiment seed")
     p.add_argument("--workers", type=_positive_int, default=None, help="default: all cores")
@@ -161,7 +177,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def cmd_demo(args: argparse.Namespace) -> int:
     """Run the demo drill and print its summary table."""
-    preset = args.field_preset or DEFAULT_PRESETS[args.field]
+    preset = args.field_preset or default_preset(args.field)
     make_drill(args.drill)  # fail fast on a bad name, before any worker starts
     run_name = f"{args.drill}-{args.field}-{Path(preset).stem}-seed{args.seed}"
     out = args.out or Path("runs") / run_name
@@ -171,7 +187,7 @@ def cmd_demo(args: argparse.Namespace) -> int:
         field_model=args.field,
         preset=preset,
         seed=args.seed,
-        perfect_perception=args.perfect_perception,
+        field=FieldOptions(perfect_perception=args.perfect_perception),
         record_dir=str(record_dir) if record_dir else None,
         record_trials=args.record_trials if args.record else 0,
     )
@@ -212,12 +228,8 @@ def cmd_demo(args: argparse.Namespace) -> int:
 
 
 def _check_spec(spec: TrialSpec) -> None:
-    """Build one arena up front so a bad preset fails here with one line, not in a worker."""
-    from field_models.registry import make_arena
-    from field_models.seeding import TrialRngs
-
-    drill = make_drill(spec.drill)
-    make_arena(spec.field_model, spec.preset, drill.players(), TrialRngs.for_trial(spec.seed, 0))
+    """Build trial 0 up front so a bad preset or option fails here in one line, not in a worker."""
+    build_trial(spec, 0)
 
 
 def summary_table(results: Sequence[TrialResult], labels: Sequence[str], title: str) -> str:
@@ -235,39 +247,30 @@ def summary_table(results: Sequence[TrialResult], labels: Sequence[str], title: 
 
 def cmd_bench(args: argparse.Namespace) -> int:
     """Run the benchmarks; print JSON or a readable list."""
-    from robotsoccer.bench import run_benchmarks
+    from robotsoccer.bench import flatten, run_benchmarks, target_cell
 
-    results = run_benchmarks(quick=args.quick)
+    def say(line: str) -> None:
+        print(f"bench: {line}", file=sys.stderr, flush=True)
+
+    results = run_benchmarks(quick=args.quick, demo_field=DEMO_FIELD, say=say)
     if args.json:
         print(json.dumps(results))
     else:
-        for key, value in _flatten(results):
-            print(f"{key:<48} {value}")
+        for key, value in flatten(results):
+            print(f"{key:<44} {value!s:>12}   {target_cell(key, value, BENCH_TARGETS)}".rstrip())
     return 0
-
-
-def _flatten(tree: dict[str, object], prefix: str = "") -> list[tuple[str, object]]:
-    rows: list[tuple[str, object]] = []
-    for key, value in tree.items():
-        name = f"{prefix}{key}"
-        if isinstance(value, dict):
-            rows += _flatten(value, name + ".")
-        else:
-            rows.append((name, value))
-    return rows
 
 
 def cmd_trace(args: argparse.Namespace) -> int:
     """Print the trace of one trial for one client."""
     from robotsoccer.replay.trace import trace_trial
 
-    preset = args.field_preset or DEFAULT_PRESETS[args.field]
     spec = TrialSpec(
         drill=args.drill,
         field_model=args.field,
-        preset=preset,
+        preset=args.field_preset,
         seed=args.seed,
-        ball_noise=args.ball_noise,
+        field=FieldOptions(ball_noise=args.ball_noise),
     ).with_options(**dict(args.option))
     client = _player(args.player) if args.player else None
     for line in trace_trial(spec, args.trial, client):
@@ -293,7 +296,7 @@ def cmd_replay(args: argparse.Namespace) -> int:
 
 def cmd_learn(args: argparse.Namespace) -> int:
     """``learn intercept``: layer 1 on one field model (collect → train → evaluate → report)."""
-    preset = args.field_preset or DEFAULT_PRESETS[args.field]
+    preset = args.field_preset or default_preset(args.field)
     tag = f"learn-intercept-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     title = f"Layer 1 (interception) on {args.field}" + (" — quick plan" if args.quick else "")
@@ -304,7 +307,7 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
     """``reproduce``: all of layer 1 on both field models into one folder."""
     name = f"reproduce-quick-seed{args.seed}" if args.quick else f"reproduce-seed{args.seed}"
     out = args.out or Path("runs") / name
-    models = [(model, DEFAULT_PRESETS[model]) for model in ("soccer_server", "robot_physics")]
+    models = [(model, default_preset(model)) for model in PAPER_MODELS]
     title = "Layer 1 reproduction (Stone & Veloso 1996, §5)" + (
         " — quick plan" if args.quick else ""
     )

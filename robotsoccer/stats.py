@@ -30,11 +30,3 @@ def wilson_interval(successes: int, trials: int, z: float = Z_95) -> tuple[float
     half = z * math.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials)) / denom
     return max(0.0, centre - half), min(1.0, centre + half)
 
-
-def format_share(successes: int, trials: int) -> str:
-    """``"53.0% [43.3, 62.5] (53/100)"``: a percentage with its 95% interval and counts."""
-    if trials == 0:
-        return "n/a (0 trials)"
-    low, high = wilson_interval(successes, trials)
-    share = 100 * successes / trials
-    return f"{share:.1f}% [{100 * low:.1f}, {100 * high:.1f}] ({successes}/{trials})"

@@ -49,3 +49,90 @@ def test_physics_imports_no_drawing_logging_or_cli() -> None:
     for path in sorted((ROOT / "field_models").rglob("*.py")):
         roots = imported_roots(path)
         assert not roots & {"matplotlib", "logging", "argparse", "rerun"}, path
+
+
+# ----------------------------------------------------------------------------- one interface
+
+MODEL_NAMES = {"robot_physics", "soccer_server"}
+PRESET_CLASSES = {"RobotPhysicsPreset", "ServerPreset"}
+MAY_NAME_MODELS = {Path("robotsoccer/cli.py")}
+"""Above the line only the CLI names concrete field models (the registry lives below it)."""
+
+
+def _docstrings(tree: ast.AST) -> set[int]:
+    ids = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Module | ast.ClassDef | ast.FunctionDef | ast.AsyncFunctionDef):
+            body = node.body
+            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
+                ids.add(id(body[0].value))
+    return ids
+
+
+def concrete_model_uses(path: Path) -> list[str]:
+    """Where a module names a concrete field model, imports one, or reads a preset class."""
+    tree = ast.parse(path.read_text(), filename=str(path))
+    docs = _docstrings(tree)
+    found = []
+    for node in ast.walk(tree):
+        line = getattr(node, "lineno", 0)
+        if isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in docs:
+            if any(name in node.value for name in MODEL_NAMES):
+                found.append(f"line {line}: names {node.value!r}")
+        elif isinstance(node, ast.ImportFrom | ast.Import):
+            modules = [node.module or ""] if isinstance(node, ast.ImportFrom) else [
+                alias.name for alias in node.names
+            ]
+            for module in modules:
+                if any(f"field_models.{name}" in module for name in MODEL_NAMES):
+                    found.append(f"line {line}: imports {module}")
+            names = [alias.name for alias in node.names]
+            found += [f"line {line}: imports {n}" for n in names if n in PRESET_CLASSES]
+        elif isinstance(node, ast.Name | ast.Attribute):
+            name = node.id if isinstance(node, ast.Name) else node.attr
+            if name in PRESET_CLASSES:
+                found.append(f"line {line}: uses {name}")
+        elif (
+            isinstance(node, ast.Call)
+            and isinstance(node.func, ast.Name)
+            and node.func.id == "getattr"
+            and len(node.args) >= 2
+            and isinstance(node.args[1], ast.Constant)
+            and node.args[1].value == "preset"
+        ):
+            found.append(f"line {line}: reaches behind the interface for 'preset'")
+    return found
+
+
+def test_nothing_above_the_line_names_a_concrete_field_model() -> None:
+    for path in sorted((ROOT / "robotsoccer").rglob("*.py")):
+        relative = path.relative_to(ROOT)
+        if relative in MAY_NAME_MODELS:
+            continue
+        uses = concrete_model_uses(path)
+        assert not uses, f"{relative}: {uses}"
+
+
+def test_the_check_catches_a_module_that_names_a_model(tmp_path) -> None:
+    bad = tmp_path / "bad.py"
+    bad.write_text(
+        '"""Docstrings may say soccer_server."""\n'
+        "from field_models.soccer_server.params import ServerPreset\n"
+        "def f(arena):\n"
+        '    if arena.facts.model == "robot_physics":\n'
+        '        return getattr(arena, "preset")\n'
+    )
+    uses = concrete_model_uses(bad)
+    assert len(uses) == 4 and not any("Docstrings" in use for use in uses)
+
+
+def test_no_two_classes_share_a_name() -> None:
+    where: dict[str, list[str]] = {}
+    for package in sorted(OURS):
+        for path in sorted((ROOT / package).rglob("*.py")):
+            tree = ast.parse(path.read_text(), filename=str(path))
+            for node in ast.walk(tree):
+                if isinstance(node, ast.ClassDef):
+                    where.setdefault(node.name, []).append(str(path.relative_to(ROOT)))
+    shared = {name: paths for name, paths in where.items() if len(paths) > 1}
+    assert not shared, shared

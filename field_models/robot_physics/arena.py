@@ -4,54 +4,63 @@ One tick (``1/physics_hz`` s), in this order (paper §2, Figures 1–2; DESIGN.m
 
 1. the world steps (wheel ramps, grip, contacts, rolling ball);
 2. the host sends the body actions of earlier decisions that are due now (a decision's later
-   actions, e.g. the Dash after a Turn: :mod:`field_models.robot_physics.host`); packets that arrive this
-   tick reach the firmware of the robot they address (or all, for a
-   broadcast); each robot's firmware turns its newest command into wheel-speed targets, and fires
-   the kicker if the command was a KICK;
+   actions, e.g. the Dash after a Turn: :mod:`field_models.robot_physics.host`); packets that
+   arrive this tick reach the firmware of the robot they address (or all, for a broadcast);
+   each robot's firmware turns its newest command into wheel-speed targets, and fires the
+   kicker if the command was a KICK;
 3. on camera ticks the camera captures the true poses; frames whose latency has elapsed reach the
    host, which builds one egocentric percept per robot and returns them to the runner;
 4. the runner gives each percept to that robot's client mind and hands the actions back through
    :meth:`RobotArena.submit`; the host translates them to primitives and queues them on the link.
 
 The coach side (`place_*`, `*_state`, `truth`) reads and writes the world directly.
+
+Events (``keep_events``): the client's actions as command text (``"command"``), the primitives
+the host sent (``"link"``); with ``trace`` also every percept delivered, written in the Soccer
+Server's see form (``"see"``, :func:`~field_models.robot_physics.host.percept_text`).
 """
 
 from __future__ import annotations
 
-import dataclasses
-
-from field_models.arena import ArenaEvent
-from field_models.protocol import Action, BodyState, Percept, Pitch, PlayerRef, Truth
+from field_models.arena import ArenaEvent, FieldFacts
+from field_models.commands import render_command
+from field_models.protocol import Action, BodyState, Percept, PlayerRef, Truth
 from field_models.robot_physics.camera import OverheadCamera
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.firmware import Firmware
-from field_models.robot_physics.host import CentralHost
+from field_models.robot_physics.host import CentralHost, percept_text
 from field_models.robot_physics.link import Link
 from field_models.robot_physics.world import RobotWorld
 from field_models.seeding import TrialRngs
 
 
 class RobotArena:
-    """The mini-robot testbed behind the :class:`~field_models.arena.Arena` interface."""
+    """The mini-robot testbed behind the :class:`~field_models.arena.Arena` interface.
 
-    model_name = "robot_physics"
+    Args:
+        preset: The robot preset, options already applied (:func:`field_models.registry`).
+        facts: Its facts.
+        players: The robots, in a fixed order.
+        rngs: The trial's generators ("movement", "camera", "link").
+        keep_events: Keep commands and primitives for :meth:`drain_events`.
+        trace: Also keep every delivered percept as a ``"see"`` event.
+    """
 
     def __init__(
         self,
         preset: RobotPhysicsPreset,
+        facts: FieldFacts,
         players: tuple[PlayerRef, ...],
         rngs: TrialRngs,
         *,
-        perfect: bool = False,
         keep_events: bool = False,
+        trace: bool = False,
     ) -> None:
-        if perfect:
-            camera = dataclasses.replace(preset.camera, perfect=True)
-            preset = dataclasses.replace(preset, camera=camera)
         self.preset = preset
+        self.facts = facts
         self.players = players
-        self.pitch: Pitch = preset.pitch()
-        self.dt_s = preset.dt_s
+        self.keep_events = keep_events or trace
+        self.trace = trace
         self.world = RobotWorld(preset, players, rngs["movement"])
         frame_ticks = preset.ticks(1.0 / preset.camera.frame_rate_hz, "camera.frame_rate_hz")
         self.camera = OverheadCamera(
@@ -69,13 +78,13 @@ class RobotArena:
         )
         timeout = preset.ticks(preset.firmware.timeout_s, "firmware.timeout_s")
         self.firmware = [
-            Firmware(ref, preset.robot, preset.firmware, timeout_ticks=timeout, dt_s=self.dt_s)
-            for ref in players
+            Firmware(ref, preset.robot, preset.firmware, timeout_ticks=timeout) for ref in players
         ]
         self._by_ref = {ref: i for i, ref in enumerate(players)}
         self._listeners: frozenset[PlayerRef] | None = None
+        self._events: list[ArenaEvent] = []
         self.host = CentralHost(
-            players, preset, self.link, frame_period_ticks=frame_ticks, keep_events=keep_events
+            players, preset, self.link, frame_period_ticks=frame_ticks, keep_events=self.keep_events
         )
 
     @property
@@ -105,6 +114,10 @@ class RobotArena:
         """Exact state of everything."""
         return self.world.truth()
 
+    def score(self) -> tuple[int, int]:
+        """The table has no referee: (0, 0); coaches judge goals from the ball."""
+        return (0, 0)
+
     # ------------------------------------------------------------------ client side
 
     def step(self) -> list[Percept]:
@@ -123,7 +136,7 @@ class RobotArena:
                 self.firmware[self._by_ref[command.robot]].receive(command, tick)
         for i, fw in enumerate(self.firmware):
             if fw.due(tick):
-                left, right = fw.update(tick, *world.wheel_speeds(i))
+                left, right = fw.update(tick)
                 world.set_wheel_targets(i, left, right)
                 power = fw.take_kick()
                 if power is not None:
@@ -137,11 +150,13 @@ class RobotArena:
             return []
         percepts: list[Percept] = []
         for frame in frames:
-            percepts.extend(self.host.percepts(frame, tick))
+            percepts.extend(host.percepts(frame, tick))
         listeners = self._listeners
-        if listeners is None:
-            return percepts
-        return [p for p in percepts if p.player in listeners]
+        if listeners is not None:
+            percepts = [p for p in percepts if p.player in listeners]
+        if self.trace:
+            self._events += [ArenaEvent(tick, "see", percept_text(p), p.player) for p in percepts]
+        return percepts
 
     def listen(self, refs: frozenset[PlayerRef]) -> None:
         """Return percepts only for these robots (the host still tracks every robot's pose)."""
@@ -149,13 +164,18 @@ class RobotArena:
 
     def submit(self, ref: PlayerRef, actions: tuple[Action, ...]) -> None:
         """Translate a robot's actions into primitives and queue them on the link."""
-        if actions:
-            self.host.submit(ref, actions, self.world.tick)
-
-    def goto(self, ref: PlayerRef, x: float, y: float) -> bool:
-        """Send a GOTO positioning request (field coordinates [m]) through the host."""
-        return self.host.goto(ref, x, y, self.world.tick)
+        if not actions:
+            return
+        tick = self.world.tick
+        if self.keep_events:
+            self._events += [
+                ArenaEvent(tick, "command", render_command(a), ref) for a in actions
+            ]
+        self.host.submit(ref, actions, tick)
 
     def drain_events(self) -> list[ArenaEvent]:
-        """Commands sent since the last call, oldest first."""
-        return self.host.drain_events()
+        """Client commands, primitives sent and (tracing) percepts since the last call."""
+        events = self._events + self.host.drain_events()
+        events.sort(key=lambda e: e.tick)  # stable: the order they happened in within a tick
+        self._events = []
+        return events

@@ -25,17 +25,14 @@ detected, so a trial's numbers depend on its seed alone.
 
 from __future__ import annotations
 
-import math
 from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from field_models.protocol import PlayerRef
+from field_models.protocol import PlayerRef, wrap_angle
 from field_models.robot_physics.config import CameraConfig
-
-_TWO_PI = 2.0 * math.pi
 
 
 @dataclass(frozen=True, slots=True)
@@ -146,11 +143,6 @@ class OverheadCamera:
             out.append(pending.popleft())
         return out
 
-    @property
-    def in_flight(self) -> int:
-        """Frames captured but not yet delivered."""
-        return len(self._pending)
-
     def _exact_frame(
         self,
         tick: int,
@@ -160,7 +152,7 @@ class OverheadCamera:
     ) -> Frame:
         """Truth as a frame delivered at once (perfect perception)."""
         robots = tuple(
-            RobotDetection(ref, x, y, (h + math.pi) % _TWO_PI - math.pi)
+            RobotDetection(ref, x, y, wrap_angle(h))
             for ref, (x, y, h) in zip(self.refs, robot_poses, strict=True)
         )
         return Frame(tick, tick, BallDetection(ball_x, ball_y), robots)
@@ -191,6 +183,6 @@ class OverheadCamera:
             if u[1 + i] < miss:
                 continue
             k = 2 + 3 * i
-            heading = (h + hs * z[k + 2] + math.pi) % _TWO_PI - math.pi
+            heading = wrap_angle(h + hs * z[k + 2])
             robots.append(RobotDetection(ref, x + ps * z[k], y + ps * z[k + 1], heading))
         return Frame(tick, tick + self.latency_ticks, ball, tuple(robots))

@@ -24,6 +24,8 @@ from field_models.presets import (
 from field_models.protocol import Pitch
 
 DEFAULT_PRESET = "small_size_1997"
+GRAVITY_MPS2 = 9.81
+"""Standard gravity [m/s²]: the tyres' grip is μ·m·g."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -114,8 +116,6 @@ class FirmwareConfig:
     """The robot's on-board loop that runs the newest command it received."""
 
     timeout_s: float = field(metadata=positive("stop when no command arrives for this long"))
-    goto_gain_per_s: float = field(metadata=positive("heading gain of the GOTO controller"))
-    goto_tolerance_m: float = field(metadata=positive("GOTO ends within this distance"))
 
 
 @dataclass(frozen=True, slots=True)

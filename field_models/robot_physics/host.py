@@ -2,7 +2,8 @@
 
 The paper's off-board computer (§2, Figures 1–2) makes the camera's perception available to one
 client mind per robot, and sends each mind's navigation commands to its robot over the wireless
-link. Here the host sits between :mod:`field_models.robot_physics.camera` and :mod:`field_models.robot_physics.link`:
+link. Here the host sits between the camera (:mod:`field_models.robot_physics.camera`) and the
+link (:mod:`field_models.robot_physics.link`):
 
 **Percepts** (DESIGN.md §2). On each delivered frame, :meth:`CentralHost.percepts` builds one
 :class:`~field_models.protocol.Percept` per robot, in `refs` order:
@@ -27,7 +28,10 @@ Dash or Kick) at once. Let v_max be the top wheel speed, T one camera period, ω
 
 * ``Dash(p)``: FORWARD (p > 0) or BACKWARD (p < 0) at |p|/100 · v_max (p clipped to ±100), held
   for 2·T, so one lost packet does not stall the robot while the next frame's command replaces it
-  in time. ``Dash(0)``: STOP.
+  in time. ``Dash(0)``: STOP. A robot cannot run sideways, so ``Dash(p, d)`` with a direction d
+  (wrapped) turns first: the Turn(d) below, then the straight dash; for |d| > 90° it turns by
+  d - 180° and drives backwards, whichever needs the smaller turn. (The Soccer Server's side
+  and back dash rates do not apply: the robot runs at full power once turned.)
 * ``Turn(a)`` (a wrapped to [-π, π)): TURN at ω = min(|a|/T, ω_max, √(α·|a|)) toward a, for
   D = ⌈|a|/(ω·dt)⌉ ticks, with ω then set to |a|/(D·dt) so that ω·D·dt = |a| exactly. The √(α·|a|)
   cap lets the wheel ramp reach ω within D; the ramp's lag at the start is then repaid by its
@@ -41,6 +45,9 @@ Dash or Kick) at once. Let v_max be the top wheel speed, T one camera period, ω
 * ``Say(text)``: not sent to the robot; relayed by the host to every other robot's heard buffer,
   with the sender and, when both poses are known, the direction of the sender from the listener.
 
+**Events** (:meth:`CentralHost.drain_events`, when `keep_events`): every primitive sent, on the
+``"link"`` channel (``left1 TURN +2.10 rad/s for 24 ticks``).
+
 **Several body actions in one decision** run in order, as the Soccer Server runs them one per
 cycle (the paper's clients send ``(turn ...)`` then ``(dash ...)`` on one see, Figure 4): the
 first is sent at once, each later one when the previous one's *duration* has elapsed, and a new
@@ -53,9 +60,6 @@ command then waits the same link latency, a FORWARD released D ticks after its T
 firmware as the turn ends. The arena calls :meth:`CentralHost.release` once per tick, before the
 link delivers; it costs one integer comparison while nothing is pending
 (:attr:`CentralHost.next_release_tick`).
-
-:meth:`CentralHost.goto` sends a positioning request (GOTO) for a target in field coordinates,
-converted into the robot's frame from the host's newest pose estimate.
 """
 
 from __future__ import annotations
@@ -63,6 +67,7 @@ from __future__ import annotations
 import math
 
 from field_models.arena import ArenaEvent
+from field_models.commands import server_degrees
 from field_models.protocol import (
     Action,
     Dash,
@@ -75,6 +80,7 @@ from field_models.protocol import (
     SeenLandmark,
     SeenPlayer,
     Turn,
+    wrap_angle,
 )
 from field_models.robot_physics.camera import Frame
 from field_models.robot_physics.config import RobotPhysicsPreset
@@ -90,16 +96,8 @@ DASH_HOLD_PERIODS = 2
 NEVER = 1 << 62
 """A tick that never comes: :attr:`CentralHost.next_release_tick` when nothing is pending."""
 
-_PI = math.pi
-_TWO_PI = 2.0 * math.pi
-
 Pose = tuple[float, float, float]
 """(x [m], y [m], heading [rad]) in the field frame."""
-
-
-def _wrap(angle: float) -> float:
-    """Wrap to [-π, π) (inline copy of `protocol.wrap_angle` for the per-frame loop)."""
-    return (angle + _PI) % _TWO_PI - _PI
 
 
 class CentralHost:
@@ -142,7 +140,7 @@ class CentralHost:
         self._poses: list[Pose | None] = [None] * len(refs)
         self._heard: list[list[Heard]] = [[] for _ in refs]
         self._seq = 0
-        self._events: list[tuple[int, str, PlayerRef | None, Command | str]] = []
+        self._events: list[ArenaEvent] = []
         self._min_ticks = link.packet_period_ticks
         self._pending: list[list[Action]] = [[] for _ in refs]
         self._release_at = [NEVER] * len(refs)
@@ -180,11 +178,11 @@ class CentralHost:
             if ball is not None:
                 dx = ball.x - px
                 dy = ball.y - py
-                seen_ball = SeenBall(math.hypot(dx, dy), _wrap(math.atan2(dy, dx) - heading))
+                seen_ball = SeenBall(math.hypot(dx, dy), wrap_angle(math.atan2(dy, dx) - heading))
             players = tuple(
                 SeenPlayer(
                     math.hypot(det.x - px, det.y - py),
-                    _wrap(math.atan2(det.y - py, det.x - px) - heading),
+                    wrap_angle(math.atan2(det.y - py, det.x - px) - heading),
                     det.ref.team,
                     det.ref.number,
                 )
@@ -195,7 +193,7 @@ class CentralHost:
                 SeenLandmark(
                     name,
                     math.hypot(gx - px, gy - py),
-                    _wrap(math.atan2(gy - py, gx - px) - heading),
+                    wrap_angle(math.atan2(gy - py, gx - px) - heading),
                 )
                 for name, gx, gy in self._goals
             )
@@ -246,27 +244,13 @@ class CentralHost:
         if due < self.next_release_tick:
             self.next_release_tick = due
 
-    def goto(self, ref: PlayerRef, x: float, y: float, tick: int) -> bool:
-        """Send a GOTO toward field point (x, y) [m]; False if `ref` has no pose estimate yet."""
-        pose = self._poses[self._index[ref]]
-        if pose is None:
-            return False
-        px, py, heading = pose
-        dx = x - px
-        dy = y - py
-        c = math.cos(heading)
-        s = math.sin(heading)
-        self._send(ref, Primitive.GOTO, tick, target_x=c * dx + s * dy, target_y=-s * dx + c * dy)
-        return True
-
     def stop(self, tick: int, ref: PlayerRef | None = None) -> None:
         """Send STOP to `ref`, or broadcast it to every robot when `ref` is None."""
         self._send(ref, Primitive.STOP, tick)
 
     def drain_events(self) -> list[ArenaEvent]:
         """Commands sent and messages relayed since the last call, oldest first."""
-        events = [_event(*entry) for entry in self._events]
-        self._events.clear()
+        events, self._events = self._events, []
         return events
 
     # ------------------------------------------------------------------------ internals
@@ -275,12 +259,12 @@ class CentralHost:
         """Translate one body action into a command (module docstring); return its duration."""
         if isinstance(action, Dash):
             power = max(-100.0, min(100.0, action.power))
-            return self._drive(ref, power / 100.0 * self._vmax, tick)
+            return self._dash(ref, power / 100.0 * self._vmax, action.direction_rad, tick)
         if isinstance(action, Turn):
-            return self._turn(ref, _wrap(action.angle_rad), tick)
+            return self._turn(ref, wrap_angle(action.angle_rad), tick)
         if isinstance(action, Kick):
             power = max(0.0, min(100.0, action.power))
-            direction = _wrap(action.direction_rad)
+            direction = wrap_angle(action.direction_rad)
             if self._kick_half_angle is not None:
                 if abs(direction) <= self._kick_half_angle:
                     self._send(ref, Primitive.KICK, tick, value=power)
@@ -290,6 +274,18 @@ class CentralHost:
                 return self._drive(ref, power / 100.0 * self._vmax, tick)
             return self._turn(ref, direction, tick)
         raise TypeError(f"not a body action: {action!r}")
+
+    def _dash(self, ref: PlayerRef, speed_mps: float, direction_rad: float, tick: int) -> int:
+        """A dash toward `direction_rad`: straight, or a turn first (module docstring)."""
+        direction = wrap_angle(direction_rad)
+        if direction == 0.0:
+            return self._drive(ref, speed_mps, tick)
+        if abs(direction) > 0.5 * math.pi:  # nearer to drive backwards than to turn round
+            direction, speed_mps = wrap_angle(direction - math.pi), -speed_mps
+            if direction == 0.0:
+                return self._drive(ref, speed_mps, tick)
+        self._pending[self._index[ref]].append(Dash(100.0 * speed_mps / self._vmax))
+        return self._turn(ref, direction, tick)
 
     def _drive(self, ref: PlayerRef, speed_mps: float, tick: int) -> int:
         """FORWARD/BACKWARD at |speed| held for the dash time; STOP for zero. Returns ticks."""
@@ -328,17 +324,14 @@ class CentralHost:
         *,
         value: float = 0.0,
         duration_ticks: int | None = None,
-        target_x: float = 0.0,
-        target_y: float = 0.0,
     ) -> None:
         """Number a command, put it on the link and note it as an event."""
         self._seq += 1
-        command = Command(
-            self._seq, ref, primitive, value, duration_ticks, target_x, target_y, tick
-        )
+        command = Command(self._seq, ref, primitive, value, duration_ticks, tick)
         self.link.send(command, tick)
         if self.keep_events:
-            self._events.append((tick, "command", ref, command))
+            who = "all" if ref is None else str(ref)
+            self._events.append(ArenaEvent(tick, "link", f"{who} {describe(command)}", ref))
 
     def _relay(self, sender: PlayerRef, text: str, tick: int) -> None:
         """Put a said message into every other robot's heard buffer."""
@@ -349,20 +342,10 @@ class CentralHost:
             direction = None
             listener = self._poses[i]
             if source is not None and listener is not None:
-                direction = _wrap(
+                direction = wrap_angle(
                     math.atan2(source[1] - listener[1], source[0] - listener[0]) - listener[2]
                 )
             self._heard[i].append(Heard(text, sender, direction, tick))
-        if self.keep_events:
-            self._events.append((tick, "message", sender, text))
-
-
-def _event(tick: int, channel: str, ref: PlayerRef | None, payload: Command | str) -> ArenaEvent:
-    """Format a noted command or message as an event line."""
-    who = "all" if ref is None else str(ref)
-    if isinstance(payload, str):
-        return ArenaEvent(tick, channel, f"{who} says {payload!r}", ref)
-    return ArenaEvent(tick, channel, f"{who} {describe(payload)}", ref)
 
 
 def describe(command: Command) -> str:
@@ -374,10 +357,28 @@ def describe(command: Command) -> str:
         text = f"TURN {command.value:+.2f} rad/s"
     elif primitive is Primitive.KICK:
         return f"KICK {command.value:.0f}"
-    elif primitive is Primitive.GOTO:
-        return f"GOTO ({command.target_x:+.3f}, {command.target_y:+.3f}) m"
     else:
         return "STOP"
     if command.duration_ticks is not None:
         text += f" for {command.duration_ticks} ticks"
     return text
+
+
+def percept_text(percept: Percept) -> str:
+    """A robot's percept in the Soccer Server's see form, for traces.
+
+    ``(see T ((goal r) D A) ((ball) D A) ((player left 2) D A))``: distances in metres to the
+    millimetre, directions in the server's degrees (clockwise positive), so a robot trace reads
+    like the paper's Figure 4.
+    """
+    parts = []
+    for mark in percept.landmarks:
+        name = {"g l": "goal l", "g r": "goal r"}.get(mark.name, mark.name)
+        parts.append(f"(({name}) {mark.distance_m:.3f} {server_degrees(mark.angle_rad):g})")
+    if percept.ball is not None:
+        ball = percept.ball
+        parts.append(f"((ball) {ball.distance_m:.3f} {server_degrees(ball.angle_rad):g})")
+    for seen in percept.players:
+        who = "player" if seen.team is None else f"player {seen.team} {seen.number}"
+        parts.append(f"(({who}) {seen.distance_m:.3f} {server_degrees(seen.angle_rad):g})")
+    return f"(see {percept.tick} {' '.join(parts)})"

@@ -46,8 +46,6 @@ class Primitive(IntEnum):
     """Drive straight back at `value` m/s."""
     TURN = 3
     """Spin in place at `value` rad/s, left positive."""
-    GOTO = 4
-    """Positioning request: drive to (`target_x`, `target_y`) in the robot's own frame."""
     KICK = 5
     """Fire the kicker at power `value` (0–100); the wheels keep the running command."""
 
@@ -62,11 +60,9 @@ class Command:
         robot: The addressee, or None for a broadcast to every robot.
         primitive: What to do.
         value: FORWARD/BACKWARD speed [m/s] (>= 0); TURN rate [rad/s], left positive; KICK power
-            (0–100). Unused by STOP and GOTO.
+            (0–100). Unused by STOP.
         duration_ticks: How long the motion runs from its arrival, or None: until replaced or
             the firmware's timeout.
-        target_x: GOTO target ahead of the robot [m], in its own frame at send time.
-        target_y: GOTO target to the robot's left [m], in its own frame at send time.
         sent_tick: Tick at which the host sent the command.
     """
 
@@ -75,8 +71,6 @@ class Command:
     primitive: Primitive
     value: float = 0.0
     duration_ticks: int | None = None
-    target_x: float = 0.0
-    target_y: float = 0.0
     sent_tick: int = 0
 
 
@@ -152,11 +146,6 @@ class Link:
             out.append(flight.popleft()[1])
         self.delivered += len(out)
         return out
-
-    @property
-    def queued(self) -> int:
-        """Commands waiting for a packet slot."""
-        return len(self._queue)
 
     def _depart(self, tick: int) -> None:
         """Send the queued commands whose slots come at or before `tick`."""

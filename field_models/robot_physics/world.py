@@ -32,13 +32,13 @@ import numpy as np
 import pymunk
 from pymunk._chipmunk import lib as _cp
 
-from field_models.protocol import LEFT, RIGHT, BodyState, PlayerRef, Truth
-from field_models.robot_physics.config import RobotPhysicsPreset
+from field_models.protocol import BodyState, PlayerRef, Truth, wrap_angle
+from field_models.robot_physics.config import GRAVITY_MPS2, RobotPhysicsPreset
 
-# The hot loop calls Chipmunk through pymunk's cffi layer: pymunk's Python property wrappers
-# cost about 3x more per call (measured on pymunk 7.3: setting a velocity 0.62 µs vs 0.21 µs,
-# Space.step 0.77 µs vs 0.23 µs). Only reads, velocity writes and the step go this way; bodies
-# and shapes are built and placed through the public API. Pinned to pymunk 7 in pyproject.toml.
+# The hot loop calls Chipmunk through pymunk's cffi layer, skipping pymunk's Python property
+# wrappers, which cost several times more per call (shared notes/tooling.md §2.4). Only reads,
+# velocity writes and the step go this way; bodies and shapes are built and placed through the
+# public API. Pinned to pymunk 7 in pyproject.toml.
 _get_angle = _cp.cpBodyGetAngle
 _get_position = _cp.cpBodyGetPosition
 _get_velocity = _cp.cpBodyGetVelocity
@@ -46,7 +46,6 @@ _set_velocity = _cp.cpBodySetVelocity
 _set_spin = _cp.cpBodySetAngularVelocity
 _space_step = _cp.cpSpaceStep
 
-GRAVITY_MPS2 = 9.81
 _NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same numbers either way)
 
 
@@ -249,8 +248,7 @@ class RobotWorld:
         dy = self.ball.position.y - body.position.y
         ahead = dx * math.cos(heading) + dy * math.sin(heading)
         gap = ahead - 0.5 * self.preset.robot.size_m - self.preset.ball.radius_m
-        bearing = math.atan2(dy, dx) - heading
-        bearing = (bearing + math.pi) % (2 * math.pi) - math.pi
+        bearing = wrap_angle(math.atan2(dy, dx) - heading)
         if gap > kicker.reach_m or ahead <= 0 or abs(bearing) > kicker.half_angle_rad:
             return False
         speed = max(0.0, min(100.0, power)) / 100.0 * kicker.max_speed_mps
@@ -323,7 +321,7 @@ class RobotWorld:
         """Robot `index`'s exact state."""
         ptr = self._drives[index].body_ptr
         p, v = _get_position(ptr), _get_velocity(ptr)
-        return BodyState(p.x, p.y, _wrap(_get_angle(ptr)), v.x, v.y)
+        return BodyState(p.x, p.y, wrap_angle(_get_angle(ptr)), v.x, v.y)
 
     def robot_pose(self, index: int) -> tuple[float, float, float]:
         """Robot `index`'s (x, y, heading) [m, m, rad] (fast path for the camera)."""
@@ -331,31 +329,10 @@ class RobotWorld:
         p = _get_position(ptr)
         return p.x, p.y, _get_angle(ptr)
 
-    def robot_spin(self, index: int) -> float:
-        """Robot `index`'s angular velocity [rad/s]."""
-        return float(self._drives[index].body.angular_velocity)
-
     def truth(self) -> Truth:
         """Exact state of the ball and every robot."""
         players = {ref: self.robot_state(i) for i, ref in enumerate(self.refs)}
         return Truth(self.tick, self.tick * self.dt_s, self.ball_state(), players)
-
-    def goal_scored(self) -> str | None:
-        """Team that conceded if the ball is wholly over a goal line between the posts, else None.
-
-        The left team defends x < 0, so a ball past x = -length/2 is a goal *for* the right team;
-        this returns the scoring side: ``"right"`` then, ``"left"`` for the other goal.
-        """
-        x, y = self.ball_xy()
-        f = self.preset.field
-        if abs(y) >= 0.5 * f.goal_width_m:
-            return None
-        over = 0.5 * f.length_m + self.preset.ball.radius_m
-        if x < -over:
-            return RIGHT
-        if x > over:
-            return LEFT
-        return None
 
 
 def _approach(value: float, target: float, step: float) -> float:
@@ -363,7 +340,3 @@ def _approach(value: float, target: float, step: float) -> float:
     if value < target:
         return min(target, value + step)
     return max(target, value - step)
-
-
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi

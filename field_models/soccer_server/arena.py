@@ -7,43 +7,38 @@ One tick is one 100 ms server cycle (shared `specs/soccer_server.md` §1):
 2. says and referee messages of the cycle are delivered to the players in hearing range
    (`sensing.deliver_says`, §2.6); they reach the client with its next percept;
 3. each player whose see timer fires this cycle (§3.1, the preset's `send_step_ms`; the paper's
-   250 ms by default) gets a percept built from its see (the structured fast path, which a test
-   proves equal to rendering the see message as text and parsing it back).
+   250 ms by default) gets a percept built from its see by the structured fast path
+   (:func:`~field_models.soccer_server.percepts.percept_from_state`, which a test proves equal
+   to rendering the see message as text and parsing it back).
 
 **Several body actions per decision.** The paper's clients send more than one command per see
 (Figure 4: ``(turn 1)`` then ``(dash 60)``), and the server runs one body command per cycle. So a
 mind may return several body actions: they run in order, one per cycle, and a new decision
 replaces whatever is left of the previous one. Says go out at once.
 
-**Text.** With ``trace=True`` every see, hear and command is also rendered in the server's text
-format (Figure 4) into the event log, and the percept is taken from the *parsed text*, so a trace
-shows exactly what the client acted on.
+**Text.** With ``trace=True`` every see and hear is also rendered in the server's text format
+(Figure 4) into the event log, and the percept is taken from the *parsed text*, so a trace shows
+exactly what the client acted on. Commands are logged (``keep_events``) in the client's command
+text (:mod:`field_models.commands`) as they are handed to the server.
 """
 
 from __future__ import annotations
 
-import math
 from collections import deque
 from functools import lru_cache
 
-from field_models.arena import ArenaEvent
-from field_models.protocol import (
-    Action,
-    BodyState,
-    Dash,
-    Heard,
-    Kick,
-    Percept,
-    PlayerRef,
-    Say,
-    Truth,
-    Turn,
-)
+from field_models.arena import ArenaEvent, EventChannel, FieldFacts
+from field_models.commands import render_command
+from field_models.protocol import Action, BodyState, Heard, Percept, PlayerRef, Say, Truth
 from field_models.seeding import TrialRngs
 from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.messages import parse_see, render_hear, render_see
-from field_models.soccer_server.params import ServerPreset, load_server_preset
-from field_models.soccer_server.percepts import heard_from_hear, percept_from_see
+from field_models.soccer_server.params import ServerPreset
+from field_models.soccer_server.percepts import (
+    heard_from_hear,
+    percept_from_see,
+    percept_from_state,
+)
 from field_models.soccer_server.sensing import (
     HearInfo,
     SeeTimer,
@@ -55,29 +50,34 @@ from field_models.soccer_server.sensing_params import SensingParams
 
 
 class SoccerServerArena:
-    """The Soccer Server field model behind the :class:`~field_models.arena.Arena` interface."""
+    """The Soccer Server field model behind the :class:`~field_models.arena.Arena` interface.
 
-    model_name = "soccer_server"
+    Args:
+        preset: The server preset, options already applied (:mod:`field_models.registry`).
+        facts: Its facts.
+        players: The players, rows 1..N of the model.
+        rngs: The trial's generators ("movement", "sensing").
+        keep_events: Keep commands, says and referee calls for :meth:`drain_events`.
+        trace: Also keep every see and hear as text, and take percepts from that text.
+    """
 
     def __init__(
         self,
         preset: ServerPreset,
+        facts: FieldFacts,
         players: tuple[PlayerRef, ...],
         rngs: TrialRngs,
         *,
         keep_events: bool = False,
         trace: bool = False,
-        landmarks: str = "goals",
     ) -> None:
         self.preset = preset
+        self.facts = facts
         self.players = players
         self.model = SoccerServerModel(preset, players, rngs["movement"])
         self.sensing = preset.sensing
-        self.dt_s = self.model.dt_s
-        self.pitch = self.model.pitch()
         self.keep_events = keep_events or trace
         self.trace = trace
-        self.landmarks = "all" if trace else landmarks
         self._see_rng = rngs["sensing"]
         self._see_schedule = see_schedule(self.sensing)
         self._timer = SeeTimer(self.sensing)  # every player's sees share one phase (0)
@@ -86,19 +86,6 @@ class SoccerServerArena:
         self._plans: list[deque[Action]] = [deque() for _ in players]
         self._heard: list[list[Heard]] = [[] for _ in players]
         self._events: list[ArenaEvent] = []
-
-    @classmethod
-    def from_preset(
-        cls,
-        preset: str,
-        players: tuple[PlayerRef, ...],
-        rngs: TrialRngs,
-        *,
-        keep_events: bool = False,
-        trace: bool = False,
-    ) -> SoccerServerArena:
-        """An arena loaded with the named (or file) Soccer Server preset."""
-        return cls(load_server_preset(preset), players, rngs, keep_events=keep_events, trace=trace)
 
     @property
     def tick(self) -> int:
@@ -126,7 +113,11 @@ class SoccerServerArena:
     def truth(self) -> Truth:
         """Exact state of everything."""
         players = {ref: self.model.player_state(row) for ref, row in self._rows.items()}
-        return Truth(self.tick, self.tick * self.dt_s, self.model.ball_state(), players)
+        return Truth(self.tick, self.tick * self.facts.dt_s, self.model.ball_state(), players)
+
+    def score(self) -> tuple[int, int]:
+        """Goals of the left and right team, as the server's referee counted them (§6)."""
+        return (self.model.score_left, self.model.score_right)
 
     # ------------------------------------------------------------------ client side
 
@@ -152,21 +143,23 @@ class SoccerServerArena:
         self._listening = [ref in refs for ref in self.players]
 
     def _see(self, i: int, cycle: int) -> Percept:
-        """Player `i`'s percept from its see of this cycle (text route when tracing)."""
+        """Player `i`'s percept from its see of this cycle (the text route when tracing)."""
         m = self.model
         heard = tuple(self._heard[i])
         self._heard[i].clear()
+        if not self.trace:
+            return percept_from_state(
+                i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
+                self._see_rng, tick=cycle, heard=heard,
+            )  # fmt: skip
         info = observe(
             i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
-            self._see_rng, landmarks=self.landmarks,
+            self._see_rng, landmarks="all",
         )  # fmt: skip
-        cycle_s = self.dt_s
         ref = self.players[i]
-        if self.trace:
-            text = render_see(info, self.sensing.protocol_version)
-            self._log(cycle, "see", text, ref)
-            info = parse_see(text)
-        return percept_from_see(info, ref, cycle, cycle, heard, cycle_s=cycle_s)
+        text = render_see(info, self.sensing.protocol_version)
+        self._log(cycle, "see", text, ref)
+        return percept_from_see(parse_see(text), ref, cycle, cycle, heard, cycle_s=m.dt_s)
 
     def _hear(self, says: list[tuple[int, str]], referee: list[str], cycle: int) -> None:
         m = self.model
@@ -194,40 +187,24 @@ class SoccerServerArena:
         for action in actions:
             if isinstance(action, Say):
                 self.model.say(row, action.text)
-                self._log(self.tick, "command", f"(say {action.text})", ref)
             else:
                 body.append(action)
+            if self.keep_events:
+                self._log(self.tick, "command", render_command(action), ref)
         plan = self._plans[row - 1]
         plan.clear()
         plan.extend(body)
-        if self.keep_events:
-            for action in body:
-                self._log(self.tick, "command", _server_text(action), ref)
 
     def drain_events(self) -> list[ArenaEvent]:
         """Commands, messages and referee calls since the last call, oldest first."""
         events, self._events = self._events, []
         return events
 
-    def _log(self, tick: int, channel: str, text: str, ref: PlayerRef | None = None) -> None:
+    def _log(
+        self, tick: int, channel: EventChannel, text: str, ref: PlayerRef | None = None
+    ) -> None:
         if self.keep_events:
             self._events.append(ArenaEvent(tick, channel, text, ref))
-
-
-def _server_text(action: Action) -> str:
-    """A body action as the client would send it: the server's degrees, clockwise-positive."""
-    if isinstance(action, Turn):
-        return f"(turn {_server_degrees(action.angle_rad)})"
-    if isinstance(action, Dash):
-        return f"(dash {action.power:.0f})"
-    if isinstance(action, Kick):
-        return f"(kick {action.power:.0f} {_server_degrees(action.direction_rad)})"
-    raise TypeError(f"not a body action: {action!r}")
-
-
-def _server_degrees(angle_rad: float) -> str:
-    """Our CCW radians as the server's clockwise degrees, to 0.1° (no "-0")."""
-    return f"{round(-math.degrees(angle_rad), 1) + 0.0:g}"
 
 
 SCHEDULE_CYCLES = 6000

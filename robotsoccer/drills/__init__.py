@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from robotsoccer.drills.base import Drill, Verdict
+from robotsoccer.drills.base import Drill, GoalWatch, Verdict
 from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.shootout import ShootoutDrill
 
@@ -23,10 +24,22 @@ def make_drill(name: str, options: Mapping[str, Any] | None = None) -> Drill:
         factory = DRILLS[name]
     except KeyError:
         raise ValueError(f"unknown drill {name!r} (known: {', '.join(sorted(DRILLS))})") from None
+    given = dict(options or {})
+    known = drill_options(name)
+    unknown = sorted(set(given) - set(known))
+    if unknown:
+        raise ValueError(
+            f"drill {name!r} has no option {unknown[0]!r} (options: {', '.join(known)})"
+        )
     try:
-        return factory(**dict(options or {}))
-    except TypeError as exc:
+        return factory(**given)
+    except TypeError as exc:  # an option of the wrong type, e.g. a word where a number goes
         raise ValueError(f"drill {name!r}: {exc}") from None
 
 
-__all__ = ["DRILLS", "Drill", "Verdict", "make_drill"]
+def drill_options(name: str) -> tuple[str, ...]:
+    """The options drill `name` takes, in its signature's order."""
+    return tuple(inspect.signature(DRILLS[name]).parameters)
+
+
+__all__ = ["DRILLS", "Drill", "GoalWatch", "Verdict", "drill_options", "make_drill"]

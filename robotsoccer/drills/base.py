@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Protocol
 
-from field_models.arena import Arena
-from field_models.protocol import Mind, PlayerRef
+from field_models.arena import Arena, FieldFacts
+from field_models.protocol import Crossing, Mind, PlayerRef, end_line_crossing
 from field_models.seeding import TrialRngs
 
 
@@ -34,11 +34,16 @@ class Drill(Protocol):
         """The players on the field, in a fixed order."""
         ...
 
-    def arena_settings(self, field_model: str, preset: str) -> dict[str, float]:
-        """Arena overrides the drill needs on this field (e.g. a scaled noise period), or {}.
+    def field_settings(self, facts: FieldFacts) -> dict[str, float]:
+        """Field settings the drill needs on this field (e.g. a scaled noise period), or {}.
 
-        The runner applies them when it builds the arena; a TrialSpec's own override wins.
+        Keys are :class:`~field_models.arena.FieldOptions` names. The runner applies them
+        when it builds the arena; a setting the TrialSpec gives itself wins.
         """
+        ...
+
+    def inputs(self) -> tuple[str, ...]:
+        """Files the trials read (model files): a resumed run checks they did not change."""
         ...
 
     def setup(self, arena: Arena, rngs: TrialRngs) -> None:
@@ -60,3 +65,33 @@ class Drill(Protocol):
     def data(self) -> tuple[float, ...]:
         """What the trial recorded for learning (empty when the drill records nothing)."""
         ...
+
+    def measures(self) -> dict[str, float]:
+        """What the coach measured in the trial, by name, for reports (may be empty)."""
+        ...
+
+
+class GoalWatch:
+    """Follows the ball tick by tick for end-line crossings, and the field's referee for goals.
+
+    The one goal-line rule is :func:`~field_models.protocol.end_line_crossing`; a field whose
+    referee restarts play at once after a goal (the 1996 Soccer Server puts the ball back on the
+    centre spot in the same cycle) never shows the crossing to a coach, so a change of
+    :meth:`Arena.score <field_models.arena.Arena.score>` counts as the crossing it stands for.
+    """
+
+    def __init__(self, arena: Arena, ball: tuple[float, float]) -> None:
+        self.pitch = arena.facts.pitch
+        self.last = ball
+        self.score = arena.score()
+
+    def step(self, arena: Arena, x: float, y: float) -> Crossing:
+        """How the ball crossed an end line since the last call (NONE: it did not)."""
+        lx, ly = self.last
+        self.last = (x, y)
+        score = arena.score()
+        if score != self.score:
+            left_scored = score[0] > self.score[0]
+            self.score = score
+            return Crossing.RIGHT_GOAL if left_scored else Crossing.LEFT_GOAL
+        return end_line_crossing(self.pitch, lx, ly, x, y)

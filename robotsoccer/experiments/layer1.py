@@ -3,7 +3,8 @@
 The pipeline for one field model, as small functions:
 
 1. :func:`collect` — the training drill (paper Figure 6): the defender turns a random TA in
-   [−45°, 45°] once the ball is within 14 units; the saves' (BD, BA, previous BD, TA) become an
+   [−45°, 45°] once the ball is within 14 units; trials run in batches until the saves reach the
+   plan's target (the paper's 4773), and the saves' (BD, BA, previous BD, TA) become an
    :class:`~learning.datasets.InterceptionDataset` with its provenance.
 2. :func:`train_series` — the paper's 3-4-1 net trained on the first n saves for each n of
    Figure 7 (100 … 1000) and on all of them; plus :func:`build_lookup`, the BA → TA table of §5.
@@ -21,12 +22,11 @@ experiment seed, so trial i places shooter, ball and defender identically whatev
 (paired comparisons). Collection uses a different seed derived from it (:func:`seeds_for`), so the
 nets are never tested on the placements they were trained on.
 
-Noise: the Soccer Server's ``ball_rand`` perturbs the ball's velocity every 100 ms cycle by a
-uniform amount in ±ball_rand·|v| per axis; the robot preset's ``ball.motion_noise`` does the same
-every ``noise_period_s`` (see :class:`field_models.robot_physics.config.BallConfig`), which the
-drill sets to one *scaled* server cycle (:mod:`robotsoccer.drills.intercept`). The robot preset
-ships with no noise; layer 1 passes the same noise value to both models, so a noise level means
-the same wander per shot on both fields.
+Noise: on every field the ball's velocity gets a uniform change in ±noise·|v| per axis once per
+noise period (:attr:`field_models.arena.FieldFacts.ball_noise`; the Soccer Server's
+``ball_rand``). Layer 1 passes the same noise value to every field model, and the drill sets the
+period where it scales the drill (:mod:`robotsoccer.drills.intercept`), so a noise level means
+the same wander per shot on every field.
 
 What the plans hold (:func:`quick_plan`, :func:`full_plan`): see :class:`Layer1Plan`.
 """
@@ -44,14 +44,16 @@ from typing import Any
 
 import numpy as np
 
-from field_models.presets import PresetError, preset_path
-from field_models.registry import DEFAULT_PRESETS, robot_preset
+from field_models.registry import default_preset, field_facts, has_preset
 from learning.datasets import InterceptionDataset, Provenance
 from learning.lookup import PAPER_GRID_DEG, LookupTable
+from robotsoccer.drills.intercept import launch_plan
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.report import Counts, ModelSection, StageTiming
 from robotsoccer.runs.pool import run_trials
+from robotsoccer.runs.provenance import code_version
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
+from robotsoccer.skills.intercept import TaMode
 
 Log = Callable[[str], None]
 """Where progress lines go (the CLI prints them)."""
@@ -77,7 +79,9 @@ class Layer1Plan:
     Attributes:
         name: ``"quick"``, ``"full"`` or a free name (tests).
         eval_trials: Trials per evaluation condition (paper: 1000).
-        collect_trials: Training-drill trials per field model.
+        collect_saves: The training drill runs until its saves reach this many (paper: 4773).
+        collect_batch: Trials of the training drill's first batch; later batches are sized
+            from its save rate (multiples of 500).
         training_sizes: Figure 7's training-set sizes; sizes above the saves collected are
             skipped.
         include_all: Also train on all collected saves (the paper's 4773 row).
@@ -96,7 +100,8 @@ class Layer1Plan:
 
     name: str
     eval_trials: int
-    collect_trials: dict[str, int]
+    collect_saves: int
+    collect_batch: int = 4000
     training_sizes: tuple[int, ...] = tuple(
         sorted(n for n in paper.FIGURE_7 if n != paper.PAPER_ALL_SAVES)
     )
@@ -110,7 +115,7 @@ class Layer1Plan:
     checks: bool = True
     record_saves: int = 2
     record_goals: int = 2
-    ta_mode: str = "hold"
+    ta_mode: TaMode = TaMode.HOLD
 
     def to_dict(self) -> dict[str, Any]:
         """The plan as plain JSON types."""
@@ -118,27 +123,13 @@ class Layer1Plan:
 
 
 def quick_plan() -> Layer1Plan:
-    """200 trials per condition, ~1700 saves collected per model; < 5 min on 2 cores.
-
-    Measured: 35 s for both models with 2 workers (training the 8 nets per model is a third).
-    """
-    return Layer1Plan(
-        name="quick",
-        eval_trials=200,
-        collect_trials={"soccer_server": 8000, "robot_physics": 3000},
-    )
+    """200 trials per condition, 1500 saves collected per model (a few minutes on 2 cores)."""
+    return Layer1Plan(name="quick", eval_trials=200, collect_saves=1500, collect_batch=2000)
 
 
 def full_plan() -> Layer1Plan:
-    """1000 trials per condition, ~4800 saves collected per model (the paper's 4773).
-
-    Measured: 69 s for both models with 2 workers (target < 30 min on 2 cores).
-    """
-    return Layer1Plan(
-        name="full",
-        eval_trials=1000,
-        collect_trials={"soccer_server": 22000, "robot_physics": 8500},
-    )
+    """1000 trials per condition, the paper's 4773 saves collected per model."""
+    return Layer1Plan(name="full", eval_trials=1000, collect_saves=paper.PAPER_ALL_SAVES)
 
 
 def plan_for(quick: bool) -> Layer1Plan:
@@ -177,10 +168,10 @@ class Condition:
     n_trials: int
 
 
-def base_spec(field_model: str, preset: str, seed: int, ta_mode: str) -> TrialSpec:
+def base_spec(field_model: str, preset: str, seed: int, ta_mode: TaMode | str) -> TrialSpec:
     """The interception drill on a field model, before behaviour, noise and latency."""
     spec = TrialSpec(drill=DRILL, field_model=field_model, preset=preset, seed=seed)
-    return spec.with_options(ta_mode=ta_mode)
+    return spec.with_options(ta_mode=str(ta_mode))
 
 
 def condition(
@@ -200,19 +191,19 @@ def condition(
         base: From :func:`base_spec`.
         n_trials: Trials to run.
         behaviour: The defender behaviour (``net``, ``lookup``, ``analytic``, ``straight``, ...).
-        noise: Ball noise (both models: fraction of speed per axis per 100 ms).
+        noise: Ball noise (every model: fraction of speed per axis per noise period).
         model: Model file for ``net`` / ``lookup``.
         tag: Names the model in the condition (e.g. ``"750"`` for net_750).
         aim_offset_deg: The shooter aims this far wide [deg].
-        camera_latency_s: Robots: camera latency override [s]; None keeps the preset's.
+        camera_latency_s: Sensor latency override [s]; None keeps the preset's.
     """
     options: dict[str, str | float] = {"behaviour": behaviour}
     if model is not None:
         options["model"] = str(model.resolve())
     if aim_offset_deg:
         options["aim_offset_deg"] = aim_offset_deg
-    spec = dataclasses.replace(
-        base.with_options(**options), ball_noise=noise, camera_latency_s=camera_latency_s
+    spec = base.with_options(**options).with_field(
+        ball_noise=noise, sensor_latency_s=camera_latency_s
     )
     name = f"{behaviour}{tag}_noise{noise:g}"
     if aim_offset_deg:
@@ -284,29 +275,41 @@ def decided_saves(results: Iterable[TrialResult]) -> list[TrialResult]:
 
 def collect(
     base: TrialSpec,
-    n_trials: int,
-    noise: float,
+    plan: Layer1Plan,
     results_dir: Path,
     dataset_path: Path,
     workers: int | None,
     created_by: str,
     progress: bool = False,
 ) -> tuple[InterceptionDataset, Counts, StageTiming]:
-    """The training drill: random TA, keep the saves, save them as a dataset with provenance."""
-    from robotsoccer.drills.intercept import launch_plan
+    """The training drill: random TA until the saves reach the plan's target; save the dataset.
 
-    launch = launch_plan(base.field_model, base.preset)
-    cond = condition(base, n_trials, COLLECT_BEHAVIOUR, noise=noise)
+    Trials run in batches on one resumable table: the first of ``plan.collect_batch``, each next
+    one sized from the save rate so far (rounded up to 500 trials, 5% spare). The batch sizes
+    depend only on the results, so the dataset is a function of the seed.
+    """
+    launch = launch_plan(field_facts(base.field_model, base.preset))
+    cond = condition(base, plan.collect_batch, COLLECT_BEHAVIOUR, noise=plan.noise)
     cond = dataclasses.replace(cond, name=f"collect_{cond.name}")
-    results, ran, wall = evaluate(cond, results_dir, workers, progress)
+    limit = COLLECT_LIMIT_PER_SAVE * plan.collect_saves
+    ran_total, wall_total = 0, 0.0
+    while True:
+        results, ran, wall = evaluate(cond, results_dir, workers, progress)
+        ran_total, wall_total = ran_total + ran, wall_total + wall
+        saves = len(decided_saves(results))
+        if saves >= plan.collect_saves or cond.n_trials >= limit:
+            break
+        wanted = (plan.collect_saves - saves) * cond.n_trials / max(saves, 1) * 1.05
+        more = 500 * math.ceil(wanted / 500)
+        cond = dataclasses.replace(cond, n_trials=min(limit, cond.n_trials + more))
     counts = counts_of(results)
     provenance = Provenance(
         field_model=base.field_model,
-        preset=base.preset,
+        preset=base.preset_name,
         seed=base.seed,
-        ball_noise=noise,
+        ball_noise=plan.noise,
         behaviour=COLLECT_BEHAVIOUR,
-        n_trials=n_trials,
+        n_trials=cond.n_trials,
         created_by=created_by,
         extra={
             "drill": DRILL,
@@ -316,6 +319,7 @@ def collect(
             "ball_noise_period_s": launch.noise_period_s,
             "ta_mode": str(dict(base.drill_options).get("ta_mode", "hold")),
             "rows": "saves only, in trial order",
+            "target_saves": plan.collect_saves,
             "saves": counts.saves,
             "saves_without_decision": counts.saves - len(decided_saves(results)),
             "goals": counts.goals,
@@ -325,7 +329,11 @@ def collect(
     dataset = dataset_from_results(results, provenance)
     dataset_path.parent.mkdir(parents=True, exist_ok=True)
     dataset.save(dataset_path)
-    return dataset, counts, StageTiming("collect (random TA)", ran, wall)
+    return dataset, counts, StageTiming("collect (random TA)", ran_total, wall_total)
+
+
+COLLECT_LIMIT_PER_SAVE = 50
+"""The training drill gives up growing after this many trials per wanted save (2% saves)."""
 
 
 def training_sizes(plan: Layer1Plan, n_saves: int) -> list[int]:
@@ -344,9 +352,16 @@ def prefix(dataset: InterceptionDataset, n: int) -> InterceptionDataset:
 
 
 def train_series(
-    dataset: InterceptionDataset, sizes: Sequence[int], epochs: int, model_dir: Path, log: Log
+    dataset: InterceptionDataset,
+    sizes: Sequence[int],
+    epochs: int,
+    model_dir: Path,
+    log: Log,
+    seconds: dict[int, float] | None = None,
 ) -> dict[int, Path]:
     """Train one net per size on the first n saves and save ``net_<n>.npz`` with provenance.
+
+    `seconds`, when given, receives each net's training time (wall seconds).
 
     Returns:
         Size → model file.
@@ -369,9 +384,12 @@ def train_series(
         # Copies: dataset arrays are read-only, which torch.from_numpy warns about.
         model = InterceptionModel(epochs=epochs).fit(part.x.copy(), part.y.copy())
         paths[n] = model.save(model_dir / f"net_{n}.npz", part.provenance)
+        wall = time.perf_counter() - start
+        if seconds is not None:
+            seconds[n] = wall
         log(
             f"  net_{n}: {n} saves, {epochs} epochs, final MSE "
-            f"{model.loss_history_[-1]:.4g} rad², {time.perf_counter() - start:.1f} s"
+            f"{model.loss_history_[-1]:.4g} rad², {wall:.1f} s"
         )
     return paths
 
@@ -418,6 +436,8 @@ class Trained:
     """The net of Figure 8, Table 1, 4° wide and latency (:func:`net_for_figures`)."""
     lookup: Path
     """The lookup table built from the main net."""
+    seconds: dict[int, float] = dataclasses.field(default_factory=dict)
+    """Training examples → wall seconds its net took to train in this run."""
 
 
 def experiments(
@@ -478,20 +498,14 @@ SWEPT_EXPERIMENT = "swept collisions"
 
 
 def swept_variant(base: TrialSpec) -> str | None:
-    """The ``<preset>_swept`` Soccer Server preset of `base`, if one is shipped (else None).
+    """The ``<preset>_swept`` variant of `base`'s preset, if its field model ships one.
 
     With swept ball–player collisions a ball cannot pass *through* a dashing defender between
     two cycles, which the real server allows (spec §4); running the same conditions on it
     measures how much of a gap to the paper that artefact explains.
     """
-    if base.field_model != "soccer_server":
-        return None
     name = f"{base.preset}_swept"
-    try:
-        preset_path(name, "soccer_server")
-    except PresetError:
-        return None
-    return name
+    return name if has_preset(base.field_model, name) else None
 
 
 def _on_preset(cond: Condition, preset: str, suffix: str) -> Condition:
@@ -557,14 +571,14 @@ def run_model(
         The report section and the conditions that ran (for ``config.json``).
     """
     results_dir = out / "results" / field_model
-    section = ModelSection(field_model, preset, noise=plan.noise)
+    facts = field_facts(field_model, preset)
+    section = ModelSection(field_model, preset, noise=plan.noise, facts=facts)
     section.notes = scaling_notes(field_model, preset)
 
-    log(f"[{field_model}] collect: {plan.collect_trials[field_model]} trials, random TA")
+    log(f"[{field_model}] collect: random TA until {plan.collect_saves} saves")
     dataset, collected, timing = collect(
         base_spec(field_model, preset, seeds.collection, plan.ta_mode),
-        plan.collect_trials[field_model],
-        plan.noise,
+        plan,
         results_dir,
         out / "datasets" / field_model / "train.npz",
         workers,
@@ -580,10 +594,10 @@ def run_model(
     trained = train(plan, dataset, out / "models" / field_model, log)
     section.stages.append(StageTiming("train nets + lookup", 0, time.perf_counter() - start))
     section.net_examples = trained.main_examples
+    section.train_seconds = trained.seconds
 
     base = base_spec(field_model, preset, seeds.evaluation, plan.ta_mode)
-    latency = robot_preset(preset).camera.latency_s if field_model == "robot_physics" else None
-    plan_of = experiments(plan, base, trained, latency)
+    plan_of = experiments(plan, base, trained, facts.sensor_latency_s)
     done: dict[str, list[TrialResult]] = {}
     for experiment, keyed in plan_of.items():
         log(f"[{field_model}] {experiment}")
@@ -599,6 +613,9 @@ def run_model(
         _fill(section, experiment, counts, plan.include_all)
         section.stages.append(StageTiming(experiment, ran, wall))
 
+    for experiment in ("Table 1", "checks (still, straight)"):
+        for key, cond in plan_of.get(experiment, []):
+            section.trials[key] = done[cond.name]
     main = plan_of["Table 1"][0][1]
     start = time.perf_counter()
     recorded = record_examples(main, done[main.name], out / "recordings" / field_model, plan, log)
@@ -608,10 +625,12 @@ def run_model(
 
 def train(plan: Layer1Plan, dataset: InterceptionDataset, model_dir: Path, log: Log) -> Trained:
     """The Figure 7 series of nets, the main net's choice and its lookup table."""
-    nets = train_series(dataset, training_sizes(plan, len(dataset)), plan.epochs, model_dir, log)
+    seconds: dict[int, float] = {}
+    sizes = training_sizes(plan, len(dataset))
+    nets = train_series(dataset, sizes, plan.epochs, model_dir, log, seconds)
     main = net_for_figures(plan, nets)
     lookup = build_lookup(nets[main], dataset, model_dir / "lookup.json")
-    return Trained(nets, main, lookup)
+    return Trained(nets, main, lookup, seconds)
 
 
 def record_examples(
@@ -650,9 +669,7 @@ def scaling_notes(field_model: str, preset: str) -> list[str]:
     shot of the mean distance (the drill scales the robots' noise period so that it matches the
     Soccer Server's cycles in flight).
     """
-    from robotsoccer.drills.intercept import launch_plan
-
-    plan = launch_plan(field_model, preset)
+    plan = launch_plan(field_facts(field_model, preset))
     lines = [
         "Drill geometry and launch (`robotsoccer.drills.intercept.launch_plan`; distances in "
         "metres, one unit = pitch length / 105; the scaling rule is in that module's "
@@ -704,13 +721,14 @@ def run_layer1(
     from robotsoccer.experiments.plots import plot_figure7, plot_figure8
     from robotsoccer.experiments.report import report_markdown
 
-    named = [(m, p or DEFAULT_PRESETS[m]) for m, p in models]
+    named = [(m, p or default_preset(m)) for m, p in models]
     seeds = seeds_for(seed)
     header = {
         "plan": plan.to_dict(),
         "seed": seed,
         "seeds": dataclasses.asdict(seeds),
         "models": [list(m) for m in named],
+        "code_version": code_version(),
     }
     _claim_folder(out, header)
     start = time.perf_counter()
@@ -732,7 +750,7 @@ def run_layer1(
         if draw(sections, out / "plots" / name) is not None:
             plots.append((caption, f"plots/{name}"))
     wall = time.perf_counter() - start
-    intro = intro_lines(plan, seeds, named, out, wall, workers)
+    intro = intro_lines(plan, seeds, named, wall, workers, sections)
     report = out / "report.md"
     report.write_text(report_markdown(title, intro, sections, plots))
     config = {**header, "wall_s": round(wall, 1), "conditions": conditions}
@@ -748,11 +766,12 @@ def _claim_folder(out: Path, header: dict[str, Any]) -> None:
             old = json.loads(path.read_text())
         except ValueError:
             old = {}
-        mine = {k: old.get(k) for k in header}
-        if mine != json.loads(json.dumps(header)):
+        new = json.loads(json.dumps(header))
+        differ = [k for k in new if old.get(k) != new[k]]
+        if differ:
             raise PipelineError(
-                f"{out} holds a run with another plan, seed or models; "
-                "choose another --out or remove it"
+                f"{out} holds a run with another {', '.join(d.replace('_', ' ') for d in differ)};"
+                " choose another --out or remove it"
             )
     out.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(header, indent=2) + "\n")
@@ -762,41 +781,45 @@ def intro_lines(
     plan: Layer1Plan,
     seeds: Seeds,
     models: Sequence[tuple[str, str]],
-    out: Path,
     wall_s: float,
     workers: int | None,
+    sections: Sequence[ModelSection] = (),
 ) -> list[str]:
     """The report's introduction: what ran, seeds, presets, noise meaning, training set-up."""
     from robotsoccer.runs.pool import default_workers
 
     presets = ", ".join(f"{m} `{p}`" for m, p in models)
-    collected = ", ".join(f"{m}: {plan.collect_trials[m]}" for m, _ in models)
     return [
-        f"Plan **{plan.name}**: {plan.eval_trials} trials per evaluation condition; "
-        f"training-drill trials {collected}. Field models and presets: {presets}. "
-        f"Wall time {wall_s / 60:.1f} min with {workers or default_workers()} worker(s).",
+        f"Plan **{plan.name}**: {plan.eval_trials} trials per evaluation condition; the "
+        f"training drill runs until {plan.collect_saves} saves. Field models and presets: "
+        f"{presets}. Wall time {wall_s / 60:.1f} min with {workers or default_workers()} "
+        "worker(s).",
         "",
         f"Seeds: evaluation seed {seeds.evaluation}, shared by every condition (trial i has the "
         "same placement whatever the behaviour: paired comparisons); training collection seed "
         f"{seeds.collection} (derived; never an evaluation seed).",
         "",
-        f"Ball noise: {plan.noise:g} unless varied. On both models it is a uniform perturbation "
-        "of the ball's velocity in ±noise·|v| per axis, applied once per cycle: on the Soccer "
-        "Server `ball_rand` every 100 ms cycle; on the robots the preset's `ball.motion_noise` "
-        "(0 in the preset, set here to the same value), applied every `noise_period_s` of the "
-        "drill's launch plan — one *scaled* server cycle (the robot flight time over the "
-        "server's cycles in flight), so the noise acts as many times per shot on both fields "
-        "and a noise level means the same wander in units.",
+        f"Ball noise: {plan.noise:g} unless varied. On every field model it is a uniform "
+        "perturbation of the ball's velocity in ±noise·|v| per axis (the Soccer Server's "
+        "`ball_rand`), applied once per `noise_period_s` of the drill's launch plan (each "
+        "model's table below): one server cycle on the paper's field, one *scaled* cycle "
+        "elsewhere, so the noise acts as many times per shot on every field.",
+        "",
+        "Calibrated settings (chosen to match the paper, not reproduced): the defender stops "
+        "the ball with its body instead of kicking it clear, chosen so that the training "
+        "drill's baselines match §5 (rows marked *calibrated*: the still and straight "
+        "defenders at the main noise); the placement sector of ±45° around the defender "
+        "(the paper draws it without a number). Every other row was not tuned.",
         "",
         "Percentages are of all trials (misses count in n); each carries its 95% Wilson "
         "interval in brackets; Saves/(Goals+Saves) is a share of the shots on goal, with its "
         "own n. The paper's number sits in the column beside ours.",
         "",
-        *training_lines(plan),
+        *training_lines(plan, sections),
     ]
 
 
-def training_lines(plan: Layer1Plan) -> list[str]:
+def training_lines(plan: Layer1Plan, sections: Sequence[ModelSection] = ()) -> list[str]:
     """The net's training set-up and why it differs from the paper's (learning.interception)."""
     from learning.interception import DEFAULT_LEARNING_RATES, InterceptionModel
 
@@ -810,8 +833,20 @@ def training_lines(plan: Layer1Plan) -> list[str]:
         f"{params['random_state']}. Nets train on the first n saves of the collection (nested "
         "subsets). The paper used plain back-propagation at a learning rate of 1e-6 on raw "
         "inputs (distances in units, angles in degrees), 3000 epochs, the same decay. We "
-        "standardise the inputs (the scaler is stored in the model file) so one rate suits "
-        "both fields (distances differ ~40×); plain gradient descent at 1e-6 does not move in "
-        "3000 full-batch epochs on standardised inputs, so we use Adam at 0.01, which fits "
-        "1000 saves in about 2 s (see `learning/interception.py`).",
+        "standardise the inputs (the scaler is stored in the model file) so that one rate "
+        "suits fields of any size, and train with the optimizer above (`learning/"
+        "interception.py` says why).",
+        *_training_times(sections),
     ]
+
+
+def _training_times(sections: Sequence[ModelSection]) -> list[str]:
+    """This run's training time of each field model's largest net, as a line (or none)."""
+    parts = []
+    for s in sections:
+        if s.train_seconds:
+            n = max(s.train_seconds)
+            parts.append(f"{s.field_model}: {n} saves in {s.train_seconds[n]:.1f} s")
+    if not parts:
+        return []
+    return ["", "Training time of the largest net in this run: " + "; ".join(parts) + "."]

@@ -107,3 +107,9 @@ TRAINING_FACTS: dict[str, tuple[str, float]] = {
     "random": ("trials the random-TA defender fails to stop (%)", 76.0),
 }
 """§5 text on the training drill: behaviour → (what was measured, percent)."""
+
+CALIBRATED: dict[tuple[str, float], str] = {
+    ("straight", PAPER_NOISE): "the blocking defender was chosen so that this row matches §5",
+    ("still", PAPER_NOISE): "the blocking defender was chosen so that this row matches §5",
+}
+"""(behaviour, noise) → why: the rows a setting of ours was chosen to match (not reproduced)."""

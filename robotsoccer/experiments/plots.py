@@ -19,7 +19,8 @@ from robotsoccer.experiments.paper import FIGURE_7, FIGURE_8, FIGURE_8_NOISES
 from robotsoccer.experiments.report import BEHAVIOUR_NAMES, Counts, ModelSection
 from robotsoccer.stats import wilson_interval
 
-_COLOURS = {"soccer_server": "tab:blue", "robot_physics": "tab:orange"}
+_MODEL_COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:purple")
+"""One colour per field model, in the order the sections come."""
 _BEHAVIOUR_COLOURS = {"net": "tab:blue", "straight": "tab:red"}
 
 
@@ -62,7 +63,7 @@ def plot_figure7(sections: Sequence[ModelSection], path: Path) -> Path | None:
         "k--o",
         label="paper (Soccer Server 1996)",
     )
-    for s in sections:
+    for index, s in enumerate(sections):
         xs = [examples for examples, _, _ in s.figure7]
         values, errors = _saves_with_errors([c for _, _, c in s.figure7])
         ax.errorbar(
@@ -71,7 +72,7 @@ def plot_figure7(sections: Sequence[ModelSection], path: Path) -> Path | None:
             yerr=errors,
             marker="s",
             capsize=3,
-            color=_COLOURS.get(s.field_model),
+            color=_MODEL_COLOURS[index % len(_MODEL_COLOURS)],
             label=f"ours: {s.field_model} ({s.preset})",
         )
     ax.set_xscale("log")

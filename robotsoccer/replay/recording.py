@@ -30,10 +30,6 @@ Rerun draws 2-D views with y pointing down (upstream issue rerun-io/rerun#1387: 
 coordinates are ignored in 2-D views), so the viewer shows the field mirrored top-to-bottom.
 The data in the file stay in the field frame (y up), so what is read back is what was logged.
 Positions are stored as float32 (rerun's ``Vec2D``).
-
-Measured here: 10,000 recorded ticks of 22 players cost 0.2-0.3 s of logging and give a 14 MB
-(square) or 28 MB (12-gon) file, mostly outlines; ``rerun rrd verify`` then takes about 1 s
-per MB, so :func:`verify_recording` on long recordings is slow (the reader check is not).
 """
 
 from __future__ import annotations
@@ -51,7 +47,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from field_models.arena import ArenaEvent
+from field_models.arena import ArenaEvent, PlayerShape
 from field_models.protocol import LEFT, RIGHT, BodyState, Percept, Pitch, PlayerRef, Truth
 
 if TYPE_CHECKING:
@@ -77,7 +73,7 @@ _ENTITY_UNSAFE = re.compile(r"[^A-Za-z0-9_\-]")
 # ----------------------------------------------------------------------------- geometry
 
 
-def outline_template(shape: str, radius_m: float) -> np.ndarray:
+def outline_template(shape: PlayerShape, radius_m: float) -> np.ndarray:
     """Closed outline of a player at the origin facing +x, as a (K, 2) array [m].
 
     Args:
@@ -254,7 +250,7 @@ class TrialRecorder:
         dt_s: float,
         recording_id: str,
         application_id: str = "robotsoccer",
-        player_shape: str = "square",
+        player_shape: PlayerShape = "square",
         every_ticks: int = 1,
         chunk_frames: int = 1000,
     ) -> None:
@@ -567,11 +563,6 @@ class TrialRecorder:
             self._texts[entity] = _TextBuffer()
 
     # --- closing ----------------------------------------------------------------------------
-
-    @property
-    def closed(self) -> bool:
-        """Whether :meth:`close` has run."""
-        return self._closed
 
     def close(self) -> None:
         """Flush the buffers and disconnect, which writes the file's footer. Idempotent."""

@@ -6,23 +6,39 @@
   a plain fork, never inherits the threads of a parent that trained a torch model). One worker
   runs the trials in this process, with no pool at all.
 * Each finished chunk is appended to the CSV table and flushed at once, so an interrupted run
-  keeps every trial it finished; a rerun with ``resume=True`` skips them.
+  keeps every trial it finished; a rerun with ``resume=True`` skips them. Beside the table a
+  manifest (``<table>.json``) records what made it: the spec, the code version and the digests
+  of the files the trials read (:mod:`robotsoccer.runs.provenance`). A resume onto a table made
+  by anything else is refused with one line saying what differs; a last row cut short by a
+  killed write is dropped with a warning and run again.
 * Results come back sorted by trial index, and each trial depends only on its own seed, so the
   table is identical whatever the worker count (a test checks this).
 """
 
 from __future__ import annotations
 
+import dataclasses
+import json
 import multiprocessing
 import os
 import sys
 import time
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from pathlib import Path
-from typing import TextIO
+from typing import Any, TextIO
 
+from field_models.registry import preload_modules
+from robotsoccer.drills import make_drill
+from robotsoccer.runs.provenance import code_version, file_digest
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
+
+
+class ResumeError(ValueError):
+    """A results table cannot be resumed: another run made it, or it is damaged.
+
+    A ValueError, so the CLI reports it as one line.
+    """
 
 
 def default_workers() -> int:
@@ -33,12 +49,7 @@ def default_workers() -> int:
         return os.cpu_count() or 1
 
 
-PRELOAD = (
-    "robotsoccer.runs.pool",
-    "robotsoccer.drills",
-    "field_models.robot_physics.arena",
-    "field_models.soccer_server.arena",
-)
+PRELOAD = ("robotsoccer.runs.pool", "robotsoccer.drills", *preload_modules())
 """Modules the fork server imports once, so that every worker starts with them loaded."""
 
 
@@ -86,14 +97,93 @@ class Progress:
         self.stream.flush()
 
 
-def read_results(path: Path) -> dict[int, TrialResult]:
-    """Results already in a table (for resuming); an absent file holds none."""
+def read_results(
+    path: Path, warn: Callable[[str], None] | None = None
+) -> dict[int, TrialResult]:
+    """Results already in a table (for resuming); an absent file holds none.
+
+    A last row without its line end was cut short by a killed write: it is dropped (and the
+    file truncated after the last complete row, so appending goes on cleanly), with a warning.
+
+    Raises:
+        ResumeError: The file does not start with the results header, or a complete row does
+            not parse.
+    """
     if not path.exists():
         return {}
-    lines = path.read_text().splitlines()
-    rows = [line for line in lines[1:] if line.strip()]
-    results = (TrialResult.from_csv_row(line) for line in rows)
-    return {r.index: r for r in results}
+    text = path.read_text()
+    lines = text.split("\n")
+    if lines[0] != TrialResult.CSV_HEADER:
+        raise ResumeError(f"{path}: not a results table of this version (header {lines[0]!r})")
+    if lines[-1]:  # no line end after the last row: a write was cut short
+        (warn or _warn)(f"{path}: dropped a last row cut short by an interrupted write")
+        path.write_text("\n".join(lines[:-1]) + "\n")
+    results: dict[int, TrialResult] = {}
+    for number, line in enumerate(lines[1:-1], start=2):
+        try:
+            result = TrialResult.from_csv_row(line)
+        except ValueError as exc:
+            raise ResumeError(f"{path}: line {number} is not a result row ({exc})") from None
+        results[result.index] = result
+    return results
+
+
+def _warn(message: str) -> None:
+    print(f"warning: {message}", file=sys.stderr)
+
+
+def manifest(spec: TrialSpec) -> dict[str, Any]:
+    """What makes a run's results: its spec, the code version and its input files' digests."""
+    inputs = make_drill(spec.drill, dict(spec.drill_options)).inputs()
+    recorded = dataclasses.replace(spec, record_dir=None, record_trials=0)
+    return {
+        "spec": json.loads(json.dumps(dataclasses.asdict(recorded), default=str)),
+        "code_version": code_version(),
+        "inputs": {path: file_digest(path) for path in inputs},
+    }
+
+
+def manifest_path(results_path: Path) -> Path:
+    """Where the manifest of a results table lives: beside it, ``.json``."""
+    return results_path.with_suffix(".json")
+
+
+def check_resumable(results_path: Path, spec: TrialSpec) -> None:
+    """Refuse to add `spec`'s trials to a table another run made (one line: what differs).
+
+    Raises:
+        ResumeError: The table exists but its manifest is missing, unreadable or different.
+    """
+    if not results_path.exists():
+        return
+    where = manifest_path(results_path)
+    try:
+        old = json.loads(where.read_text())
+    except (OSError, ValueError):
+        raise ResumeError(
+            f"{results_path}: no readable record of the run that made it ({where.name}); "
+            "remove it or choose another output folder"
+        ) from None
+    new = manifest(spec)
+    differences = _differences(old, new)
+    if differences:
+        raise ResumeError(
+            f"{results_path} was made by another run ({'; '.join(differences)}); "
+            "remove it or choose another output folder"
+        )
+
+
+def _differences(old: dict[str, Any], new: dict[str, Any]) -> list[str]:
+    found = []
+    old_spec, new_spec = old.get("spec", {}), new["spec"]
+    for key in sorted(set(old_spec) | set(new_spec)):
+        if old_spec.get(key) != new_spec.get(key):
+            found.append(f"{key} {old_spec.get(key)!r} then, {new_spec.get(key)!r} now")
+    if old.get("code_version") != new["code_version"]:
+        found.append(f"code version {old.get('code_version')} then, {new['code_version']} now")
+    if old.get("inputs") != new["inputs"]:
+        found.append("its model files changed")
+    return found
 
 
 def run_trials(
@@ -113,15 +203,22 @@ def run_trials(
         n_trials: How many trials.
         workers: Processes to use (default: all cores); 1 runs in this process.
         results_path: CSV table to stream results into (appended as chunks finish).
-        resume: Keep the trials already in `results_path` and run only the others.
+        resume: Keep the trials already in `results_path` and run only the others; refused
+            (ResumeError) when another spec, code version or model file made them.
         progress: Draw a progress bar on stderr.
         chunk_size: Trials per unit of work (default: small enough to balance the workers).
 
     Raises:
         KeyboardInterrupt: after flushing every finished trial to `results_path`.
+        ResumeError: `resume` onto a table another run made, or a damaged table.
     """
     workers = workers or default_workers()
-    done = read_results(results_path) if (results_path and resume) else {}
+    done: dict[int, TrialResult] = {}
+    if results_path is not None:
+        if resume:
+            check_resumable(results_path, spec)
+            done = read_results(results_path)
+        _write_manifest(results_path, spec)
     todo = [i for i in range(n_trials) if i not in done]
     size = chunk_size or max(1, min(50, len(todo) // (4 * workers) or 1))
     bar = Progress(n_trials, enabled=progress)
@@ -140,6 +237,11 @@ def run_trials(
         if sink is not None:
             sink.close()
     return [done[i] for i in sorted(done) if i < n_trials]
+
+
+def _write_manifest(results_path: Path, spec: TrialSpec) -> None:
+    results_path.parent.mkdir(parents=True, exist_ok=True)
+    manifest_path(results_path).write_text(json.dumps(manifest(spec), indent=2) + "\n")
 
 
 def _open_sink(path: Path | None, keep: bool) -> TextIO | None:

@@ -12,10 +12,12 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
-from field_models.arena import Arena, ArenaEvent
-from field_models.protocol import Action, Dash, Kick, Mind, Percept, PlayerRef, Say, Turn
-from field_models.registry import make_arena
+from field_models.arena import Arena, ArenaEvent, FieldOptions
+from field_models.commands import render_command
+from field_models.protocol import Action, Mind, Percept, PlayerRef
+from field_models.registry import DEFAULT_OPTIONS, default_preset, field_facts, make_arena
 from field_models.seeding import TrialRngs
 from robotsoccer.drills import Drill, Verdict, make_drill
 
@@ -35,36 +37,43 @@ class TrialSpec:
 
     Attributes:
         drill: Registered drill name.
-        field_model: ``"robot_physics"`` or ``"soccer_server"``.
-        preset: Preset name or path for that field model.
+        field_model: Registered field model name (:data:`field_models.registry.FIELD_MODELS`).
+        preset: Preset name or path for that field model; None: the model's default.
         seed: Experiment seed; trial i uses the seed sequence (seed, i).
-        perfect_perception: Robots: camera without noise, misses or latency.
+        field: Settings changed on the field model (perfect perception, ball noise, sensor
+            latency, ball-noise period); the drill may add its own where these leave None.
+        drill_options: Keyword arguments for the drill, as (name, value) pairs.
         record_dir: Folder for rerun recordings, or None.
         record_trials: Record the trials whose index is below this.
-        drill_options: Keyword arguments for the drill, as (name, value) pairs.
-        ball_noise: Override of the ball-motion noise (Soccer Server ``ball_rand``; robots
-            ``ball.motion_noise``), or None for the preset's.
-        camera_latency_s: Robots: override of the camera latency [s], or None.
-        ball_noise_period_s: Robots: override of how often ball noise acts [s], or None
-            (then the drill's setting, else the preset's).
     """
 
-    drill: str = "shootout"
-    field_model: str = "robot_physics"
-    preset: str = "small_size_1997"
+    drill: str
+    field_model: str
+    preset: str | None = None
     seed: int = 0
-    perfect_perception: bool = False
+    field: FieldOptions = DEFAULT_OPTIONS
+    drill_options: tuple[tuple[str, DrillOption], ...] = ()
     record_dir: str | None = None
     record_trials: int = 0
-    drill_options: tuple[tuple[str, DrillOption], ...] = ()
-    ball_noise: float | None = None
-    camera_latency_s: float | None = None
-    ball_noise_period_s: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.preset is None:
+            object.__setattr__(self, "preset", default_preset(self.field_model))
+
+    @property
+    def preset_name(self) -> str:
+        """The preset (resolved: never None)."""
+        assert self.preset is not None
+        return self.preset
 
     def with_options(self, **options: DrillOption) -> TrialSpec:
         """A copy with these drill options added (replacing any of the same name)."""
         merged = dict(self.drill_options) | options
         return dataclasses.replace(self, drill_options=tuple(sorted(merged.items())))
+
+    def with_field(self, **settings: Any) -> TrialSpec:
+        """A copy with these field settings changed (names of :class:`FieldOptions`)."""
+        return dataclasses.replace(self, field=dataclasses.replace(self.field, **settings))
 
 
 @dataclass(frozen=True, slots=True)
@@ -77,7 +86,8 @@ class TrialResult:
         reason: Why, in words.
         ticks: Ticks the trial lasted.
         time_s: Simulated seconds it lasted.
-        data: What the drill recorded (e.g. the interception example BD, BA, previous BD, TA).
+        data: What the drill recorded for learning (e.g. the example BD, BA, previous BD, TA).
+        measures: What the coach measured, by name (e.g. the defender's travel), for reports.
     """
 
     index: int
@@ -86,20 +96,41 @@ class TrialResult:
     ticks: int
     time_s: float
     data: tuple[float, ...] = ()
+    measures: tuple[tuple[str, float], ...] = ()
 
-    CSV_HEADER = "index,label,ticks,time_s,data,reason"
+    CSV_HEADER = "index,label,ticks,time_s,data,measures,reason"
 
     def csv_row(self) -> str:
         """This result as a CSV line: floats exactly (repr); the reason last, free text."""
         data = " ".join(repr(v) for v in self.data)
-        return f"{self.index},{self.label},{self.ticks},{self.time_s!r},{data},{self.reason}"
+        measures = " ".join(f"{name}={value!r}" for name, value in self.measures)
+        return (
+            f"{self.index},{self.label},{self.ticks},{self.time_s!r},{data},{measures},"
+            f"{self.reason}"
+        )
 
     @classmethod
     def from_csv_row(cls, row: str) -> TrialResult:
-        """Parse a line written by :meth:`csv_row`."""
-        index, label, ticks, time_s, data, reason = row.rstrip("\n").split(",", 5)
+        """Parse a line written by :meth:`csv_row`.
+
+        Raises:
+            ValueError: The line is not a complete result row.
+        """
+        index, label, ticks, time_s, data, measures, reason = row.rstrip("\n").split(",", 6)
         values = tuple(float(v) for v in data.split())
-        return cls(int(index), label, reason, int(ticks), float(time_s), values)
+        named = tuple(_measure(item) for item in measures.split())
+        return cls(int(index), label, reason, int(ticks), float(time_s), values, named)
+
+    def measure(self, name: str) -> float:
+        """The measure called `name`, or nan when the trial did not record it."""
+        return dict(self.measures).get(name, math.nan)
+
+
+def _measure(item: str) -> tuple[str, float]:
+    name, sep, value = item.partition("=")
+    if not sep or not name:
+        raise ValueError(f"not a name=value measure: {item!r}")
+    return name, float(value)
 
 
 def play(
@@ -110,7 +141,7 @@ def play(
     decisions: DecisionLog | None = None,
 ) -> Verdict:
     """Step `arena` until `drill` gives a verdict or its time runs out."""
-    max_ticks = round(drill.max_time_s / arena.dt_s)
+    max_ticks = round(drill.max_time_s / arena.facts.dt_s)
     thinking = dict(minds)
     arena.listen(frozenset(thinking))
     while arena.tick < max_ticks:
@@ -134,6 +165,14 @@ def play(
     return drill.timeout(arena)
 
 
+def field_options(spec: TrialSpec, drill: Drill) -> FieldOptions:
+    """The spec's field settings, plus the drill's own where the spec leaves one unset."""
+    facts = field_facts(spec.field_model, spec.preset, spec.field)
+    wanted = drill.field_settings(facts)
+    unset: dict[str, Any] = {k: v for k, v in wanted.items() if getattr(spec.field, k) is None}
+    return dataclasses.replace(spec.field, **unset) if unset else spec.field
+
+
 def build_trial(
     spec: TrialSpec, index: int, *, keep_events: bool = False, trace: bool = False
 ) -> tuple[TrialRngs, Drill, Arena]:
@@ -144,19 +183,14 @@ def build_trial(
     """
     rngs = TrialRngs.for_trial(spec.seed, index)
     drill = make_drill(spec.drill, dict(spec.drill_options))
-    settings = drill.arena_settings(spec.field_model, spec.preset)
-    noise_period = spec.ball_noise_period_s or settings.get("ball_noise_period_s")
     arena = make_arena(
         spec.field_model,
         spec.preset,
         drill.players(),
         rngs,
-        perfect=spec.perfect_perception,
+        field_options(spec, drill),
         keep_events=keep_events,
         trace=trace,
-        ball_noise=spec.ball_noise,
-        camera_latency_s=spec.camera_latency_s,
-        ball_noise_period_s=noise_period,
     )
     return rngs, drill, arena
 
@@ -172,8 +206,19 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
     else:
         verdict = play(arena, drill, minds)
     return TrialResult(
-        index, verdict.label, verdict.reason, arena.tick, arena.tick * arena.dt_s, drill.data()
+        index,
+        verdict.label,
+        verdict.reason,
+        arena.tick,
+        arena.tick * arena.facts.dt_s,
+        drill.data(),
+        tuple(drill.measures().items()),
     )
+
+
+def describe_decision(actions: tuple[Action, ...]) -> str:
+    """A decision as the commands a client sends (``(turn -30) (dash 100)``), or "nothing"."""
+    return " ".join(render_command(a) for a in actions) or "nothing"
 
 
 def _play_recorded(
@@ -182,16 +227,17 @@ def _play_recorded(
     from robotsoccer.replay.recording import TrialRecorder  # rerun loads only when recording
 
     assert spec.record_dir is not None
+    facts = arena.facts
     path = Path(spec.record_dir) / f"trial_{index:04d}.rrd"
     path.parent.mkdir(parents=True, exist_ok=True)
-    every = max(1, round(1.0 / 60.0 / arena.dt_s))  # draw at ≤ 60 Hz: enough to watch
+    every = max(1, round(1.0 / 60.0 / facts.dt_s))  # draw at ≤ 60 Hz: enough to watch
     recorder = TrialRecorder(
         path,
-        pitch=arena.pitch,
+        pitch=facts.pitch,
         players=arena.players,
-        dt_s=arena.dt_s,
+        dt_s=facts.dt_s,
         recording_id=f"{spec.drill}-{spec.field_model}-seed{spec.seed}-trial{index}",
-        player_shape="square" if arena.model_name == "robot_physics" else "circle",
+        player_shape=facts.player_shape,
         every_ticks=every,
     )
 
@@ -203,8 +249,9 @@ def _play_recorded(
         recorder.log_events(a.drain_events())
 
     def decide(percept: Percept, actions: tuple[Action, ...]) -> None:
-        text = ", ".join(map(describe_action, actions)) or "nothing"
-        event = ArenaEvent(percept.tick, "decision", f"{percept.player}: {text}", percept.player)
+        event = ArenaEvent(
+            percept.tick, "decision", describe_decision(actions), percept.player
+        )
         recorder.log_events([event])
 
     with recorder:
@@ -212,16 +259,3 @@ def _play_recorded(
         verdict = play(arena, drill, minds, observe, decide)
         recorder.log_label(arena.tick, verdict.label, verdict.reason)
     return verdict
-
-
-def describe_action(action: Action) -> str:
-    """An action in the Soccer Server's words, degrees for angles (for logs and traces)."""
-    if isinstance(action, Turn):
-        return f"turn {math.degrees(action.angle_rad):.1f}"
-    if isinstance(action, Dash):
-        return f"dash {action.power:.0f}"
-    if isinstance(action, Kick):
-        return f"kick {action.power:.0f} {math.degrees(action.direction_rad):.1f}"
-    if isinstance(action, Say):
-        return f"say {action.text}"
-    raise TypeError(f"not an action: {action!r}")

@@ -2,7 +2,7 @@
 
 **The defender** (:class:`DefenderMind`) follows the paper's training procedure (§5, the list
 under Figure 6; BD = ball distance, BA = ball angle, TA = "the angle to turn *after* facing the
-ball"), in our reading (the lead's decision, ``ta_mode="hold"``):
+ball"), in our reading (``ta_mode="hold"``):
 
 * while BD > the trigger distance (14 units): TURN(BA) — watch and face the ball;
 * the first time BD <= the trigger distance: TA is chosen by the behaviour from (BD, BA,
@@ -28,9 +28,9 @@ Details the paper leaves open, chosen here:
 * **Turn tolerance**: a turn smaller than ``turn_tolerance_rad`` is left out (a dash alone, or
   nothing before the trigger). 0 (the default, the Soccer Server) never leaves one out, as the
   paper's client; robots use a few times the camera's heading noise, because a robot stops to
-  spin for a whole camera period on every turn however small (:mod:`field_models.robot_physics.host`).
+  spin for a whole camera period on every turn however small (the robots' host).
 
-**Behaviours** (:data:`BEHAVIOURS`), each a small :class:`TurnPolicy`:
+**Behaviours** (:class:`Behaviour`), each a small :class:`TurnPolicy`:
 
 * ``still`` — never moves (the paper's "if the defender remains still" check); no policy;
 * ``straight`` — TA = 0;
@@ -53,7 +53,7 @@ positions relative to the defender. Its own displacement is not reckoned: exact 
 (whose turns show in the camera only after the link, the turn itself and the camera latency),
 the estimate is approximate.
 
-**The shooter** (:class:`ShooterMind`) kicks once, at its first percept, toward the defender as
+**The shooter** (:class:`AimedShooterMind`) kicks once, at its first percept, toward the defender as
 it sees it plus an aim offset (the paper's shooter "kicks the ball directly towards the
 defender with a fixed power"), then stands.
 
@@ -66,24 +66,40 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable
+from enum import StrEnum
 from pathlib import Path
 from typing import Protocol
 
 import numpy as np
 
-from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Turn
+from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Turn, wrap_angle
 from learning.analytic import MOTION_MULTIPLIER, analytic_turn_angle_xy
 from learning.interception_file import TurnAngleFunction, load_turn_function
 from learning.lookup import LookupTable
+from robotsoccer.options import choice
 
-BEHAVIOURS = ("still", "straight", "random", "net", "lookup", "analytic")
-"""Defender behaviours, by name."""
 
-MODEL_BEHAVIOURS = ("net", "lookup")
-"""Behaviours that read a model file."""
+class Behaviour(StrEnum):
+    """The defender's behaviours (module docstring)."""
 
-TA_MODES = ("hold", "every_see")
-"""When TA is chosen: once at the trigger and held, or at every percept after it."""
+    STILL = "still"
+    STRAIGHT = "straight"
+    RANDOM = "random"
+    NET = "net"
+    LOOKUP = "lookup"
+    ANALYTIC = "analytic"
+
+    @property
+    def reads_model(self) -> bool:
+        """Whether the behaviour reads a model file (``net``, ``lookup``)."""
+        return self in (Behaviour.NET, Behaviour.LOOKUP)
+
+
+class TaMode(StrEnum):
+    """When TA is chosen: once at the trigger and held, or at every percept after it."""
+
+    HOLD = "hold"
+    EVERY_SEE = "every_see"
 
 RANDOM_TA_HALF_RANGE_RAD = math.radians(45.0)
 """The training behaviour's TA range: uniform in [-45°, 45°] (paper §5)."""
@@ -256,11 +272,13 @@ def load_lookup_table(path: str | os.PathLike[str]) -> LookupTable:
     return table
 
 
-def make_policy(behaviour: str, rng: np.random.Generator, model: str = "") -> TurnPolicy | None:
+def make_policy(
+    behaviour: Behaviour | str, rng: np.random.Generator, model: str = ""
+) -> TurnPolicy | None:
     """The TA rule of a behaviour; None for ``still`` (which never moves).
 
     Args:
-        behaviour: One of :data:`BEHAVIOURS`.
+        behaviour: A :class:`Behaviour` (or its name).
         rng: The trial's ``"policy"`` stream (used by ``random``).
         model: The model file of ``net`` (``.npz``) or ``lookup`` (JSON).
 
@@ -268,26 +286,30 @@ def make_policy(behaviour: str, rng: np.random.Generator, model: str = "") -> Tu
         ValueError: Unknown behaviour, or a model file missing for ``net``/``lookup``.
         learning.features.ModelFileError: The model file is unreadable.
     """
-    check_behaviour(behaviour, model)
-    if behaviour == "still":
+    kind = check_behaviour(behaviour, model)
+    if kind is Behaviour.STILL:
         return None
-    if behaviour == "straight":
+    if kind is Behaviour.STRAIGHT:
         return straight_policy
-    if behaviour == "random":
+    if kind is Behaviour.RANDOM:
         return RandomPolicy(rng)
-    if behaviour == "net":
+    if kind is Behaviour.NET:
         return NetPolicy(load_net_function(model))
-    if behaviour == "lookup":
+    if kind is Behaviour.LOOKUP:
         return LookupPolicy(load_lookup_table(model))
     return AnalyticPolicy()
 
 
-def check_behaviour(behaviour: str, model: str = "") -> None:
-    """Raise ValueError for an unknown behaviour or a missing model file name."""
-    if behaviour not in BEHAVIOURS:
-        raise ValueError(f"unknown behaviour {behaviour!r} (known: {', '.join(BEHAVIOURS)})")
-    if behaviour in MODEL_BEHAVIOURS and not model:
-        raise ValueError(f"behaviour {behaviour!r} needs a model file (option model=...)")
+def check_behaviour(behaviour: Behaviour | str, model: str = "") -> Behaviour:
+    """The behaviour named, checked: known, and given a model file where it needs one.
+
+    Raises:
+        ValueError: An unknown behaviour (listing the known ones), or no model file.
+    """
+    kind = choice(Behaviour, behaviour, "behaviour")
+    if kind.reads_model and not model:
+        raise ValueError(f"behaviour {kind.value!r} needs a model file (option model=...)")
+    return kind
 
 
 # ----------------------------------------------------------------------------- minds
@@ -299,7 +321,7 @@ class DefenderMind:
     Args:
         policy: The behaviour's TA rule; None stands still (``still``).
         trigger_distance_m: TA is chosen the first time BD is at most this (14 units) [m].
-        ta_mode: ``"hold"`` or ``"every_see"`` (:data:`TA_MODES`).
+        ta_mode: When TA is chosen (:class:`TaMode`, or its name).
         kickable_distance_m: Kick (clear) when BD is at most this [m]; None never kicks.
         turn_tolerance_rad: Leave out turns smaller than this [rad]; 0 keeps every turn.
         ta_clip_rad: |TA| is clipped to this [rad].
@@ -315,16 +337,14 @@ class DefenderMind:
         policy: TurnPolicy | None,
         trigger_distance_m: float,
         *,
-        ta_mode: str = "hold",
+        ta_mode: TaMode | str = TaMode.HOLD,
         kickable_distance_m: float | None = None,
         turn_tolerance_rad: float = 0.0,
         ta_clip_rad: float = TA_CLIP_RAD,
     ) -> None:
-        if ta_mode not in TA_MODES:
-            raise ValueError(f"unknown ta_mode {ta_mode!r} (known: {', '.join(TA_MODES)})")
         self.policy = policy
         self.trigger_distance_m = trigger_distance_m
-        self.every_see = ta_mode == "every_see"
+        self.every_see = choice(TaMode, ta_mode, "ta_mode") is TaMode.EVERY_SEE
         self.kickable_distance_m = kickable_distance_m
         self.turn_tolerance_rad = turn_tolerance_rad
         self.ta_clip_rad = ta_clip_rad
@@ -377,8 +397,7 @@ class DefenderMind:
 
     def _turn(self, tick: int, angle: float, then: tuple[Action, ...]) -> tuple[Action, ...]:
         """Turn by `angle` (wrapped) then `then`; the turn is left out below the tolerance."""
-        if not -math.pi <= angle < math.pi:  # wrap only when needed: keeps the angle exact
-            angle = (angle + math.pi) % (2.0 * math.pi) - math.pi
+        angle = wrap_angle(angle)
         if abs(angle) < self.turn_tolerance_rad:
             return then
         self._turns.append((tick, angle))
@@ -396,14 +415,14 @@ def _clearing_direction(percept: Percept) -> float:
     """Kick direction away from the own goal: "g r" + 180°, else toward "g l", else ahead."""
     own = percept.landmark("g r")
     if own is not None:
-        return (own.angle_rad + 2.0 * math.pi) % (2.0 * math.pi) - math.pi
+        return wrap_angle(own.angle_rad + math.pi)
     other = percept.landmark("g l")
     if other is not None:
         return other.angle_rad
     return 0.0
 
 
-class ShooterMind:
+class AimedShooterMind:
     """Kick once, at the first percept, toward the defender as seen plus an aim offset (§5).
 
     Args:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import time
 from pathlib import Path
 
 import numpy as np
@@ -122,14 +121,29 @@ def test_other_optimisers_and_mini_batches_also_learn(
     assert model.loss_history_[-1] < 0.3 * model.loss_history_[0]
 
 
-def test_default_configuration_fits_1000_saves_quickly_to_the_noise_level() -> None:
+def test_default_configuration_fits_1000_saves_to_the_noise_level() -> None:
+    # How long this takes is a benchmark figure (robotsoccer bench: training), not a test.
     x, y = saves(1000, seed=1)
-    start = time.perf_counter()
     model = InterceptionModel().fit(x, y)
-    elapsed = time.perf_counter() - start
-    assert elapsed < 5.0, f"training 1000 saves took {elapsed:.1f} s"
     assert model.loss_history_.shape == (3000,)
     assert model.loss_history_[-1] < 1.3 * NOISE_RAD**2
+
+
+def test_the_papers_learning_rate_does_not_move_on_standardised_inputs() -> None:
+    """Why the default optimiser is not the paper's: on standardised inputs, back-propagation at
+    1e-6 (full batch, 3000 epochs) barely moves the loss; with the paper's weight decay it falls
+    only as far as shrinking the weights takes it. Adam at 0.01 fits (module docstring)."""
+    x, y = saves(300, seed=2)
+    steps_only = InterceptionModel(optimizer="sgd", learning_rate=1e-6, weight_decay=0.0)
+    paper = InterceptionModel(optimizer="sgd", learning_rate=1e-6)
+    ours = InterceptionModel()
+    ratio = {}
+    for name, model in (("steps", steps_only), ("paper", paper), ("ours", ours)):
+        history = model.fit(x, y).loss_history_
+        ratio[name] = history[-1] / history[0]
+    assert ratio["steps"] > 0.98
+    assert ratio["paper"] > 0.5
+    assert ratio["ours"] < 0.1
 
 
 def test_same_random_state_gives_identical_weights() -> None:

@@ -158,14 +158,14 @@ def test_turn_rate_and_duration_hand_cases() -> None:
 def test_turn_from_rest_rotates_by_the_angle(angle: float) -> None:
     """Host rate/duration + firmware + ramped wheels: the robot ends rotated by the angle."""
     host, link = make_host()
-    fw = Firmware(A, PRESET.robot, PRESET.firmware, timeout_ticks=PRESET.ticks(0.25, "t"), dt_s=DT)
+    fw = Firmware(A, PRESET.robot, PRESET.firmware, timeout_ticks=PRESET.ticks(0.25, "t"))
     host.submit(A, (Turn(angle),), 0)
     for c in sent(link):
         fw.receive(c, 0)
     left = right = heading = 0.0
     dv = PRESET.robot.wheel_accel_mps2 * DT
     for tick in range(200):
-        lt, rt = fw.update(tick, left, right)
+        lt, rt = fw.update(tick)
         left += max(-dv, min(dv, lt - left))
         right += max(-dv, min(dv, rt - right))
         heading += (right - left) / PRESET.robot.track_m * DT
@@ -207,28 +207,16 @@ def test_one_body_action_per_submit_and_increasing_seq() -> None:
     assert cs[0].seq < cs[1].seq
 
 
-def test_goto_in_robot_frame_from_pose_estimate() -> None:
-    host, link = make_host()
-    assert not host.goto(A, 1.0, 1.0, 0)
-    assert sent(link) == []
-    host.percepts(frame(None, (A, 1.0, 1.0, math.pi / 2)), 12)
-    assert host.goto(A, 2.0, 1.5, 12)  # 1 m to the robot's right, 0.5 m ahead
-    (c,) = sent(link, 12)
-    assert c.primitive is Primitive.GOTO and c.duration_ticks is None
-    assert (c.target_x, c.target_y) == (pytest.approx(0.5), pytest.approx(-1.0))
-    assert host.drain_events()[-1].text == "left1 GOTO (+0.500, -1.000) m"
-
-
 def test_broadcast_stop_reaches_every_firmware() -> None:
     host, link = make_host()
-    fws = [Firmware(r, PRESET.robot, PRESET.firmware, timeout_ticks=60, dt_s=DT) for r in REFS]
+    fws = [Firmware(r, PRESET.robot, PRESET.firmware, timeout_ticks=60) for r in REFS]
     for fw in fws:
         fw.receive(Command(0, fw.ref, Primitive.FORWARD, 0.5), 0)
     host.stop(3)
     (c,) = sent(link, 3)
     assert c.robot is None
     assert all(fw.receive(c, 4) for fw in fws)
-    assert all(fw.update(4, 0.0, 0.0) == (0.0, 0.0) for fw in fws)
+    assert all(fw.update(4) == (0.0, 0.0) for fw in fws)
     assert host.drain_events()[0].text == "all STOP"
 
 
@@ -250,8 +238,7 @@ def test_say_relayed_to_every_other_robot_once() -> None:
     assert all(p.heard == () for p in host.percepts(f, 28))
     events = host.drain_events()
     assert [(e.channel, e.text) for e in events] == [
-        ("message", "left1 says 'pass to me'"),
-        ("command", "left1 FORWARD 0.24 m/s for 16 ticks"),
+        ("link", "left1 FORWARD 0.24 m/s for 16 ticks"),
     ]
 
 
@@ -275,14 +262,14 @@ def test_host_link_firmware_pipeline_with_latency() -> None:
         rng=np.random.default_rng(4),
     )
     host = CentralHost(REFS, PRESET, link, frame_period_ticks=PERIOD)
-    fw = Firmware(B, PRESET.robot, PRESET.firmware, timeout_ticks=60, dt_s=DT)
+    fw = Firmware(B, PRESET.robot, PRESET.firmware, timeout_ticks=60)
     outputs = []
     for tick in range(30):
         for c in link.deliver(tick):
             fw.receive(c, tick)
         if tick == 8:
             host.submit(B, (Dash(50.0),), tick)
-        outputs.append(fw.update(tick, 0.0, 0.0))
+        outputs.append(fw.update(tick))
     moving = [t for t, o in enumerate(outputs) if o != (0.0, 0.0)]
     assert moving == list(range(11, 27))  # arrives 3 ticks after send, held 2 camera periods
 
@@ -360,7 +347,7 @@ def test_says_go_at_once_and_do_not_take_a_place_in_the_chain() -> None:
     host.submit(A, (Turn(0.5), Say("mine"), Dash(100.0)), 0)
     assert [c.primitive for c in sent(link)] == [Primitive.TURN]
     assert host.pending(A) == (Dash(100.0),)
-    assert [e.channel for e in host.drain_events()] == ["message", "command"]
+    assert [e.channel for e in host.drain_events()] == ["link"]
 
 
 def test_turn_then_dash_reaches_the_firmware_as_the_turn_ends() -> None:
@@ -371,7 +358,7 @@ def test_turn_then_dash_reaches_the_firmware_as_the_turn_ends() -> None:
         rng=np.random.default_rng(4),
     )
     host = CentralHost(REFS, PRESET, link, frame_period_ticks=PERIOD)
-    fw = Firmware(B, PRESET.robot, PRESET.firmware, timeout_ticks=60, dt_s=DT)
+    fw = Firmware(B, PRESET.robot, PRESET.firmware, timeout_ticks=60)
     _, turn_ticks = host.turn_plan(0.8)
     outputs = []
     for tick in range(80):
@@ -380,7 +367,7 @@ def test_turn_then_dash_reaches_the_firmware_as_the_turn_ends() -> None:
             fw.receive(c, tick)
         if tick == 8:
             host.submit(B, (Turn(0.8), Dash(100.0)), tick)
-        outputs.append(fw.update(tick, 0.0, 0.0))
+        outputs.append(fw.update(tick))
     turning = [t for t, (left, right) in enumerate(outputs) if left < 0.0 < right]
     forward = [t for t, (left, right) in enumerate(outputs) if left == right > 0.0]
     assert turning == list(range(11, 11 + turn_ticks))
@@ -404,7 +391,40 @@ def test_robot_arena_releases_the_dash_of_a_decision() -> None:
     _, turn_ticks = arena.host.turn_plan(1.0)
     for _ in range(turn_ticks + 20):
         arena.step()
-    events = [(e.tick, e.text.split()[1]) for e in arena.drain_events() if e.player == A]
-    assert events == [(10, "TURN"), (10 + turn_ticks, "FORWARD")]
+    events = [(e.tick, e.channel, e.text) for e in arena.drain_events() if e.player == A]
+    assert [(tick, text) for tick, channel, text in events if channel == "command"] == [
+        (10, "(turn -57.3)"),
+        (10, "(dash 100)"),
+    ]
+    sent_ = [(tick, text.split()[1]) for tick, channel, text in events if channel == "link"]
+    assert sent_ == [(10, "TURN"), (10 + turn_ticks, "FORWARD")]
     state = arena.player_state(A)
     assert math.hypot(state.vx, state.vy) > 0.1  # driving after the turn
+
+
+@pytest.mark.parametrize(
+    ("direction", "turn", "primitive"),
+    [
+        (0.0, None, Primitive.FORWARD),
+        (math.pi, None, Primitive.BACKWARD),
+        (0.5, 0.5, Primitive.FORWARD),
+        (-2.5, math.pi - 2.5, Primitive.BACKWARD),
+    ],
+)
+def test_a_directed_dash_turns_first_or_drives_backwards(
+    direction: float, turn: float | None, primitive: Primitive
+) -> None:
+    host, link = make_host()
+    host.submit(A, (Dash(60.0, direction),), 0)
+    (first,) = sent(link)
+    if turn is None:
+        assert first.primitive is primitive and first.value == pytest.approx(0.6 * VMAX)
+        assert host.pending(A) == ()
+        return
+    assert first.primitive is Primitive.TURN
+    assert first.value * first.duration_ticks * DT == pytest.approx(turn)
+    due = host.next_release_tick
+    assert due == first.duration_ticks
+    host.release(due)
+    (then,) = sent(link, due)
+    assert then.primitive is primitive and then.value == pytest.approx(0.6 * VMAX)

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from field_models.protocol import LEFT, RIGHT, PlayerRef
+from field_models.protocol import LEFT, RIGHT, Crossing, PlayerRef, end_line_crossing
 from field_models.robot_physics.config import load_preset
 from field_models.robot_physics.world import RobotWorld
 
@@ -164,29 +164,20 @@ def test_fastest_ball_never_leaves_the_walled_field(
     assert abs(px) <= half_l + f.goal_depth_m - r + slop
 
 
-@pytest.mark.parametrize(
-    ("x", "y", "expected"),
-    [
-        (-1.37 - 0.03, 0.0, RIGHT),  # wholly over the left line, between the posts
-        (1.37 + 0.03, 0.1, LEFT),
-        (1.37 + 0.01, 0.0, None),  # on the line: not wholly over
-        (1.0, 0.0, None),
-    ],
-)
-def test_goal_counts_only_when_the_ball_is_wholly_over_the_line(x, y, expected) -> None:
+@pytest.mark.parametrize(("y", "expected"), [(0.0, Crossing.RIGHT_GOAL), (0.3, None)])
+def test_ball_rolls_wholly_into_the_goal_mouth_and_stays_in_it(y, expected) -> None:
+    """The one goal-line rule sees the ball cross into the goal; wide of it the wall stops it."""
     world = RobotWorld(PRESET, ())
-    world.place_ball(x, y)
-    assert world.goal_scored() == expected
-
-
-def test_ball_rolls_into_the_goal_and_stays_in_it() -> None:
-    world = RobotWorld(PRESET, ())
-    world.place_ball(1.0, 0.0, 2.0, 0.0)
-    scored = None
+    world.place_ball(1.0, y, 2.0, 0.0)
+    pitch = PRESET.pitch()
+    crossings = []
     for _ in range(480):
+        before = world.ball_xy()
         world.step()
-        scored = scored or world.goal_scored()
-    assert scored == LEFT
+        crossing = end_line_crossing(pitch, *before, *world.ball_xy())
+        if crossing:
+            crossings.append(crossing)
+    assert crossings == ([] if expected is None else [expected])
     assert world.ball_xy()[0] < 0.5 * PRESET.field.length_m + PRESET.field.goal_depth_m
 
 

@@ -1,4 +1,4 @@
-"""The Soccer Server arena: same runner and drill as the robots, queued commands, hearing, trace."""
+"""The Soccer Server arena: queued commands, hearing, the fast path equal to the text route."""
 
 from __future__ import annotations
 
@@ -6,54 +6,28 @@ import math
 
 import pytest
 
-from field_models.protocol import LEFT, RIGHT, Dash, PlayerRef, Say, Turn
+from field_models.benchmarks import ChaseLoad
+from field_models.protocol import LEFT, RIGHT, Dash, Percept, PlayerRef, Say, Turn
 from field_models.seeding import TrialRngs
+from field_models.soccer_server import model as server_model
 from field_models.soccer_server.arena import SoccerServerArena
-from field_models.soccer_server.messages import parse_see
 from field_models.soccer_server.params import load_server_preset
-from robotsoccer.cli import main
-from robotsoccer.drills import make_drill
-from robotsoccer.replay.trace import trace_trial
-from robotsoccer.runs.pool import run_trials
-from robotsoccer.runs.runner import TrialSpec, play, run_trial
 
-SPEC = TrialSpec(field_model="soccer_server", preset="soccer_server_1996", seed=5)
 A, B = PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1)
 
 
-def arena(preset: str = "soccer_server_1996", noise: bool = True) -> SoccerServerArena:
+def arena(
+    preset: str = "soccer_server_1996", noise: bool = True, trace: bool = False, seed: int = 0
+) -> SoccerServerArena:
     loaded = load_server_preset(preset)
     if not noise:
         loaded = loaded.replace_dynamics(player_rand=0.0, ball_rand=0.0)
-    a = SoccerServerArena(loaded, (A, B), TrialRngs.for_trial(0, 0))
+    facts = server_model.facts(loaded)
+    a = SoccerServerArena(loaded, facts, (A, B), TrialRngs.for_trial(seed, 0), trace=trace)
     a.place_player(A, -10.0, 0.0, 0.0)
     a.place_player(B, 10.0, 0.0, math.pi)
     a.place_ball(0.0, 20.0)
     return a
-
-
-def test_the_demo_drill_runs_unchanged_on_the_soccer_server() -> None:
-    results = [run_trial(SPEC, i) for i in range(6)]
-    assert {r.label for r in results} <= {"SAVE", "GOAL", "MISS"}
-    assert all(r.ticks > 0 and r.time_s == pytest.approx(0.1 * r.ticks) for r in results)
-
-
-def test_tracing_does_not_change_a_trial() -> None:
-    for i in range(3):
-        rngs = TrialRngs.for_trial(SPEC.seed, i)
-        drill = make_drill("shootout")
-        traced = SoccerServerArena.from_preset(SPEC.preset, drill.players(), rngs, trace=True)
-        drill.setup(traced, rngs)
-        verdict = play(traced, drill, drill.minds(traced, rngs))
-        plain = run_trial(SPEC, i)
-        assert (verdict.label, traced.tick) == (plain.label, plain.ticks)
-
-
-@pytest.mark.slow
-def test_one_and_two_workers_give_identical_tables() -> None:
-    one = run_trials(SPEC, 8, workers=1, progress=False)
-    two = run_trials(SPEC, 8, workers=2, progress=False, chunk_size=1)
-    assert one == two
 
 
 def test_body_actions_of_one_decision_run_one_per_cycle_in_order() -> None:
@@ -95,20 +69,39 @@ def test_a_say_is_heard_with_the_next_percept_and_the_referee_by_all() -> None:
         for percept in a.step():
             texts += [h.text for h in percept.heard if h.sender is None]
     assert any(t.startswith("goal_l") for t in texts)
+    assert a.score() == (1, 0)
 
 
-def test_trace_prints_the_clients_see_messages_and_commands() -> None:
-    lines = trace_trial(SPEC, 0)
-    sees = [line for line in lines if line.startswith("(see")]
-    commands = [line for line in lines if line.startswith("**-> (")]
-    assert sees and commands
-    for line in sees:
-        parse_see(line)  # the server's own text format
-    assert lines[-1].startswith("coach: ")
+def _run(traced: bool) -> list[Percept]:
+    a = arena(trace=traced, seed=3)
+    a.place_ball(-5.0, 3.0, 8.0, -2.0)
+    minds = {ref: ChaseLoad() for ref in (A, B)}
+    seen = []
+    for _ in range(120):
+        for percept in a.step():
+            seen.append(percept)
+            a.submit(percept.player, minds[percept.player].act(percept))
+    return seen
 
 
-def test_trace_command(capsys) -> None:
-    assert main(["trace", "--seed", "5", "--player", "right1"]) == 0
-    out = capsys.readouterr().out
-    assert "(see " in out and "coach:" in out
-    assert main(["trace", "--player", "nobody"]) == 2
+def test_the_fast_path_gives_the_percepts_the_text_route_gives() -> None:
+    """Tracing takes percepts from the rendered and parsed see text; without it the structured
+    fast path runs. Same seeds, same actions: the same ball, players and goals."""
+    fast, text = _run(False), _run(True)
+    assert len(fast) == len(text) > 20
+    for f, t in zip(fast, text, strict=True):
+        goals = tuple(m for m in t.landmarks if m.name in ("g l", "g r"))
+        assert (f.tick, f.ball, f.players, f.heard) == (t.tick, t.ball, t.players, t.heard)
+        assert f.landmarks == goals
+
+
+def test_events_are_command_text_and_sees_when_tracing() -> None:
+    a = arena(trace=True)
+    a.submit(A, (Turn(math.radians(30.0)), Dash(100.0, math.radians(-90.0)), Say("hi")))
+    for _ in range(3):
+        a.step()
+    events = a.drain_events()
+    commands = [e.text for e in events if e.channel == "command"]
+    assert commands == ["(turn -30)", "(dash 100 90)", "(say hi)"]
+    assert any(e.channel == "see" and e.text.startswith("(see ") for e in events)
+    assert a.drain_events() == []

@@ -4,24 +4,26 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 import pytest
 
-from field_models.arena import Arena
-from field_models.protocol import Action, Percept
-from field_models.registry import make_arena
+from field_models.arena import Arena, FieldOptions
+from field_models.protocol import Action, BodyState, Percept, PlayerRef
+from field_models.registry import field_facts, make_arena
 from field_models.seeding import TrialRngs
 from robotsoccer.drills import DRILLS, make_drill
 from robotsoccer.drills.intercept import DEFENDER, SHOOTER, InterceptDrill, launch_plan
 from robotsoccer.runs.runner import TrialSpec, play, run_trial
-from robotsoccer.skills.intercept import ShooterMind
+from robotsoccer.skills.intercept import AimedShooterMind
 
 MODELS = {"soccer_server": "soccer_server_1996", "robot_physics": "small_size_1997"}
 
 
 def arena_for(field_model: str, drill: InterceptDrill, seed: int = 0, noise: float = 0.0) -> Arena:
     rngs = TrialRngs.for_trial(seed, 0)
-    return make_arena(field_model, MODELS[field_model], drill.players(), rngs, ball_noise=noise)
+    options = FieldOptions(ball_noise=noise)
+    return make_arena(field_model, MODELS[field_model], drill.players(), rngs, options)
 
 
 def launched(field_model: str, aim_offset_deg: float, bearing_deg: float = 0.0) -> str:
@@ -38,7 +40,7 @@ def launched(field_model: str, aim_offset_deg: float, bearing_deg: float = 0.0) 
 
 
 def test_server_geometry_and_launch_numbers_by_hand() -> None:
-    plan = launch_plan("soccer_server", "soccer_server_1996")
+    plan = launch_plan(field_facts("soccer_server", "soccer_server_1996"))
     assert (plan.unit_m, plan.defender_x_m, plan.trigger_distance_m) == (1.0, 48.5, 14.0)
     assert (plan.min_distance_m, plan.max_distance_m, plan.launch) == (20.0, 30.0, "shooter")
     # A power-100 kick: 1.6 m/cycle, decay 0.96 -> 25 m after ln(0.375)/ln(0.96) = 24.03 cycles.
@@ -49,8 +51,8 @@ def test_server_geometry_and_launch_numbers_by_hand() -> None:
 
 
 def test_robot_launch_matches_the_servers_sensor_updates() -> None:
-    server = launch_plan("soccer_server")
-    plan = launch_plan("robot_physics", "small_size_1997")
+    server = launch_plan(field_facts("soccer_server"))
+    plan = launch_plan(field_facts("robot_physics", "small_size_1997"))
     unit = 2.74 / 105.0
     assert plan.unit_m == pytest.approx(unit)
     assert plan.defender_x_m == pytest.approx(1.37 - 4 * unit)
@@ -68,20 +70,23 @@ def test_the_ball_covers_the_mean_distance_in_the_planned_time(field_model: str)
     drill = InterceptDrill(launch="coach")
     arena = arena_for(field_model, drill)
     plan = drill.plan(arena)
-    arena.place_player(DEFENDER, 0.0, -0.4 * arena.pitch.width_m, 0.0)  # out of the way
-    arena.place_player(SHOOTER, 0.1 * arena.pitch.length_m, -0.4 * arena.pitch.width_m, 0.0)
-    start = -0.45 * arena.pitch.length_m
+    pitch, dt = arena.facts.pitch, arena.facts.dt_s
+    arena.place_player(DEFENDER, 0.0, -0.4 * pitch.width_m, 0.0)  # out of the way
+    arena.place_player(SHOOTER, 0.1 * pitch.length_m, -0.4 * pitch.width_m, 0.0)
+    start = -0.45 * pitch.length_m
     arena.place_ball(start, 0.0, plan.launch_speed_mps, 0.0)
     while arena.ball_state().x - start < plan.mean_distance_m:
         arena.step()
-    assert arena.tick * arena.dt_s == pytest.approx(plan.arrival_time_s, abs=1.01 * arena.dt_s)
+    assert arena.tick * dt == pytest.approx(plan.arrival_time_s, abs=1.01 * dt)
 
 
 def test_a_shooter_launch_on_kickerless_robots_is_refused() -> None:
-    with pytest.raises(ValueError, match="no kicker"):
-        launch_plan("robot_physics", launch="shooter")
+    with pytest.raises(ValueError, match="no kick"):
+        launch_plan(field_facts("robot_physics"), launch="shooter")
     with pytest.raises(ValueError, match="unknown launch"):
-        launch_plan("soccer_server", launch="catapult")
+        launch_plan(field_facts("soccer_server"), launch="catapult")
+    with pytest.raises(ValueError, match="literal drill needs a kick"):
+        launch_plan(field_facts("robot_physics"), scaling="literal")
 
 
 # ----------------------------------------------------------------------------- labels
@@ -119,14 +124,14 @@ def test_a_ball_that_stops_short_is_a_miss_on_timeout(field_model: str) -> None:
 
 @pytest.mark.parametrize(
     ("y", "label", "why"),
-    [(2.0, "GOAL", "crossed the goal line between"), (10.0, "MISS", "end line wide")],
+    [(2.0, "GOAL", "into the goal between the posts"), (10.0, "MISS", "end line wide")],
 )
 def test_server_ball_at_the_goal_line(y: float, label: str, why: str) -> None:
     drill = InterceptDrill(launch="coach")
     arena = arena_for("soccer_server", drill)
     drill.place(arena, drill.plan(arena), 25.0, 0.0)
     arena.place_player(DEFENDER, 0.0, -20.0, 0.0)
-    arena.place_ball(52.3, y, 0.5, 0.0)  # crosses x = 52.5 before the referee's 52.585
+    arena.place_ball(52.3, y, 0.5, 0.0)  # wholly over the line x = 52.585 in the next cycle
     drill.start_judging(arena)
     verdict = play(arena, drill, minds={})
     assert verdict.label == label and why in verdict.reason
@@ -140,14 +145,15 @@ def test_server_goal_restarted_by_the_referee_is_a_goal() -> None:
     arena.place_ball(52.45, 1.0, 10.0, 0.0)  # over the line and scored within one cycle
     drill.start_judging(arena)
     verdict = play(arena, drill, minds={})
-    assert (verdict.label, verdict.reason) == ("GOAL", "the referee restarted play after a goal")
+    assert (verdict.label, verdict.reason) == ("GOAL", "ball into the goal between the posts")
+    assert arena.score() == (1, 0)  # the referee's count, though the ball is back at the centre
 
 
 def test_robot_ball_bouncing_off_the_end_wall_is_a_miss_not_a_save() -> None:
     drill = InterceptDrill(launch="coach")
     arena = arena_for("robot_physics", drill)
     drill.place(arena, drill.plan(arena), 0.6, 0.0)
-    hl = arena.pitch.half_length_m
+    hl = arena.facts.pitch.half_length_m
     arena.place_player(DEFENDER, hl - 0.05, -0.4, math.pi)  # û points toward +x and down
     arena.place_ball(hl - 0.15, 0.5, 1.0, 0.0)  # wide of the posts, at the end wall
     drill.start_judging(arena)
@@ -234,14 +240,15 @@ def test_noiseless_shots_from_the_shooter_hit_a_still_defender() -> None:
 
 
 def with_noise(spec: TrialSpec, noise: float) -> TrialSpec:
-    return dataclasses.replace(spec, ball_noise=noise)
+    return spec.with_field(ball_noise=noise)
 
 
 @pytest.mark.parametrize("field_model", sorted(MODELS))
 def test_the_example_is_recorded_once_at_the_trigger(field_model: str) -> None:
     drill = InterceptDrill(behaviour="straight")
     rngs = TrialRngs.for_trial(2, 1)
-    arena = make_arena(field_model, MODELS[field_model], drill.players(), rngs, ball_noise=0.05)
+    options = FieldOptions(ball_noise=0.05)
+    arena = make_arena(field_model, MODELS[field_model], drill.players(), rngs, options)
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
     seen: list[Percept] = []
@@ -284,22 +291,23 @@ def test_trials_are_a_function_of_their_seed(field_model: str) -> None:
 
 
 def test_robots_with_a_kicker_shoot_at_the_planned_speed() -> None:
-    from field_models.registry import robot_preset
+    from field_models.robot_physics import model
     from field_models.robot_physics.arena import RobotArena
     from field_models.robot_physics.config import KickerConfig
 
-    base = robot_preset("small_size_1997", 0.0)
+    base = model.load("small_size_1997", FieldOptions(perfect_perception=True, ball_noise=0.0))
     kicker = KickerConfig(reach_m=0.01, max_speed_mps=3.0, half_angle_rad=0.3)
     preset = dataclasses.replace(base, robot=dataclasses.replace(base.robot, kicker=kicker))
-    plan = launch_plan(preset)
+    facts = model.facts(preset)
+    plan = launch_plan(facts)
     assert plan.launch == "shooter"
     assert plan.kick_power == pytest.approx(100.0 * plan.launch_speed_mps / 3.0)
     drill = InterceptDrill(behaviour="still")
     rngs = TrialRngs.for_trial(0, 0)
-    arena = RobotArena(preset, drill.players(), rngs, perfect=True)
+    arena = RobotArena(preset, facts, drill.players(), rngs)
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
-    assert isinstance(minds[SHOOTER], ShooterMind)
+    assert isinstance(minds[SHOOTER], AimedShooterMind)
     top = 0.0
     for _ in range(40):
         for p in arena.step():
@@ -308,3 +316,71 @@ def test_robots_with_a_kicker_shoot_at_the_planned_speed() -> None:
         top = max(top, arena.ball_state().speed)
     assert top == pytest.approx(plan.launch_speed_mps, rel=0.02)
     assert play(arena, drill, minds).label == "SAVE"  # straight at the still defender
+
+
+# ----------------------------------------------------------------------------- the SAVE rule
+
+
+class ScriptedBall:
+    """An arena stand-in whose ball the test moves by hand; the judge reads only these."""
+
+    def __init__(self, field_model: str) -> None:
+        self.facts = field_facts(field_model)
+        self.ball = BodyState(0.0, 0.0, 0.0)
+        self.tick = 0
+        self.defender = BodyState(0.0, 0.0, 0.0)
+
+    def ball_state(self) -> BodyState:
+        return self.ball
+
+    def player_state(self, ref: PlayerRef) -> BodyState:
+        return self.defender if ref == DEFENDER else BodyState(-1.0, 0.0, 0.0)
+
+    def score(self) -> tuple[int, int]:
+        return (0, 0)
+
+    def move(self, x: float, y: float, vx: float, vy: float) -> None:
+        self.ball = BodyState(x, y, 0.0, vx, vy)
+        self.tick += 1
+
+
+def judged(field_model: str, backward_share: float) -> tuple[str | None, ScriptedBall, Any]:
+    """A ball rolling at the defender along +x, then leaving with the given backward share."""
+    arena = ScriptedBall(field_model)
+    unit = arena.facts.unit_m
+    drill = InterceptDrill(launch="coach")
+    x_def = drill.plan_for(arena.facts).defender_x_m
+    arena.defender = BodyState(x_def, 0.0, math.pi)
+    arena.ball = BodyState(x_def - 20 * unit, 0.0, 0.0)
+    drill.start_judging(arena)  # type: ignore[arg-type]
+    speed = 10 * unit
+    arena.move(x_def - 10 * unit, 0.0, speed, 0.0)
+    assert drill.judge(arena) is None  # type: ignore[arg-type]
+    along = -backward_share * speed
+    side = math.sqrt(speed**2 - along**2)
+    arena.move(x_def - 2 * unit, 0.5 * unit, along, side)
+    verdict = drill.judge(arena)  # type: ignore[arg-type]
+    return (None if verdict is None else verdict.label), arena, drill
+
+
+@pytest.mark.parametrize("field_model", sorted(MODELS))
+def test_a_save_needs_a_clear_backward_component(field_model: str) -> None:
+    assert judged(field_model, 0.51)[0] == "SAVE"
+    assert judged(field_model, 0.49)[0] is None  # glanced: judged on from here
+
+
+@pytest.mark.parametrize("field_model", sorted(MODELS))
+def test_a_glancing_ball_that_rolls_on_into_the_goal_is_a_goal(field_model: str) -> None:
+    label, arena, drill = judged(field_model, 0.2)
+    assert label is None
+    pitch = arena.facts.pitch
+    arena.move(pitch.half_length_m - pitch.player_radius_m, 0.0, 1.0, 0.0)  # past, rolling in
+    assert drill.judge(arena).label == "GOAL"
+
+
+@pytest.mark.parametrize("field_model", sorted(MODELS))
+def test_a_glancing_ball_that_stops_short_is_a_save(field_model: str) -> None:
+    label, arena, drill = judged(field_model, 0.2)
+    assert label is None
+    verdict = drill.timeout(arena)
+    assert verdict.label == "SAVE" and "deflected" in verdict.reason

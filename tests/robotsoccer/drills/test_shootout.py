@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from field_models.arena import FieldOptions
 from field_models.registry import make_arena
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.shootout import GOALIE, SHOOTER, ShootoutDrill
@@ -19,9 +20,9 @@ def scripted(ball_y: float, goalie_y: float, speed: float = 1.5, aim_y: float | 
         "small_size_1997",
         drill.players(),
         TrialRngs.for_trial(0, 0),
-        perfect=True,
+        FieldOptions(perfect_perception=True),
     )
-    hl = arena.pitch.half_length_m
+    hl = arena.facts.pitch.half_length_m
     arena.place_player(SHOOTER, -hl + 0.2, 0.6, 0.0)
     arena.place_player(GOALIE, hl - 0.1, goalie_y, math.pi)
     start_x = hl - 1.0

@@ -52,21 +52,25 @@ def test_paper_table_puts_ours_with_intervals_beside_the_papers() -> None:
     table = paper_table(("Training examples",), [Row(("750",), counts, paper.FIGURE_7[750])])
     header, rule, row = table.splitlines()
     assert header.startswith("| Training examples | Saves (%) | paper | Goals (%) | paper |")
-    assert "Saves/(Goals+Saves) (%)" in header and header.endswith("| n |")
-    assert rule.count("---") == 8
+    assert "Saves/(Goals+Saves) (%)" in header and header.endswith("| n | vs paper |")
+    assert rule.count("---") == 9
     cells = [c.strip() for c in row.strip("|").split("|")]
     assert cells[0] == "750"
     assert cells[1] == "86.0 [83.7, 88.0]" and cells[2] == "86"
     assert cells[3] == "9.0 [7.4, 10.9]" and cells[4] == "9"
     # Saves/(Goals+Saves) = 860/950 with its own n.
     assert cells[5] == "90.5 [88.5, 92.2] of 950" and cells[6] == "91"
-    assert cells[7] == "1000"
+    assert cells[7] == "1000" and cells[8] == "reproduced"
+    calibrated = Row(("750",), counts, paper.FIGURE_7[750], calibrated=True)
+    assert paper_table(("Training examples",), [calibrated]).endswith("| *calibrated* |")
 
 
 def test_rows_without_paper_numbers_or_runs_show_dashes() -> None:
     table = paper_table(("Behavior",), [Row(("NN",), None, paper.AIM_4_DEG_WIDE["net"])])
     cells = [c.strip() for c in table.splitlines()[2].strip("|").split("|")]
-    assert cells == ["NN", "not run", "99", "—", "—", "—", "—", "—"]
+    assert cells == ["NN", "not run", "99", "—", "—", "—", "—", "—", "reproduced"]
+    table = paper_table(("Behavior",), [Row(("NN",), Counts(1, 0, 0))])
+    assert table.endswith("| — |")  # no paper number: neither reproduced nor calibrated
 
 
 def test_a_row_must_match_the_key_headers() -> None:
@@ -169,14 +173,13 @@ def test_full_plan_runs_the_papers_1000_trials_and_every_condition() -> None:
     assert plan.noises == (0.0, 0.05, 0.06, 0.07, 0.08, 0.09, 0.1)
     assert plan.latencies_s == (0.0, 0.05, 0.1)
     assert plan.aim_offset_deg == 4.0 and plan.noise == 0.05
-    assert set(plan.collect_trials) == {"soccer_server", "robot_physics"}
+    assert plan.collect_saves == 4773  # the paper's "all" saves
 
 
 def test_quick_plan_is_smaller_in_every_trial_count() -> None:
     quick, full = quick_plan(), full_plan()
     assert quick.eval_trials == 200
-    for model, n in quick.collect_trials.items():
-        assert n < full.collect_trials[model]
+    assert quick.collect_saves < full.collect_saves
     assert quick.noises == full.noises and quick.training_sizes == full.training_sizes
 
 
@@ -217,9 +220,9 @@ def test_full_plan_conditions_on_the_soccer_server() -> None:
         "model": str(Path("/m/net_750.npz").resolve()),
         "ta_mode": "hold",
     }
-    assert net.ball_noise == 0.05 and net.camera_latency_s is None
-    wide = dict(unique["straight_noise0_aim4"].spec.drill_options)
-    assert wide["aim_offset_deg"] == 4.0 and unique["straight_noise0_aim4"].spec.ball_noise == 0
+    assert net.field.ball_noise == 0.05 and net.field.sensor_latency_s is None
+    wide = unique["straight_noise0_aim4"].spec
+    assert dict(wide.drill_options)["aim_offset_deg"] == 4.0 and wide.field.ball_noise == 0
     assert dict(unique["lookup750_noise0.05"].spec.drill_options)["model"].endswith("lookup.json")
 
 
@@ -230,8 +233,8 @@ def test_full_plan_adds_camera_latency_on_robots() -> None:
     unique = unique_conditions(plan_of)
     # The preset's own 50 ms runs once, shared with Table 1; 0 and 100 ms are new.
     assert len(unique) == 26 + 6
-    assert unique["analytic_noise0.05_latency100ms"].spec.camera_latency_s == 0.1
-    assert unique["net750_noise0.05_latency0ms"].spec.camera_latency_s == 0.0
+    assert unique["analytic_noise0.05_latency100ms"].spec.field.sensor_latency_s == 0.1
+    assert unique["net750_noise0.05_latency0ms"].spec.field.sensor_latency_s == 0.0
 
 
 def test_collection_and_evaluation_seeds_differ() -> None:
@@ -247,7 +250,8 @@ def test_collection_and_evaluation_seeds_differ() -> None:
 TINY = Layer1Plan(
     name="tiny",
     eval_trials=24,
-    collect_trials={"soccer_server": 400},
+    collect_saves=60,
+    collect_batch=300,
     training_sizes=(10, 20),
     net_examples=20,
     noises=(0.0, 0.05),
@@ -275,8 +279,9 @@ def test_tiny_pipeline_writes_report_plots_models_and_results(tmp_path) -> None:
     provenance = dataset.provenance
     assert provenance.field_model == "soccer_server" and provenance.preset == "soccer_server_1996"
     assert provenance.behaviour == "random" and provenance.ball_noise == 0.05
-    assert provenance.seed == seeds_for(3).collection and provenance.n_trials == 400
+    assert provenance.seed == seeds_for(3).collection and provenance.n_trials >= 300
     assert len(dataset) == provenance.extra["saves"] - provenance.extra["saves_without_decision"]
+    assert len(dataset) >= TINY.collect_saves
     assert LookupTable.load(models / "lookup.json").built_from["net"] == "net_20.npz"
     results = out / "results" / "soccer_server"
     csv = (results / "net20_noise0.05.csv").read_text().splitlines()
@@ -296,7 +301,7 @@ def test_tiny_pipeline_writes_report_plots_models_and_results(tmp_path) -> None:
     assert all(stage.trials == 0 for stage in sections2[0].stages if stage.name != "record")
 
     # Another seed into the same folder is refused.
-    with pytest.raises(PipelineError, match="another plan"):
+    with pytest.raises(PipelineError, match="another seed"):
         run_layer1([("soccer_server", None)], TINY, out, seed=4, workers=1, log=lines.append)
 
 
@@ -336,3 +341,40 @@ def test_the_soccer_server_gets_a_pass_through_check_on_the_swept_preset() -> No
         assert cond.spec.preset == "soccer_server_1996_swept"
         assert cond.name.endswith("_swept")
     assert "swept collisions" not in _plan_of("robot_physics", 0.05)[1]
+
+
+def test_the_straight_baseline_at_the_main_noise_is_marked_calibrated() -> None:
+    section = _section()
+    section.table1["straight"] = Counts(530, 350, 120)
+    section.checks["straight"] = Counts(530, 350, 120)
+    text = report_markdown("t", [], [section])
+    rows = [line for line in text.splitlines() if line.startswith("| Straight")]
+    assert rows and all(row.endswith("| *calibrated* |") for row in rows)
+    f8 = [line for line in text.splitlines() if line.startswith("| 0.1 | Straight")]
+    assert f8 and f8[0].endswith("| reproduced |")  # other noise levels were not tuned
+
+
+def test_why_lines_come_from_this_runs_trials_and_facts() -> None:
+    from field_models.registry import field_facts
+    from robotsoccer.experiments.report import paired_difference, why_lines
+    from robotsoccer.runs.runner import TrialResult
+
+    def trial(i: int, label: str, travel: float) -> TrialResult:
+        measures = (("defender_travel_units", travel), ("updates_after_trigger", 5.0))
+        return TrialResult(i, label, "", 10, 1.0, (), measures)
+
+    section = _section()
+    section.facts = field_facts("soccer_server")
+    section.trials = {
+        "net": [trial(i, "SAVE" if i % 2 else "GOAL", 2.0 * i) for i in range(10)],
+        "straight": [trial(i, "GOAL", 1.0) for i in range(10)],
+    }
+    diff, low, high, n = paired_difference(section.trials["net"], section.trials["straight"])
+    assert (diff, n) == (50.0, 10) and low < 50.0 < high
+    lines = why_lines(section)
+    lead = next(line for line in lines if line.startswith("- **Net vs straight**"))
+    assert "+50.0 points" in lead and "(n = 10)" in lead and "a gain" in lead
+    travel = next(line for line in lines if "How far the defender gets" in line)
+    assert "Straight 1.00 units" in travel and "NN 9.00 units" in travel
+    target = next(line for line in lines if "Target and speed" in line)
+    assert "0.89 units" in target  # (0.8 + 0.085) m on the 105 m pitch

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
@@ -10,7 +12,7 @@ from field_models.seeding import TrialRngs
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.runner import TrialSpec, run_trial
 
-SPEC = TrialSpec(seed=7)
+SPEC = TrialSpec(drill="shootout", field_model="robot_physics", seed=7)
 
 
 def test_same_seed_gives_identical_trial_results() -> None:
@@ -19,7 +21,7 @@ def test_same_seed_gives_identical_trial_results() -> None:
 
 def test_different_seeds_give_different_trials() -> None:
     a = [run_trial(SPEC, i) for i in range(4)]
-    b = [run_trial(TrialSpec(seed=8), i) for i in range(4)]
+    b = [run_trial(dataclasses.replace(SPEC, seed=8), i) for i in range(4)]
     assert a != b
 
 
@@ -45,10 +47,13 @@ def test_same_seed_gives_identical_detections_and_other_seeds_do_not() -> None:
 
 
 @pytest.mark.slow
-def test_one_and_two_workers_give_identical_tables(tmp_path) -> None:
-    one = run_trials(SPEC, 12, workers=1, results_path=tmp_path / "one.csv", progress=False)
+@pytest.mark.parametrize("field_model", ["robot_physics", "soccer_server"])
+@pytest.mark.parametrize("drill", ["shootout", "intercept"])
+def test_one_and_two_workers_give_identical_tables(tmp_path, drill: str, field_model: str) -> None:
+    spec = TrialSpec(drill=drill, field_model=field_model, seed=7).with_field(ball_noise=0.05)
+    one = run_trials(spec, 12, workers=1, results_path=tmp_path / "one.csv", progress=False)
     two = run_trials(
-        SPEC, 12, workers=2, results_path=tmp_path / "two.csv", progress=False, chunk_size=2
+        spec, 12, workers=2, results_path=tmp_path / "two.csv", progress=False, chunk_size=2
     )
     assert one == two
     rows = lambda p: sorted((tmp_path / p).read_text().splitlines())  # noqa: E731

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 import robotsoccer.runs.pool as pool
-from robotsoccer.runs.pool import read_results, run_trials
+from learning.lookup import LookupTable
+from robotsoccer.runs.pool import ResumeError, manifest_path, read_results, run_trials
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 
-SPEC = TrialSpec(seed=11)
+SPEC = TrialSpec(drill="shootout", field_model="robot_physics", seed=11)
 
 
 def test_results_stream_to_a_table_sorted_by_index(tmp_path) -> None:
@@ -52,3 +55,64 @@ def test_interrupted_run_keeps_finished_trials_and_resume_runs_only_the_rest(
     assert [r.index for r in results] == list(range(6))
     fresh = run_trials(SPEC, 6, workers=1, progress=False)
     assert results == fresh
+
+
+def test_a_resume_onto_another_runs_table_is_refused_in_one_line(tmp_path) -> None:
+    path = tmp_path / "results.csv"
+    run_trials(SPEC, 3, workers=1, results_path=path, progress=False)
+    other = dataclasses.replace(SPEC, seed=12)
+    with pytest.raises(ResumeError, match="seed 11 then, 12 now") as caught:
+        run_trials(other, 3, workers=1, results_path=path, resume=True, progress=False)
+    assert "\n" not in str(caught.value)
+    options = SPEC.with_options(max_time_s=5.0)
+    with pytest.raises(ResumeError, match="drill_options"):
+        run_trials(options, 3, workers=1, results_path=path, resume=True, progress=False)
+    manifest_path(path).unlink()
+    with pytest.raises(ResumeError, match="no readable record"):
+        run_trials(SPEC, 3, workers=1, results_path=path, resume=True, progress=False)
+
+
+def test_a_resume_refuses_results_of_another_code_version(tmp_path, monkeypatch) -> None:
+    path = tmp_path / "results.csv"
+    run_trials(SPEC, 2, workers=1, results_path=path, progress=False)
+    monkeypatch.setattr(pool, "code_version", lambda: "0123456789abcdef")
+    with pytest.raises(ResumeError, match="code version"):
+        run_trials(SPEC, 2, workers=1, results_path=path, resume=True, progress=False)
+
+
+def test_a_resume_refuses_results_made_with_another_model_file(tmp_path) -> None:
+    model = tmp_path / "table.json"
+    LookupTable([-0.1, 0.1], [0.0, 0.0]).save(model)
+    spec = TrialSpec(drill="intercept", field_model="soccer_server", seed=1).with_options(
+        behaviour="lookup", model=str(model)
+    )
+    path = tmp_path / "results.csv"
+    run_trials(spec, 2, workers=1, results_path=path, progress=False)
+    run_trials(spec, 3, workers=1, results_path=path, resume=True, progress=False)  # same file
+    LookupTable([-0.1, 0.1], [0.1, 0.1]).save(model)
+    with pytest.raises(ResumeError, match="model files changed"):
+        run_trials(spec, 4, workers=1, results_path=path, resume=True, progress=False)
+
+
+def test_a_last_row_cut_short_is_dropped_with_a_warning_and_run_again(tmp_path) -> None:
+    path = tmp_path / "results.csv"
+    full = run_trials(SPEC, 4, workers=1, results_path=path, progress=False)
+    text = path.read_text()
+    path.write_text(text[: text.rindex("\n", 0, len(text) - 1) + 12])  # kill mid-row
+    warnings: list[str] = []
+    kept = read_results(path, warnings.append)
+    assert sorted(kept) == [0, 1, 2] and len(warnings) == 1 and "cut short" in warnings[0]
+    assert path.read_text().endswith("\n")
+    again = run_trials(SPEC, 4, workers=1, results_path=path, resume=True, progress=False)
+    assert again == full
+    assert read_results(path) == {r.index: r for r in full}
+
+
+def test_a_damaged_row_in_the_middle_is_refused(tmp_path) -> None:
+    path = tmp_path / "results.csv"
+    run_trials(SPEC, 3, workers=1, results_path=path, progress=False)
+    lines = path.read_text().splitlines()
+    lines[2] = "garbage"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ResumeError, match="line 3 is not a result row"):
+        read_results(path)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from field_models.protocol import Percept
@@ -24,8 +26,7 @@ class Counting:
 
 @pytest.mark.parametrize("field_model", ["robot_physics", "soccer_server"])
 def test_a_mind_that_is_done_gets_no_more_percepts(field_model: str) -> None:
-    preset = {"robot_physics": "small_size_1997", "soccer_server": "soccer_server_1996"}
-    spec = TrialSpec(field_model=field_model, preset=preset[field_model])
+    spec = TrialSpec(drill="shootout", field_model=field_model)
     rngs, _, arena = build_trial(spec, 0)
     drill = ShootoutDrill(max_time_s=2.0)
     drill.setup(arena, rngs)
@@ -36,7 +37,10 @@ def test_a_mind_that_is_done_gets_no_more_percepts(field_model: str) -> None:
 
 
 def test_trial_results_round_trip_through_the_csv_table() -> None:
-    result = TrialResult(3, "SAVE", "why, with a comma", 17, 1.7000000000000002, (0.1, -2.5e-3))
+    result = TrialResult(
+        3, "SAVE", "why, with a comma", 17, 1.7000000000000002, (0.1, -2.5e-3), (("a", 1e-3),)
+    )
     assert TrialResult.from_csv_row(result.csv_row()) == result
+    assert result.measure("a") == 1e-3 and math.isnan(result.measure("b"))
     empty = TrialResult(4, "MISS", "", 1, 0.1)
     assert TrialResult.from_csv_row(empty.csv_row()) == empty

@@ -28,12 +28,12 @@ from learning.interception_file import MODEL_FORMAT, MODEL_FORMAT_VERSION, PARAM
 from learning.lookup import LookupTable
 from robotsoccer.skills.intercept import (
     RANDOM_TA_HALF_RANGE_RAD,
+    AimedShooterMind,
     AnalyticPolicy,
     DefenderMind,
     LookupPolicy,
     NetPolicy,
     RandomPolicy,
-    ShooterMind,
     load_lookup_table,
     load_net_function,
     make_policy,
@@ -343,7 +343,7 @@ def test_loading_a_net_for_the_skill_does_not_import_torch(tmp_path: Path) -> No
 
 
 def test_shooter_kicks_once_at_the_seen_defender_plus_the_offset() -> None:
-    mind = ShooterMind(ME, 100.0, aim_offset_rad=4.0 * DEG)
+    mind = AimedShooterMind(ME, 100.0, aim_offset_rad=4.0 * DEG)
     seen = (SeenPlayer(3.0, 0.5, LEFT, 2), SeenPlayer(25.0, -1.0 * DEG, RIGHT, 1))
     first = Percept(SHOOTER, 2, 2, SeenBall(1.4, 0.0), seen)
     assert mind.act(first) == (Kick(100.0, 3.0 * DEG),)
@@ -351,8 +351,8 @@ def test_shooter_kicks_once_at_the_seen_defender_plus_the_offset() -> None:
 
 
 def test_shooter_without_the_defenders_number_aims_at_the_unknown_player() -> None:
-    mind = ShooterMind(ME, 80.0)
+    mind = AimedShooterMind(ME, 80.0)
     far = Percept(SHOOTER, 2, 2, None, (SeenPlayer(28.0, 2.0 * DEG, None, None),))
     assert mind.act(far) == (Kick(80.0, 2.0 * DEG),)
-    blind = ShooterMind(ME, 80.0, aim_offset_rad=0.1)
+    blind = AimedShooterMind(ME, 80.0, aim_offset_rad=0.1)
     assert blind.act(Percept(SHOOTER, 2, 2, None)) == (Kick(80.0, 0.1),)

@@ -1,0 +1,28 @@
+"""The conformance suite (field_models.checker) on every registered field model and preset."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from field_models.arena import BallLaw
+from field_models.checker import CHECKS, ConformanceError, check_facts
+from field_models.registry import FIELD_MODELS, field_facts, shipped_presets
+
+CASES = [(model, preset) for model in FIELD_MODELS for preset in shipped_presets(model)]
+
+
+@pytest.mark.parametrize("check", CHECKS, ids=lambda c: c.__name__)
+@pytest.mark.parametrize(("model", "preset"), CASES, ids=str)
+def test_every_field_model_conforms(check, model: str, preset: str) -> None:
+    check(model, preset)
+
+
+def test_a_broken_promise_is_reported_with_the_model_name(monkeypatch) -> None:
+    facts = field_facts("robot_physics")
+    speeding = BallLaw("constant", facts.dt_s, decel_mps2=-1.0)  # a ball that speeds up
+    broken = dataclasses.replace(facts, ball=speeding)
+    monkeypatch.setattr("field_models.checker.field_facts", lambda *args: broken)
+    with pytest.raises(ConformanceError, match="robot_physics: a free ball must slow down"):
+        check_facts("robot_physics")
