@@ -1,8 +1,8 @@
 """Soccer Server speed per preset: bare dynamics (one trial), the full arena, and batch mode.
 
-Targets (issue 3): >= 30,000 cycles/s for 2 players + ball in one process *including sensing*
-(`arena`), and >= 2,000,000 object-cycles/s in batch mode. Prints JSON; medians of 3 repeats.
-The measuring code is `robotsoccer/bench.py`, shared with `robotsoccer bench`.
+Targets: >= 30,000 cycles/s for 2 players + ball in one process *including sensing* (`arena`),
+and >= 2,000,000 object-cycles/s in batch mode. Prints JSON; medians of 3 repeats. The
+measuring code is `field_models/soccer_server/bench.py`, shared with `robotsoccer bench`.
 """
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import statistics
 
-from robotsoccer.bench import (
+from field_models.soccer_server.bench import (
     arena_cycles_per_s,
     batch_object_cycles_per_s,
     dynamics_cycles_per_s,

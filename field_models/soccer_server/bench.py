@@ -60,6 +60,16 @@ def _drill_like_trial(model: SoccerServerModel | BatchSoccerServer, cycles: int)
         model.step()
 
 
+def dynamics_cycles_per_s(cycles: int, preset: str = "soccer_server_1996") -> float:
+    """Cycles per wall second of the bare dynamics (no sensing) for 2 players + ball."""
+    model = SoccerServerModel(load_server_preset(preset), PLAYERS, np.random.default_rng(0))
+    rounds = max(1, cycles // 100)
+    start = time.perf_counter()
+    for _ in range(rounds):
+        _drill_like_trial(model, 100)
+    return rounds * 100 / (time.perf_counter() - start)
+
+
 def batch_object_cycles_per_s(
     cycles: int, trials: int = 2000, preset: str = "soccer_server_1996"
 ) -> float:

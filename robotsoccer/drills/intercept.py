@@ -60,7 +60,7 @@ and ε = 1e-3 · pitch length per second. Once the ball has been moving toward t
   sideways direction;
 * a ball whose v·û drops below -ε without going clearly back was *deflected*: it may still roll
   on toward the goal line. After a deflection the trial is a GOAL if the ball then goes in and a
-  SAVE in every other case (wide, to a side, stopped);
+  SAVE in every other case (wide, to a side, or stopped: slower than ε);
 * the ball gets past the defender (its progress along û exceeds the defender's start distance
   plus player radius plus ball radius): **GOAL** if its straight-line path crosses the goal
   mouth, else **MISS** ("heading wide"; SAVE after a deflection);
@@ -542,6 +542,8 @@ class _Judge:
             return self._not_in("ball reached a side line")
         if x >= self.half_length - edge and abs(y) >= self.post:
             return self._not_in("ball reached the end line wide of the posts")
+        if self.deflected and vx * vx + vy * vy < self.eps * self.eps:
+            return Verdict("SAVE", "deflected by the defender, stopped short of the goal")
         along = vx * self.ux + vy * self.uy
         if along > self.eps:
             self.approaching = True

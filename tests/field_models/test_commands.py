@@ -1,0 +1,70 @@
+"""Client command text: actions written as a client sends them, and read back."""
+
+from __future__ import annotations
+
+import contextlib
+import math
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from field_models.commands import CommandParseError, parse_command, render_command
+from field_models.protocol import Dash, Kick, Say, Turn
+
+
+@pytest.mark.parametrize(
+    ("text", "action"),
+    [
+        ("(turn 45)", Turn(-math.radians(45))),  # the server's +45 is clockwise: a right turn
+        ("(turn -30.5)", Turn(math.radians(30.5))),
+        ("(dash 100)", Dash(100.0)),
+        ("(dash 100 30)", Dash(100.0, -math.radians(30))),
+        ("(kick 80 -30)", Kick(80.0, math.radians(30))),
+        ("(say hello world)", Say("hello world")),
+        ('(say "pass (now)")', Say("pass (now)")),
+        ("  (dash -30)\0", Dash(-30.0)),
+    ],
+)
+def test_client_commands_parse_into_our_frame(text: str, action: object) -> None:
+    parsed = parse_command(text)
+    assert type(parsed) is type(action)
+    for name in action.__dataclass_fields__:  # type: ignore[attr-defined]
+        expected = getattr(action, name)
+        got = getattr(parsed, name)
+        assert got == (pytest.approx(expected) if isinstance(expected, float) else expected)
+
+
+@pytest.mark.parametrize(
+    "action",
+    [Turn(0.5), Turn(-3.0), Dash(100.0), Dash(60.0, -math.pi / 2), Kick(80.0, 0.4), Say("hi")],
+)
+def test_render_and_parse_round_trip_to_the_printed_precision(action: object) -> None:
+    text = render_command(action)  # type: ignore[arg-type]
+    assert render_command(parse_command(text)) == text
+
+
+@pytest.mark.parametrize(
+    ("text", "why"),
+    [
+        ("dash 100", "in parentheses"),
+        ("()", "empty"),
+        ("(run 3)", "unknown command"),
+        ("(turn)", "expected 1"),
+        ("(kick 80)", "expected 2"),
+        ("(dash 100 30 4)", "expected 1 or 2"),
+        ("(turn left)", "not a number"),
+        ("(turn nan)", "not a finite number"),
+        ("(say)", "say without a message"),
+        ("(say  )", "say without a message"),
+    ],
+)
+def test_bad_command_text_is_refused_with_the_reason(text: str, why: str) -> None:
+    with pytest.raises(CommandParseError, match=why):
+        parse_command(text)
+
+
+@given(st.text(max_size=40))
+def test_any_text_parses_or_raises_the_parse_error_only(text: str) -> None:
+    with contextlib.suppress(CommandParseError):
+        parse_command(text)
