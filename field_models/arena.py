@@ -22,7 +22,7 @@ an arena exists). A new field model fills the same record and passes the conform
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields
 from typing import Literal, Protocol
 
 from field_models.protocol import Action, BodyState, Percept, Pitch, PlayerRef, Truth
@@ -203,6 +203,16 @@ class FieldFacts:
     heading_sigma_rad: float
     player_shape: PlayerShape
     perfect_perception: bool = False
+    _hash: int = field(init=False, repr=False, compare=False, default=0)
+
+    def __post_init__(self) -> None:
+        # Drills key caches by facts once per trial; hashing the nested records each time
+        # would cost more than the look-up saves.
+        values = tuple(getattr(self, f.name) for f in fields(self) if f.name != "_hash")
+        object.__setattr__(self, "_hash", hash(values))
+
+    def __hash__(self) -> int:
+        return self._hash
 
     @property
     def unit_m(self) -> float:

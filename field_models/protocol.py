@@ -257,7 +257,7 @@ def wrap_angle(angle: Angle) -> Angle:
     >>> wrap_angle(0.1) == 0.1
     True
     """
-    if isinstance(angle, np.ndarray):
+    if type(angle) is not float and isinstance(angle, np.ndarray):  # floats skip the check
         inside = (angle >= -math.pi) & (angle < math.pi)
         return np.where(inside, angle, (angle + math.pi) % TWO_PI - math.pi)
     if -math.pi <= angle < math.pi:

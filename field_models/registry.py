@@ -56,13 +56,14 @@ class FieldModelEntry(Protocol):
     def build(
         self,
         preset: Any,
+        facts: FieldFacts,
         players: tuple[PlayerRef, ...],
         rngs: TrialRngs,
         *,
         keep_events: bool,
         trace: bool,
     ) -> Arena:
-        """A fresh arena of a loaded preset with these players."""
+        """A fresh arena of a loaded preset (and its facts) with these players."""
         ...
 
     def benchmarks(self, quick: bool = False) -> dict[str, Any]:
@@ -76,13 +77,20 @@ def entry(model: str) -> FieldModelEntry:
     Raises:
         ValueError: An unknown field model (the message lists the known ones).
     """
+    loaded = _LOADED.get(model)
+    if loaded is not None:
+        return loaded
     try:
         module = _ENTRIES[model]
     except KeyError:
         raise ValueError(
             f"unknown field model {model!r} (known: {', '.join(FIELD_MODELS)})"
         ) from None
-    return cast(FieldModelEntry, importlib.import_module(module))
+    loaded = _LOADED[model] = cast(FieldModelEntry, importlib.import_module(module))
+    return loaded
+
+
+_LOADED: dict[str, FieldModelEntry] = {}
 
 
 def preload_modules() -> tuple[str, ...]:
@@ -141,8 +149,10 @@ def make_arena(
         field_models.presets.PresetError: A missing or wrong preset.
     """
     module = entry(model)
-    loaded = module.load(preset or module.DEFAULT_PRESET, options)
-    return module.build(loaded, players, rngs, keep_events=keep_events, trace=trace)
+    name = preset or module.DEFAULT_PRESET
+    loaded = module.load(name, options)
+    facts = field_facts(model, name, options)  # cached by name: no hashing of whole presets
+    return module.build(loaded, facts, players, rngs, keep_events=keep_events, trace=trace)
 
 
 def paper_field_facts() -> FieldFacts:

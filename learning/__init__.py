@@ -1,4 +1,4 @@
-"""The learned layers as estimators: features, datasets, the interception net, the pass tree.
+"""The learned layers as estimators: features, datasets, the interception net, lookup, analytic.
 
 Takes arrays, returns arrays; imports no pymunk, no rerun and nothing from `robotsoccer`.
 

@@ -104,11 +104,20 @@ def run_benchmarks(
 
 
 def _intercept_trials(field_model: str, quick: bool) -> int:
-    """Enough trials for a few seconds of work: more on fields whose trials are cheap."""
-    probe = 200
-    seconds_per_trial = 1.0 / max(intercept_trials_per_s(field_model, probe), 1.0)
-    wanted = (2.0 if quick else 8.0) / seconds_per_trial
-    return int(max(probe, 1000 * math.ceil(wanted / 1000)))
+    """Trials enough for several seconds of work, so pool start-up is a small share.
+
+    Probes with doubling trial counts until a run takes a quarter of the wanted time, then
+    scales to the whole (rounded up to 1000 trials).
+    """
+    wanted_s = 2.0 if quick else 8.0
+    n = 500
+    while True:
+        start = time.perf_counter()
+        intercept_trials_per_s(field_model, n)
+        seconds = time.perf_counter() - start
+        if seconds >= 0.25 * wanted_s or n >= 100_000:
+            return 1000 * math.ceil(n * wanted_s / seconds / 1000)
+        n *= 2
 
 
 def flatten(tree: dict[str, Any], prefix: str = "") -> list[tuple[str, Any]]:

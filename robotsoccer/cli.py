@@ -1,4 +1,4 @@
-"""The ``robotsoccer`` command line: demo, trace, bench, replay.
+"""The ``robotsoccer`` command line: demo, trace, learn, reproduce, bench, replay.
 
 Bad input never ends in a traceback: a wrong option, an unknown preset or a wrong preset file
 prints one line naming what is wrong and exits with status 2. Ctrl-C during a run keeps every

@@ -1,1 +1,5 @@
-"""The mini-robot field model: pymunk differential-drive robots, ball, walls and goals."""
+"""The mini-robot system of the paper's §2: pymunk world, overhead camera, host, link, firmware.
+
+The registry builds it through :mod:`~field_models.robot_physics.model`; its arena is
+:class:`~field_models.robot_physics.arena.RobotArena`.
+"""

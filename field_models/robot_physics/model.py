@@ -83,6 +83,7 @@ def facts(preset: RobotPhysicsPreset) -> FieldFacts:
 
 def build(
     preset: RobotPhysicsPreset,
+    facts: FieldFacts,
     players: tuple[PlayerRef, ...],
     rngs: TrialRngs,
     *,
@@ -92,9 +93,7 @@ def build(
     """A fresh robot arena (imports pymunk on first use)."""
     from field_models.robot_physics.arena import RobotArena
 
-    return RobotArena(
-        preset, facts(preset), players, rngs, keep_events=keep_events, trace=trace
-    )
+    return RobotArena(preset, facts, players, rngs, keep_events=keep_events, trace=trace)
 
 
 def benchmarks(quick: bool = False) -> dict[str, Any]:

@@ -83,6 +83,7 @@ def facts(preset: ServerPreset) -> FieldFacts:
 
 def build(
     preset: ServerPreset,
+    facts: FieldFacts,
     players: tuple[PlayerRef, ...],
     rngs: TrialRngs,
     *,
@@ -92,9 +93,7 @@ def build(
     """A fresh Soccer Server arena."""
     from field_models.soccer_server.arena import SoccerServerArena
 
-    return SoccerServerArena(
-        preset, facts(preset), players, rngs, keep_events=keep_events, trace=trace
-    )
+    return SoccerServerArena(preset, facts, players, rngs, keep_events=keep_events, trace=trace)
 
 
 def benchmarks(quick: bool = False) -> dict[str, Any]:

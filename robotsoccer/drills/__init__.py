@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import inspect
 from collections.abc import Callable, Mapping
 from typing import Any
@@ -37,6 +38,7 @@ def make_drill(name: str, options: Mapping[str, Any] | None = None) -> Drill:
         raise ValueError(f"drill {name!r}: {exc}") from None
 
 
+@functools.cache
 def drill_options(name: str) -> tuple[str, ...]:
     """The options drill `name` takes, in its signature's order."""
     return tuple(inspect.signature(DRILLS[name]).parameters)

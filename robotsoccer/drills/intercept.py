@@ -85,7 +85,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 from field_models.arena import Arena, FieldFacts
-from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
+from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef
 from field_models.registry import paper_field_facts
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import GoalWatch, Verdict
@@ -352,6 +352,8 @@ class InterceptDrill:
         self.defender_kick = flag("defender_kick", defender_kick)
         self.defender_mind: DefenderMind | None = None
         self._judge_state: _Judge | None = None
+        self._plan: LaunchPlan | None = None
+        self._plan_facts: FieldFacts | None = None
 
     def players(self) -> tuple[PlayerRef, ...]:
         """Shooter and defender."""
@@ -359,7 +361,11 @@ class InterceptDrill:
 
     def plan(self, arena: Arena) -> LaunchPlan:
         """This drill's launch plan on `arena`'s field (cached per field)."""
-        return self.plan_for(arena.facts)
+        facts = arena.facts
+        if facts is not self._plan_facts:  # one look-up per trial, not one per call
+            self._plan, self._plan_facts = self.plan_for(facts), facts
+        assert self._plan is not None
+        return self._plan
 
     def plan_for(self, facts: FieldFacts) -> LaunchPlan:
         """This drill's launch plan on a field (cached per field)."""
@@ -523,19 +529,20 @@ class _Judge:
             self.end = (arena.tick * self.dt_s, d.x, d.y)
 
     def judge(self, arena: Arena) -> Verdict | None:
+        """The verdict of this tick, or None; notes the defender's end on a verdict."""
         verdict = self._verdict(arena)
         if verdict is not None:
             self.finish(arena)
         return verdict
 
-    def _verdict(self, arena: Arena) -> Verdict | None:
+    def _verdict(self, arena: Arena) -> Verdict | None:  # every tick: keep it lean
         x, y, _, vx, vy = arena.ball_state()
         crossing = self.goals.step(arena, x, y)
-        if crossing.is_goal:
-            if crossing > 0:
-                return Verdict("GOAL", "ball into the goal between the posts")
-            return self._not_in("ball over the shooter's goal line")
         if crossing:
+            if crossing is Crossing.RIGHT_GOAL:
+                return Verdict("GOAL", "ball into the goal between the posts")
+            if crossing is Crossing.LEFT_GOAL:
+                return self._not_in("ball over the shooter's goal line")
             return self._not_in("ball crossed the goal line wide of the posts")
         edge = self.radius + self.margin
         if abs(y) >= self.half_width - edge:
