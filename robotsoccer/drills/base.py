@@ -82,6 +82,7 @@ class GoalWatch:
 
     def __init__(self, arena: Arena, ball: tuple[float, float]) -> None:
         self.pitch = arena.facts.pitch
+        self.line = 0.5 * self.pitch.length_m + self.pitch.ball_radius_m
         self.last = ball
         self.score = arena.score()
 
@@ -94,4 +95,9 @@ class GoalWatch:
             left_scored = score[0] > self.score[0]
             self.score = score
             return Crossing.RIGHT_GOAL if left_scored else Crossing.LEFT_GOAL
+        if -self.line <= x <= self.line:  # inside: no crossing to ask the rule about
+            return _NONE
         return end_line_crossing(self.pitch, lx, ly, x, y)
+
+
+_NONE = Crossing.NONE
