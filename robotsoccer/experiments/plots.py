@@ -15,13 +15,21 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from robotsoccer.experiments.paper import FIGURE_7, FIGURE_8, FIGURE_8_NOISES
+from robotsoccer.experiments.paper import (
+    FIGURE_7,
+    FIGURE_8,
+    FIGURE_8_NOISES,
+    PAPER_ALL_SAVES,
+    PAPER_NOISE,
+)
 from robotsoccer.experiments.report import BEHAVIOUR_NAMES, Counts, ModelSection
 from robotsoccer.stats import wilson_interval
 
 _MODEL_COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:purple")
 """One colour per field model, in the order the sections come."""
 _BEHAVIOUR_COLOURS = {"net": "tab:blue", "straight": "tab:red"}
+NOISE_STEP = 0.01
+"""The grid of Figure 8's noise levels: lines join only levels this far apart."""
 
 
 def _pyplot() -> Any:
@@ -46,7 +54,10 @@ def _saves_with_errors(counts: Sequence[Counts]) -> tuple[list[float], list[list
 
 
 def plot_figure7(sections: Sequence[ModelSection], path: Path) -> Path | None:
-    """Saves (%) vs training examples: ours ±95% per field model, and the paper's.
+    """Saves (%) vs training examples: ours ±95% per field model, the paper's, and straight.
+
+    Each field model's straight defender at the same noise is a flat line of its colour (the
+    baseline the nets should beat); the x axis is labelled with the training sizes used.
 
     Returns:
         The file written, or None when no section has Figure 7 data.
@@ -55,38 +66,72 @@ def plot_figure7(sections: Sequence[ModelSection], path: Path) -> Path | None:
     if not sections:
         return None
     plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(7.0, 4.5))
+    fig, ax = plt.subplots(figsize=(8.0, 4.8))
     paper_x = sorted(FIGURE_7)
     ax.plot(
         paper_x,
         [FIGURE_7[n].saves_pct for n in paper_x],
         "k--o",
-        label="paper (Soccer Server 1996)",
+        label="paper NN (Soccer Server 1996)",
     )
+    paper_straight = FIGURE_8.get((PAPER_NOISE, "straight"))
+    if paper_straight is not None:
+        ax.axhline(paper_straight.saves_pct, color="k", linestyle=":", linewidth=1,
+                   label="paper straight (Soccer Server 1996)")  # fmt: skip
+    ticks = {n: str(n) for n in paper_x if n != PAPER_ALL_SAVES}
+    ticks[PAPER_ALL_SAVES] = f"all\n({PAPER_ALL_SAVES}, paper)"
     for index, s in enumerate(sections):
+        colour = _MODEL_COLOURS[index % len(_MODEL_COLOURS)]
         xs = [examples for examples, _, _ in s.figure7]
         values, errors = _saves_with_errors([c for _, _, c in s.figure7])
         ax.errorbar(
-            xs,
-            values,
-            yerr=errors,
-            marker="s",
-            capsize=3,
-            color=_MODEL_COLOURS[index % len(_MODEL_COLOURS)],
-            label=f"ours: {s.field_model} ({s.preset})",
-        )
+            xs, values, yerr=errors, marker="s", capsize=3, color=colour,
+            label=f"ours NN: {s.field_model} ({s.preset})",
+        )  # fmt: skip
+        for (examples, label, _), value in zip(s.figure7, values, strict=True):
+            if examples not in ticks:  # e.g. all the saves collected: say how many
+                ax.annotate(label, (examples, value), textcoords="offset points",
+                            xytext=(0, -16 - 10 * index), ha="center", fontsize="small",
+                            color=colour)  # fmt: skip
+        straight = s.figure8.get((round(s.noise, 4), "straight")) or s.table1.get("straight")
+        if straight is not None:
+            ax.axhline(straight.saves_pct(), color=colour, linestyle=":", linewidth=1.5,
+                       label=f"ours straight: {s.field_model}")  # fmt: skip
     ax.set_xscale("log")
-    ax.set_xlabel("training examples (saves); last point: all collected")
+    ax.set_xticks(sorted(ticks), [ticks[n].replace("all ", "all\n") for n in sorted(ticks)])
+    ax.minorticks_off()
+    ax.set_xlabel("training examples (saves); the last point: all collected")
     ax.set_ylabel("saves (%)")
     ax.set_ylim(0, 100)
-    ax.set_title("Figure 7: the net's saves vs training examples (95% intervals)")
+    noises = ", ".join(sorted({f"{s.noise:g}" for s in sections}))
+    ax.set_title(f"Figure 7: the net's saves vs training examples, ball noise {noises}")
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="lower right")
+    ax.legend(loc="lower right", fontsize="small")
     return _save(plt, fig, path)
+
+
+def measured_runs(xs: Sequence[float], step: float = NOISE_STEP) -> list[list[int]]:
+    """Indices of `xs` (ascending) split where a level between two points was not measured.
+
+    Lines join only neighbouring levels of the grid (0.05 and 0.06, not 0 and 0.05).
+
+    >>> measured_runs([0.0, 0.05, 0.06, 0.07, 0.1])
+    [[0], [1, 2, 3], [4]]
+    """
+    runs: list[list[int]] = []
+    for i, x in enumerate(xs):
+        if runs and x - xs[runs[-1][-1]] <= step * 1.001:
+            runs[-1].append(i)
+        else:
+            runs.append([i])
+    return runs
 
 
 def plot_figure8(sections: Sequence[ModelSection], path: Path) -> Path | None:
     """Saves (%) vs ball noise, NN and straight: one panel per field model, the paper's dashed.
+
+    The paper's curves are the Soccer Server's, said so in every panel; each panel's x label
+    gives its field's noise period; no line crosses a noise level that was not measured.
 
     Returns:
         The file written, or None when no section has Figure 8 data.
@@ -96,35 +141,42 @@ def plot_figure8(sections: Sequence[ModelSection], path: Path) -> Path | None:
         return None
     plt = _pyplot()
     fig, axes = plt.subplots(
-        1, len(sections), figsize=(6.0 * len(sections), 4.5), squeeze=False, sharey=True
+        1, len(sections), figsize=(6.5 * len(sections), 4.8), squeeze=False, sharey=True
     )
     for ax, s in zip(axes[0], sections, strict=True):
         for behaviour in ("net", "straight"):
             colour = _BEHAVIOUR_COLOURS[behaviour]
             name = BEHAVIOUR_NAMES[behaviour]
             paper = [FIGURE_8[(noise, behaviour)].saves_pct for noise in FIGURE_8_NOISES]
-            ax.plot(FIGURE_8_NOISES, paper, "--o", color=colour, alpha=0.5, label=f"paper {name}")
+            _plot_runs(ax, FIGURE_8_NOISES, paper, "--", colour, 0.5,
+                       f"paper {name} (Soccer Server 1996)")  # fmt: skip
             points = sorted((noise, c) for (noise, b), c in s.figure8.items() if b == behaviour)
             if not points:
                 continue
+            xs = [noise for noise, _ in points]
             values, errors = _saves_with_errors([c for _, c in points])
-            ax.errorbar(
-                [noise for noise, _ in points],
-                values,
-                yerr=errors,
-                marker="s",
-                capsize=3,
-                color=colour,
-                label=f"ours {name}",
-            )
+            ax.errorbar(xs, values, yerr=errors, fmt="s", capsize=3, color=colour)
+            _plot_runs(ax, xs, values, "-", colour, 1.0, f"ours {name}")
         ax.set_title(f"{s.field_model} ({s.preset}); NN on {s.net_examples} examples")
-        ax.set_xlabel("ball noise (fraction of speed per axis per 100 ms)")
+        period = f"{1000 * s.noise_period_s:.4g} ms" if s.noise_period_s else "noise period"
+        ax.set_xlabel(f"ball noise (± share of speed per axis, once per {period})")
         ax.set_ylim(0, 102)
         ax.grid(True, alpha=0.3)
-        ax.legend(loc="lower left")
+        ax.legend(loc="lower left", fontsize="small")
     axes[0][0].set_ylabel("saves (%)")
     fig.suptitle("Figure 8: saves vs ball noise (95% intervals)")
     return _save(plt, fig, path)
+
+
+def _plot_runs(
+    ax: Any, xs: Sequence[float], ys: Sequence[float], style: str, colour: str, alpha: float,
+    label: str,
+) -> None:  # fmt: skip
+    """Markers at every point, lines only within runs of neighbouring noise levels."""
+    ax.plot(xs, ys, "o", color=colour, alpha=alpha, label=label, markersize=4)
+    for run in measured_runs(xs):
+        if len(run) > 1:
+            ax.plot([xs[i] for i in run], [ys[i] for i in run], style, color=colour, alpha=alpha)
 
 
 def _save(plt: Any, fig: Any, path: Path) -> Path:

@@ -130,6 +130,7 @@ class ModelSection:
         swept: (noise, behaviour) → counts on the swept-collision variant preset (Soccer Server).
         checks: behaviour → counts of the training-drill checks (still, straight, random).
         noise: The ball noise of Figure 7, Table 1 and the checks.
+        noise_period_s: How often the ball noise acts in the drill on this field [s].
         net_examples: Training examples of the net used in Figure 8, Table 1, 4° wide, latency.
         stages: Timing of each stage.
         notes: Free markdown lines (scaling, presets, ...), printed under the model's heading.
@@ -149,6 +150,7 @@ class ModelSection:
     swept: dict[tuple[float, str], Counts] = field(default_factory=dict)
     checks: dict[str, Counts] = field(default_factory=dict)
     noise: float = 0.05
+    noise_period_s: float = 0.0
     net_examples: int = 750
     stages: list[StageTiming] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
