@@ -1,12 +1,24 @@
 """Rerun recordings of trials, and reading, verifying and replaying them (DESIGN.md §5).
 
-A :class:`TrialRecorder` writes one ``.rrd`` file per run: the pitch (boundary, centre line,
-goal posts and goal-mouth boxes) once as static geometry; every recorded tick the true ball and
-players (one entity per team: centre points labelled with the player ids, rotated outline
-polygons, heading arrows); the positions each player *perceived*, converted to the field frame
-beside the truth; commands, referee messages and trial labels as text. Everything sits on a
-``sim_time`` duration timeline derived from integer ticks × ``dt_s`` (plus a ``tick`` sequence
-timeline with the raw tick), never on wall-clock time.
+A :class:`TrialRecorder` writes one ``.rrd`` file per trial with a default layout (blueprint):
+the field on the left, a legend and the events on the right, the time panel below.
+
+The field shows the pitch's markings (boundary, centre line and circle, penalty areas, goals
+and posts) once as static geometry; every recorded tick the true ball and players (filled
+discs labelled with the player ids, rotated outlines, heading arrows); what each player
+*perceived*, converted to the field frame, as hollow rings in a colour of its own, cleared once
+that player's latest percept is older than :data:`PERCEPT_LIFETIME_PERIODS` sensor periods; and,
+from the verdict on, the outcome above the field with the field's boundary in the outcome's
+colour. Small things are drawn no smaller than a fraction of the pitch length
+(:func:`draw_sizes`), so the Soccer Server's ball shows on its large pitch; the legend says
+which sizes are enlarged. Everything sits on a ``sim_time`` duration timeline derived from
+integer ticks × ``dt_s`` (plus a ``tick`` sequence timeline with the raw tick), never on
+wall-clock time.
+
+Rerun draws 2-D views with y pointing down, and ignores view coordinates in 2-D views (upstream
+issue rerun-io/rerun#1387). The data therefore stay in the field frame (y up), so what is read
+back is what was logged, and a static ``Transform3D(scale=[1, -1, 1])`` on the ``field``
+entity turns them the right way up in the view, which shows the root frame.
 
 Speed (notes/tooling.md §1.4): ``rr.log`` costs ~100 µs per call, so the recorder never logs
 in the simulation loop. It appends plain floats to per-entity buffers and sends them with
@@ -17,18 +29,18 @@ so ``import robotsoccer`` (and importing this module) never loads the 800 MB SDK
 
 Entity layout (paths are what :func:`read_entity_positions` takes)::
 
-    field/lines, field/goals/<team>, field/posts     static pitch geometry
+    field                                            Transform3D: the display flip
+    field/lines, field/markings, field/goals/<team>, field/posts    static pitch geometry
     field/ball                                       Points2D, one point per recorded tick
     field/players/<team>                             Points2D centres, labels = player ids
     field/players/<team>/outline                     LineStrips2D rotated outlines
     field/players/<team>/heading                     Arrows2D headings
-    field/perceived/<player>/ball                    Points2D (empty row: ball not seen)
-    field/perceived/<player>/players                 Points2D, labels = team+number seen
-    events/<channel>, events/label                   TextLog
+    field/perceived/<player>/ball                    Ellipses2D ring (empty row: none current)
+    field/perceived/<player>/players                 Ellipses2D rings, labels = team+number seen
+    field/outcome, field/outcome/frame               the label above the field, the boundary
+    legend                                           TextDocument (markdown), outcome on top
+    events/<channel>, events/label                   TextLog, "[channel] player: text"
 
-Rerun draws 2-D views with y pointing down (upstream issue rerun-io/rerun#1387: view
-coordinates are ignored in 2-D views), so the viewer shows the field mirrored top-to-bottom.
-The data in the file stay in the field frame (y up), so what is read back is what was logged.
 Positions are stored as float32 (rerun's ``Vec2D``).
 """
 
@@ -41,6 +53,7 @@ import subprocess
 import sys
 import warnings
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
 from typing import TYPE_CHECKING, Any
@@ -58,19 +71,92 @@ SIM_TIME = "sim_time"
 """Name of the simulated-time (duration) timeline."""
 TICK = "tick"
 """Name of the integer-tick (sequence) timeline."""
+PERCEPT_LIFETIME_PERIODS = 1.5
+"""A percept is shown until this many sensor periods have passed without a newer one."""
+MIN_BALL_FRACTION = 0.006
+"""The ball is drawn with a radius of at least this fraction of the pitch length."""
+MIN_PLAYER_FRACTION = 0.007
+"""Players are drawn with a half-size of at least this fraction of the pitch length."""
 
 _TEAM_COLOURS: dict[str, tuple[int, int, int]] = {LEFT: (60, 130, 255), RIGHT: (255, 200, 40)}
 _OTHER_TEAM_COLOURS = ((200, 80, 220), (80, 220, 160), (240, 90, 90))
+# Percept rings: hues far from the team colours, the ball's orange and the pitch's green.
+_PERCEPT_COLOURS = ((255, 70, 220), (70, 235, 235), (255, 255, 255), (190, 150, 255))
+_PERCEPT_COLOUR_NAMES = ("magenta", "cyan", "white", "lilac")
 _BALL_COLOUR = (255, 120, 0)
 _LINE_COLOUR = (230, 230, 230)
-_PERCEIVED_ALPHA = 110
+_ARROW_COLOUR = (255, 255, 255)
+_PITCH_COLOUR = (24, 64, 36)
+_OUTCOME_COLOURS: dict[str, tuple[int, int, int]] = {
+    "GOAL": (255, 80, 80),
+    "SAVE": (90, 235, 120),
+    "SUCCESS": (90, 235, 120),
+}
+_OTHER_OUTCOME_COLOUR = (235, 235, 235)
 _CIRCLE_SEGMENTS = 12  # outlines dominate file size; a 12-gon reads as round
+_MARKING_SEGMENTS = 48  # the centre circle is drawn once, so it may be smooth
+# Draw order (rerun's DrawOrder, larger on top): markings under players under the ball under
+# the percept rings, so a ring around the true ball stays visible.
+_ORDER_MARKINGS = 10.0
+_ORDER_PLAYERS = 30.0
+_ORDER_OUTLINE = 31.0
+_ORDER_HEADING = 32.0
+_ORDER_BALL = 40.0
+_ORDER_PERCEPT = 50.0
+_ORDER_OUTCOME = 60.0
 _NAN3 = (math.nan, math.nan, math.nan)
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 _ENTITY_UNSAFE = re.compile(r"[^A-Za-z0-9_\-]")
+# Marking proportions of a 105 m FIFA pitch (the Soccer Server's flags sit on them), scaled by
+# the pitch length on any field.
+_FIFA_LENGTH_M = 105.0
+_CENTRE_CIRCLE_M = 9.15
+_PENALTY_DEPTH_M = 16.5
+_PENALTY_HALF_WIDTH_M = 20.16
 
 
 # ----------------------------------------------------------------------------- geometry
+
+
+@dataclass(frozen=True, slots=True)
+class DrawSizes:
+    """How large things are drawn on one pitch [m] (field frame).
+
+    Attributes:
+        ball_m: Ball radius as drawn.
+        player_m: Player half-size (square) or radius (circle) as drawn.
+        arrow_length_m: Length of a heading arrow from the player's centre.
+        arrow_radius_m: Half the width of a heading arrow's line.
+        ball_enlarged: The ball is drawn larger than it is.
+        players_enlarged: Players are drawn larger than they are.
+    """
+
+    ball_m: float
+    player_m: float
+    arrow_length_m: float
+    arrow_radius_m: float
+    ball_enlarged: bool
+    players_enlarged: bool
+
+
+def draw_sizes(pitch: Pitch) -> DrawSizes:
+    """Drawing sizes on `pitch`: true sizes, but none smaller than a fraction of its length.
+
+    A ball of a few centimetres on a pitch of a hundred metres would be under a pixel at the
+    default zoom; :data:`MIN_BALL_FRACTION` and :data:`MIN_PLAYER_FRACTION` keep it visible.
+    Heading arrows reach past the body by a pitch-scaled length so they show at the default zoom.
+    """
+    length = pitch.length_m
+    ball = max(pitch.ball_radius_m, MIN_BALL_FRACTION * length)
+    player = max(pitch.player_radius_m, MIN_PLAYER_FRACTION * length)
+    return DrawSizes(
+        ball_m=ball,
+        player_m=player,
+        arrow_length_m=player + 0.02 * length,
+        arrow_radius_m=0.002 * length,
+        ball_enlarged=ball > pitch.ball_radius_m,
+        players_enlarged=player > pitch.player_radius_m,
+    )
 
 
 def outline_template(shape: PlayerShape, radius_m: float) -> np.ndarray:
@@ -89,12 +175,18 @@ def outline_template(shape: PlayerShape, radius_m: float) -> np.ndarray:
     if shape == "square":
         unit = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0], [1.0, 1.0]])
     elif shape == "circle":
-        a = np.linspace(0.0, 2.0 * math.pi, _CIRCLE_SEGMENTS + 1)
-        unit = np.column_stack([np.cos(a), np.sin(a)])
-        unit[-1] = unit[0]  # close exactly, not to within rounding
+        unit = _unit_circle(_CIRCLE_SEGMENTS)
     else:
         raise ValueError(f"player_shape must be 'square' or 'circle', got {shape!r}")
     return radius_m * unit
+
+
+def _unit_circle(segments: int) -> np.ndarray:
+    """A closed polygon on the unit circle, (segments + 1, 2)."""
+    a = np.linspace(0.0, 2.0 * math.pi, segments + 1)
+    unit = np.column_stack([np.cos(a), np.sin(a)])
+    unit[-1] = unit[0]  # close exactly, not to within rounding
+    return unit
 
 
 def place_outlines(template: np.ndarray, poses: np.ndarray) -> np.ndarray:
@@ -139,6 +231,25 @@ def pitch_lines(pitch: Pitch) -> list[np.ndarray]:
     return [boundary, centre]
 
 
+def pitch_markings(pitch: Pitch) -> list[np.ndarray]:
+    """Centre circle and penalty areas of `pitch` as line strips [m].
+
+    Sized in a FIFA pitch's proportions scaled by the pitch length (the Soccer Server's
+    flags sit on a FIFA pitch; the robot table has no markings of its own). A penalty area is
+    left out where it would not fit between the goal and the side lines.
+    """
+    scale = pitch.length_m / _FIFA_LENGTH_M
+    hl, hw = pitch.half_length_m, pitch.half_width_m
+    strips = [_CENTRE_CIRCLE_M * scale * _unit_circle(_MARKING_SEGMENTS)]
+    depth = _PENALTY_DEPTH_M * scale
+    half = _PENALTY_HALF_WIDTH_M * scale
+    if 0.5 * pitch.goal_width_m < half < hw and depth < hl:
+        for side in (-1.0, 1.0):
+            x_line, x_in = side * hl, side * (hl - depth)
+            strips.append(np.array([[x_line, -half], [x_in, -half], [x_in, half], [x_line, half]]))
+    return strips
+
+
 def goal_box(pitch: Pitch, side: float) -> np.ndarray:
     """Goal-mouth box behind the line x = side·length/2 (side -1: left, +1: right).
 
@@ -157,6 +268,66 @@ def goal_posts(pitch: Pitch) -> np.ndarray:
     return np.array([[-hl, -g], [-hl, g], [hl, -g], [hl, g]])
 
 
+# Capital letters as strokes on a 4 × 6 grid (x right, y up), for the outcome drawn large on
+# the field (rerun 0.41 draws labels in one small UI font with no size setting). Each glyph is
+# its strokes separated by spaces, each stroke its points as digit pairs "xy".
+_GLYPHS: dict[str, str] = {
+    "A": "0004264440 0343",
+    "B": "00063645443303 3342413000",
+    "C": "4536160501103041",
+    "D": "00062644422000",
+    "E": "46060040 0333",
+    "F": "460600 0333",
+    "G": "45361605011030414323",
+    "H": "0006 4046 0343",
+    "I": "1636 2620 1030",
+    "J": "4641301001",
+    "K": "0006 4602 1340",
+    "L": "060040",
+    "M": "0006234640",
+    "N": "00064046",
+    "O": "100105163645413010",
+    "P": "00063645443303",
+    "Q": "100105163645413010 2240",
+    "R": "00063645443303 2340",
+    "S": "453616050413334241301001",
+    "T": "0646 2620",
+    "U": "060110304146",
+    "V": "062046",
+    "W": "0610233046",
+    "X": "0046 0640",
+    "Y": "062346 2320",
+    "Z": "06460040",
+    "-": "1333",
+}
+_GLYPH_WIDTH, _GLYPH_HEIGHT = 4, 6  # the grid
+_GLYPH_ADVANCE = _GLYPH_WIDTH + 2  # from one letter to the next: a letter and a gap
+
+
+def text_strokes(
+    text: str, *, height_m: float, centre_x_m: float, base_y_m: float
+) -> list[np.ndarray]:
+    """`text` in large stroke letters, centred on x = centre_x_m above y = base_y_m [m].
+
+    Capital letters and ``-`` are drawn (lower case as capitals); other characters leave a
+    gap. Used for the outcome, which must read at a glance.
+
+    Returns:
+        One (K, 2) line strip per stroke, in the field frame.
+    """
+    unit = height_m / _GLYPH_HEIGHT
+    width = ((len(text) - 1) * _GLYPH_ADVANCE + _GLYPH_WIDTH) * unit if text else 0.0
+    x0 = centre_x_m - 0.5 * width
+    strips: list[np.ndarray] = []
+    for i, char in enumerate(text.upper()):
+        for stroke in _GLYPHS.get(char, "").split():
+            xy = np.array([int(d) for d in stroke], dtype=np.float64).reshape(-1, 2) * unit
+            xy[:, 0] += x0 + i * _GLYPH_ADVANCE * unit
+            xy[:, 1] += base_y_m
+            strips.append(xy)
+    return strips
+
+
 def team_colour(team: str, teams: Sequence[str]) -> tuple[int, int, int]:
     """Display colour of a team: fixed for LEFT/RIGHT, from a small palette otherwise."""
     if team in _TEAM_COLOURS:
@@ -164,6 +335,35 @@ def team_colour(team: str, teams: Sequence[str]) -> tuple[int, int, int]:
     others = [t for t in teams if t not in _TEAM_COLOURS]
     index = others.index(team) if team in others else len(others)
     return _OTHER_TEAM_COLOURS[index % len(_OTHER_TEAM_COLOURS)]
+
+
+def outcome_colour(label: str) -> tuple[int, int, int]:
+    """Display colour of a trial label: red for a goal, green for a save, light grey otherwise."""
+    return _OUTCOME_COLOURS.get(label, _OTHER_OUTCOME_COLOUR)
+
+
+def outcome_text(label: str, detail: str = "") -> str:
+    """The outcome as shown on the field and in the legend: ``"GOAL — why"``."""
+    return f"{label} — {detail}" if detail else label
+
+
+def recording_name(index: int, label: str) -> str:
+    """File name of trial `index`'s recording once its outcome `label` is known.
+
+    ``trial_0007_GOAL.rrd``: the label is made safe for a file name.
+    """
+    return f"trial_{index:04d}_{_entity_name(label)}.rrd"
+
+
+def _lighter(colour: tuple[int, int, int], amount: float = 0.45) -> tuple[int, int, int]:
+    """`colour` mixed with white, for outlines drawn over a disc of that colour."""
+    r, g, b = (round(c + amount * (255 - c)) for c in colour)
+    return (r, g, b)
+
+
+def _length_text(metres: float) -> str:
+    """A length for the legend: centimetres below a metre, metres above."""
+    return f"{100.0 * metres:.3g} cm" if metres < 1.0 else f"{metres:.3g} m"
 
 
 def _seen_label(team: str | None, number: int | None) -> str:
@@ -192,17 +392,36 @@ def _time_indexes(ticks: Sequence[int], dt_s: float) -> list[Any]:
 
 
 class _PerceptBuffer:
-    """Rows of one observer's perceived ball and players, waiting for ``send_columns``."""
+    """Rows of one observer's perceived ball and players, waiting for ``send_columns``.
 
-    __slots__ = ("ball_lengths", "ball_xy", "player_labels", "player_lengths", "player_xy", "ticks")
+    ``expires`` is the tick at which the latest percept stops being current (None: never, or
+    no percept yet); an empty row is added there when no newer percept came.
+    """
 
-    def __init__(self) -> None:
+    __slots__ = (
+        "ball_lengths",
+        "ball_xy",
+        "expires",
+        "player_labels",
+        "player_lengths",
+        "player_xy",
+        "ticks",
+    )
+
+    def __init__(self, expires: int | None = None) -> None:
         self.ticks: list[int] = []
         self.ball_xy: list[float] = []
         self.ball_lengths: list[int] = []
         self.player_xy: list[float] = []
         self.player_labels: list[str] = []
         self.player_lengths: list[int] = []
+        self.expires = expires
+
+    def add_empty(self, tick: int) -> None:
+        """A row with neither ball nor players: clears what the viewer shows from `tick`."""
+        self.ticks.append(tick)
+        self.ball_lengths.append(0)
+        self.player_lengths.append(0)
 
 
 class _TextBuffer:
@@ -228,7 +447,8 @@ class TrialRecorder:
     Args:
         path: Output ``.rrd`` file; its folder is created if missing.
         pitch: Field geometry, drawn once as static geometry.
-        players: Players on the field, in a fixed order (labels and per-team entities).
+        players: Players on the field, in a fixed order (labels, per-team entities, and the
+            colour of each player's percepts).
         dt_s: Length of one tick [s]; ``sim_time`` = tick × dt_s.
         recording_id: Rerun recording id (e.g. experiment and trial), shown by the viewer.
         application_id: Rerun application id.
@@ -236,9 +456,14 @@ class TrialRecorder:
             (Soccer Server players of radius pitch.player_radius_m).
         every_ticks: Record the truth only on ticks that are multiples of this.
         chunk_frames: Recorded ticks buffered before one ``send_columns`` batch.
+        sensor_period_s: Time between two percepts of one player [s]; a player's percept is
+            cleared from the view once :data:`PERCEPT_LIFETIME_PERIODS` of these pass without
+            a newer one. None: percepts stay until the next one.
+        title: First line of the legend (e.g. the drill, field model and trial).
 
     Raises:
-        ValueError: On a bad shape, a non-positive dt_s, every_ticks or chunk_frames.
+        ValueError: On a bad shape, a non-positive dt_s, every_ticks, chunk_frames or
+            sensor_period_s.
     """
 
     def __init__(
@@ -253,6 +478,8 @@ class TrialRecorder:
         player_shape: PlayerShape = "square",
         every_ticks: int = 1,
         chunk_frames: int = 1000,
+        sensor_period_s: float | None = None,
+        title: str = "",
     ) -> None:
         if not dt_s > 0.0:
             raise ValueError(f"dt_s must be > 0, got {dt_s}")
@@ -260,13 +487,25 @@ class TrialRecorder:
             raise ValueError(f"every_ticks must be >= 1, got {every_ticks}")
         if chunk_frames < 1:
             raise ValueError(f"chunk_frames must be >= 1, got {chunk_frames}")
-        self._template = outline_template(player_shape, pitch.player_radius_m)
+        if sensor_period_s is not None and not sensor_period_s > 0.0:
+            raise ValueError(f"sensor_period_s must be > 0, got {sensor_period_s}")
+        self.sizes = draw_sizes(pitch)
+        self._template = outline_template(player_shape, self.sizes.player_m)
         self.path = Path(path)
         self.pitch = pitch
         self.players = tuple(players)
         self.dt_s = dt_s
         self.every_ticks = every_ticks
         self.chunk_frames = chunk_frames
+        self.sensor_period_s = sensor_period_s
+        self.title = title or recording_id
+        self._player_shape = player_shape
+        # Whole ticks a percept stays current; the small epsilon keeps an exact multiple exact.
+        self._percept_life: int | None = (
+            None
+            if sensor_period_s is None
+            else max(1, math.ceil(PERCEPT_LIFETIME_PERIODS * sensor_period_s / dt_s - 1e-9))
+        )
         self._teams: tuple[str, ...] = tuple(dict.fromkeys(p.team for p in self.players))
         self._team_index = {
             team: np.array([i for i, p in enumerate(self.players) if p.team == team])
@@ -278,6 +517,8 @@ class TrialRecorder:
         self._poses: list[float] = []  # x, y, heading per player per recorded tick (NaN: absent)
         self._percepts: dict[PlayerRef, _PerceptBuffer] = {}
         self._texts: dict[str, _TextBuffer] = {}
+        self._last_tick = 0
+        self._outcome: tuple[int, str, str] | None = None
         self._closed = False
 
         import rerun as rr
@@ -291,38 +532,86 @@ class TrialRecorder:
 
     # --- setup ---------------------------------------------------------------------------
 
+    def _view_bounds(self) -> tuple[list[float], list[float]]:
+        """The field view's x and y ranges, in the view's (flipped) frame.
+
+        Room above the field (the view's negative y) is left for the outcome label.
+        """
+        pitch = self.pitch
+        margin = 0.03 * pitch.length_m
+        x_max = pitch.half_length_m + pitch.goal_depth_m + margin
+        top = pitch.half_width_m + 0.105 * pitch.length_m
+        return [-x_max, x_max], [-top, pitch.half_width_m + margin]
+
     def _blueprint(self) -> rrb.Blueprint:
-        """A 2-D view of the field beside a text log of the events, on ``sim_time``."""
+        """The field beside the legend and the events, side panels collapsed, on ``sim_time``.
+
+        The field view's origin is the root, so the ``field`` entity's flip applies to what it
+        shows (a view's own origin transform would not). The events view shows the message
+        body first: by default rerun 0.41 puts the entity path and level first, and at this
+        width the body is cut off (``rrb.TextLogColumns``, blueprint/archetypes/text_log_columns).
+        """
         import rerun.blueprint as rrb
 
-        pitch = self.pitch
-        margin = 0.05 * pitch.length_m
-        x_max = pitch.half_length_m + pitch.goal_depth_m + margin
-        y_max = pitch.half_width_m + margin
+        x_range, y_range = self._view_bounds()
+        field_view = rrb.Spatial2DView(
+            name="field (y up; truth filled, percepts as rings)",
+            origin="/",
+            contents="/field/**",
+            background=rrb.Background(kind="SolidColor", color=_PITCH_COLOUR),
+            visual_bounds=rrb.VisualBounds2D(x_range=x_range, y_range=y_range),
+        )
+        legend = rrb.TextDocumentView(name="legend", origin="/legend")
+        events = rrb.TextLogView(
+            name="events",
+            origin="/events",
+            columns=rrb.TextLogColumns(
+                timeline_columns=[rrb.encodings.TimelineColumn(SIM_TIME)],
+                text_log_columns=[
+                    rrb.encodings.TextLogColumn("body"),
+                    rrb.encodings.TextLogColumn("entitypath"),
+                    rrb.encodings.TextLogColumn("loglevel", visible=False),
+                ],
+            ),
+            format_options=rrb.TextLogFormat(monospace_body=False),
+        )
         return rrb.Blueprint(
             rrb.Horizontal(
-                rrb.Spatial2DView(
-                    name="field",
-                    origin="/field",
-                    visual_bounds=rrb.VisualBounds2D(
-                        x_range=[-x_max, x_max], y_range=[-y_max, y_max]
-                    ),
-                ),
-                rrb.TextLogView(name="events", origin="/events"),
-                column_shares=[3, 1],
+                field_view,
+                rrb.Vertical(legend, events, row_shares=[3, 5]),
+                column_shares=[5, 2],
             ),
-            rrb.TimePanel(timeline=SIM_TIME),
+            rrb.BlueprintPanel(state="collapsed"),
+            rrb.SelectionPanel(state="collapsed"),
+            rrb.TimePanel(timeline=SIM_TIME, state="collapsed"),
         )
 
     def _log_static(self) -> None:
-        """Pitch geometry and the per-entity styles (colours, radii), logged once as static."""
+        """The flip, pitch geometry and the per-entity styles (colours, radii), logged once."""
         import rerun as rr
 
-        rec, pitch = self._rec, self.pitch
+        rec, pitch, sizes = self._rec, self.pitch, self.sizes
+        # The display flip: field frame (y up) to rerun's 2-D frame (y down).
+        rec.log("field", rr.Transform3D(scale=[1.0, -1.0, 1.0]), static=True)
         line_radius = rr.Radius.ui_points(1.0)
         rec.log(
             "field/lines",
-            rr.LineStrips2D(pitch_lines(pitch), radii=line_radius, colors=_LINE_COLOUR),
+            rr.LineStrips2D(
+                pitch_lines(pitch),
+                radii=line_radius,
+                colors=_LINE_COLOUR,
+                draw_order=_ORDER_MARKINGS,
+            ),
+            static=True,
+        )
+        rec.log(
+            "field/markings",
+            rr.LineStrips2D(
+                pitch_markings(pitch),
+                radii=line_radius,
+                colors=_LINE_COLOUR,
+                draw_order=_ORDER_MARKINGS,
+            ),
             static=True,
         )
         for team, side in ((LEFT, -1.0), (RIGHT, 1.0)):
@@ -330,59 +619,147 @@ class TrialRecorder:
                 f"field/goals/{team}",
                 rr.LineStrips2D(
                     [goal_box(pitch, side)],
-                    radii=rr.Radius.ui_points(2.0),
+                    radii=rr.Radius.ui_points(2.5),
                     colors=team_colour(team, self._teams),
+                    draw_order=_ORDER_MARKINGS,
                 ),
                 static=True,
             )
         rec.log(
             "field/posts",
-            rr.Points2D(goal_posts(pitch), radii=rr.Radius.ui_points(4.0), colors=_LINE_COLOUR),
+            rr.Points2D(
+                goal_posts(pitch),
+                radii=rr.Radius.ui_points(4.0),
+                colors=_LINE_COLOUR,
+                draw_order=_ORDER_MARKINGS,
+            ),
             static=True,
         )
         rec.log(
             "field/ball",
-            rr.Points2D.from_fields(radii=pitch.ball_radius_m, colors=_BALL_COLOUR),
+            rr.Points2D.from_fields(
+                radii=sizes.ball_m, colors=_BALL_COLOUR, draw_order=_ORDER_BALL
+            ),
             static=True,
         )
         for team in self._teams:
             colour = team_colour(team, self._teams)
             base = f"field/players/{_entity_name(team)}"
+            # The discs keep the ids as labels (hover, read-back) but do not show them: rerun
+            # draws a point's label over the point. The ids show on anchors above the players.
             rec.log(
                 base,
                 rr.Points2D.from_fields(
-                    radii=rr.Radius.ui_points(2.5), colors=colour, show_labels=True
+                    radii=sizes.player_m,
+                    colors=colour,
+                    show_labels=False,
+                    draw_order=_ORDER_PLAYERS,
+                ),
+                static=True,
+            )
+            rec.log(
+                f"{base}/name",
+                rr.Points2D.from_fields(
+                    radii=0.0,
+                    colors=_ARROW_COLOUR,  # label text takes this colour: white reads best
+                    show_labels=True,
+                    draw_order=_ORDER_PLAYERS,
                 ),
                 static=True,
             )
             rec.log(
                 f"{base}/outline",
-                rr.LineStrips2D.from_fields(radii=rr.Radius.ui_points(1.5), colors=colour),
+                rr.LineStrips2D.from_fields(
+                    radii=rr.Radius.ui_points(1.5),
+                    colors=_lighter(colour),
+                    draw_order=_ORDER_OUTLINE,
+                ),
                 static=True,
             )
             rec.log(
                 f"{base}/heading",
-                rr.Arrows2D.from_fields(radii=rr.Radius.ui_points(1.5), colors=colour),
+                rr.Arrows2D.from_fields(
+                    radii=sizes.arrow_radius_m, colors=_ARROW_COLOUR, draw_order=_ORDER_HEADING
+                ),
+                static=True,
+            )
+        self._log_legend(0)
+
+    def _percept_colour(self, observer: PlayerRef) -> tuple[int, int, int]:
+        """The colour of `observer`'s percept rings (by its place in the players)."""
+        index = self.players.index(observer) if observer in self.players else len(self.players)
+        return _PERCEPT_COLOURS[index % len(_PERCEPT_COLOURS)]
+
+    def _log_percept_style(self, observer: PlayerRef) -> None:
+        """Static style of one observer's percept rings: its own colour, thin lines."""
+        import rerun as rr
+
+        colour = self._percept_colour(observer)
+        base = f"field/perceived/{_entity_name(str(observer))}"
+        for entity in (f"{base}/ball", f"{base}/players"):
+            self._rec.log(
+                entity,
+                rr.Ellipses2D.from_fields(
+                    line_radii=rr.Radius.ui_points(1.5),
+                    colors=colour,
+                    show_labels=False,  # the seen identities clutter; hover shows them
+                    draw_order=_ORDER_PERCEPT,
+                ),
                 static=True,
             )
 
-    def _log_percept_style(self, observer: PlayerRef) -> None:
-        """Static colours of one observer's perceived entities: its team's, half transparent."""
+    def legend(self, outcome: str = "") -> str:
+        """The legend shown beside the field (markdown), with `outcome` on top once known."""
+        sizes, pitch = self.sizes, self.pitch
+        teams = "; ".join(
+            f"{_colour_name(team_colour(team, self._teams))}: "
+            + ", ".join(str(p) for p in self.players if p.team == team)
+            for team in self._teams
+        )
+        body = "square robots" if self._player_shape == "square" else "round players"
+        ball = f"radius {_length_text(pitch.ball_radius_m)}"
+        if sizes.ball_enlarged:
+            ball += f", **drawn enlarged** to {_length_text(sizes.ball_m)}"
+        players = f"{body} ({teams})"
+        if sizes.players_enlarged:
+            players += (
+                f", half-size {_length_text(pitch.player_radius_m)} "
+                f"**drawn enlarged** to {_length_text(sizes.player_m)}"
+            )
+        rings = ", ".join(
+            f"{_PERCEPT_COLOUR_NAMES[i % len(_PERCEPT_COLOUR_NAMES)]}: what {p} perceives"
+            for i, p in enumerate(self.players)
+        )
+        gone = (
+            f" They vanish {PERCEPT_LIFETIME_PERIODS:g} sensor periods after that player's "
+            "latest percept; the ball's ring also when a percept has no ball."
+            if self._percept_life is not None
+            else ""
+        )
+        lines = [
+            f"### {outcome}" if outcome else "### outcome: not yet decided",
+            "",
+            self.title,
+            "",
+            f"- **Truth** (filled): orange disc = the ball ({ball}); discs = {players}; "
+            "white arrow = heading.",
+            f"- **Percepts** (hollow rings, small = ball, large = player): {rings}.{gone}",
+            "- The field is shown y up (left turns counter-clockwise); markings in FIFA "
+            "proportions. **Events** below: commands, sees, hears, referee, link, decisions, "
+            "the outcome.",
+        ]
+        return "\n".join(lines)
+
+    def _log_legend(self, tick: int, outcome: str = "") -> None:
+        """Log the legend at `tick` (on both timelines), with `outcome` on top if given."""
         import rerun as rr
 
-        colour = (*team_colour(observer.team, self._teams), _PERCEIVED_ALPHA)
-        base = f"field/perceived/{_entity_name(str(observer))}"
-        self._rec.log(
-            f"{base}/ball",
-            rr.Points2D.from_fields(radii=self.pitch.ball_radius_m, colors=colour),
-            static=True,
-        )
-        self._rec.log(
-            f"{base}/players",
-            rr.Points2D.from_fields(
-                radii=0.6 * self.pitch.player_radius_m, colors=colour, show_labels=True
+        self._rec.send_columns(
+            "legend",
+            indexes=_time_indexes([tick], self.dt_s),
+            columns=rr.TextDocument.columns(
+                text=[self.legend(outcome)], media_type=["text/markdown"]
             ),
-            static=True,
         )
 
     # --- logging (hot path: plain-float appends only) --------------------------------------
@@ -398,6 +775,8 @@ class TrialRecorder:
         if self._closed:
             raise RuntimeError("TrialRecorder is closed")
         self._ticks.append(tick)
+        if tick > self._last_tick:
+            self._last_tick = tick
         ball = truth.ball
         self._ball_xy.append(ball.x)
         self._ball_xy.append(ball.y)
@@ -416,7 +795,9 @@ class TrialRecorder:
         """Buffer what `percept.player` perceived, converted to the field frame.
 
         Logged at ``percept.tick`` (when the client got it), so latency shows as the perceived
-        ball trailing the true one. A percept without a ball clears the perceived ball.
+        ball trailing the true one. A percept without a ball clears the perceived ball; with a
+        sensor period given, a percept older than :data:`PERCEPT_LIFETIME_PERIODS` periods
+        with no newer one is cleared at that age.
 
         Args:
             percept: The player's egocentric view.
@@ -425,11 +806,18 @@ class TrialRecorder:
         """
         if self._closed:
             raise RuntimeError("TrialRecorder is closed")
+        tick = percept.tick
         buf = self._percepts.get(percept.player)
         if buf is None:
             buf = self._percepts[percept.player] = _PerceptBuffer()
             self._log_percept_style(percept.player)
-        buf.ticks.append(percept.tick)
+        elif buf.expires is not None and tick > buf.expires:
+            buf.add_empty(buf.expires)  # the previous percept went stale before this one came
+        if self._percept_life is not None:
+            buf.expires = tick + self._percept_life
+        if tick > self._last_tick:
+            self._last_tick = tick
+        buf.ticks.append(tick)
         ball = percept.ball
         if ball is None:
             buf.ball_lengths.append(0)
@@ -448,14 +836,79 @@ class TrialRecorder:
         if self._closed:
             raise RuntimeError("TrialRecorder is closed")
         for event in events:
-            text = event.text if event.player is None else f"{event.player}: {event.text}"
+            # The channel leads the text: the events view's Body column is what a reader sees
+            # first, and a decision and the command it became read alike without it.
+            who = "" if event.player is None else f"{event.player}: "
+            text = f"[{event.channel}] {who}{event.text}"
             self._add_text(f"events/{_entity_name(event.channel)}", event.tick, text, "INFO")
 
     def log_label(self, tick: int, label: str, detail: str = "") -> None:
-        """Buffer a trial label (e.g. ``"GOAL"``, ``"SUCCESS"``) under ``events/label``."""
+        """Record the trial's outcome (e.g. ``"GOAL"``, ``"SUCCESS"``) and why, at `tick`.
+
+        A text line under ``events/label``; from `tick` on, the outcome above the field (in
+        the label's colour, with the boundary in that colour too) and on top of the legend.
+        A later call replaces an earlier one from its own tick on.
+        """
         if self._closed:
             raise RuntimeError("TrialRecorder is closed")
+        text = outcome_text(label, detail)
         self._add_text("events/label", tick, f"{label}: {detail}" if detail else label, "INFO")
+        if tick > self._last_tick:
+            self._last_tick = tick
+        self._log_outcome(tick, label, text)
+
+    def _log_outcome(self, tick: int, label: str, text: str) -> None:
+        """Show the outcome from `tick` on: on the field and on top of the legend.
+
+        Large letters and the reason above the field, and the boundary in the outcome's colour.
+        Logged once per trial, so plain ``log`` calls at `tick` serve.
+        """
+        import rerun as rr
+
+        pitch, rec = self.pitch, self._rec
+        length, top = pitch.length_m, pitch.half_width_m
+        colour = outcome_colour(label)
+        rec.set_time(SIM_TIME, duration=np.timedelta64(round(tick * (self.dt_s * 1e9)), "ns"))
+        rec.set_time(TICK, sequence=tick)
+        try:
+            # Above the top side line, in the room :meth:`_view_bounds` leaves: the reason (a
+            # label, drawn below its anchor point) just above the line, the label above that.
+            strokes = text_strokes(
+                label, height_m=0.05 * length, centre_x_m=0.0, base_y_m=top + 0.045 * length
+            )
+            rec.log(
+                "field/outcome",
+                rr.LineStrips2D(
+                    strokes,
+                    colors=colour,
+                    radii=rr.Radius.ui_points(3.0),
+                    draw_order=_ORDER_OUTCOME,
+                ),
+            )
+            rec.log(
+                "field/outcome/reason",
+                rr.Points2D(
+                    [[0.0, top + 0.035 * length]],
+                    labels=text,
+                    colors=_ARROW_COLOUR,  # label text takes this colour: white reads best
+                    radii=0.0,
+                    show_labels=True,
+                    draw_order=_ORDER_OUTCOME,
+                ),
+            )
+            rec.log(
+                "field/outcome/frame",
+                rr.LineStrips2D(
+                    [pitch_lines(pitch)[0]],
+                    colors=colour,
+                    radii=rr.Radius.ui_points(4.0),
+                    draw_order=_ORDER_OUTCOME,
+                ),
+            )
+        finally:
+            rec.reset_time()
+        self._log_legend(tick, text)
+        self._outcome = (tick, label, text)
 
     def _add_text(self, entity: str, tick: int, text: str, level: str) -> None:
         """Append one text row; flush that entity when its buffer is full."""
@@ -467,6 +920,11 @@ class TrialRecorder:
         buf.levels.append(level)
         if len(buf.ticks) >= self.chunk_frames:
             self._flush_texts()
+
+    @property
+    def outcome(self) -> tuple[int, str, str] | None:
+        """The latest :meth:`log_label`: (tick, label, text as shown), or None."""
+        return self._outcome
 
     # --- flushing ---------------------------------------------------------------------------
 
@@ -488,6 +946,9 @@ class TrialRecorder:
         ball = np.asarray(self._ball_xy, dtype=np.float64).reshape(n_rows, 2)
         rec.send_columns("field/ball", indexes=indexes, columns=rr.Points2D.columns(positions=ball))
         poses = np.asarray(self._poses, dtype=np.float64).reshape(n_rows, len(self.players), 3)
+        arrow_m = self.sizes.arrow_length_m
+        # A label is drawn below its point: this puts the id just above the player's body.
+        name_above = self.sizes.player_m + 0.028 * self.pitch.length_m
         for team in self._teams:
             idx = self._team_index[team]
             team_poses = poses[:, idx, :]
@@ -496,7 +957,6 @@ class TrialRecorder:
             flat = team_poses[present]  # row-major: time order, then player order
             labels = np.broadcast_to(self._labels[idx], present.shape)[present].tolist()
             headings = np.column_stack([np.cos(flat[:, 2]), np.sin(flat[:, 2])])
-            arrow_m = 1.6 * self.pitch.player_radius_m  # reaches past the body's edge
             base = f"field/players/{_entity_name(team)}"
             rec.send_columns(
                 base,
@@ -504,6 +964,13 @@ class TrialRecorder:
                 columns=rr.Points2D.columns(positions=flat[:, :2], labels=labels).partition(
                     lengths
                 ),
+            )
+            rec.send_columns(
+                f"{base}/name",
+                indexes=indexes,
+                columns=rr.Points2D.columns(
+                    positions=flat[:, :2] + (0.0, name_above), labels=labels
+                ).partition(lengths),
             )
             rec.send_columns(
                 f"{base}/outline",
@@ -524,9 +991,13 @@ class TrialRecorder:
         self._poses = []
 
     def _flush_percepts(self) -> None:
-        """Send each observer's buffered perceived ball and player rows."""
+        """Send each observer's buffered perceived ball and player rings."""
         import rerun as rr
 
+        # The ring sizes go in every row: half_sizes is Ellipses2D's required component, so a
+        # static one would fix the instance count at one and draw a ring where none is current.
+        ball_ring = 1.5 * self.sizes.ball_m
+        player_ring = 2.0 * self.sizes.player_m
         for observer, buf in self._percepts.items():
             if not buf.ticks:
                 continue
@@ -536,17 +1007,21 @@ class TrialRecorder:
             self._rec.send_columns(
                 f"{base}/ball",
                 indexes=indexes,
-                columns=rr.Points2D.columns(positions=ball).partition(buf.ball_lengths),
+                columns=rr.Ellipses2D.columns(
+                    centers=ball, half_sizes=np.full_like(ball, ball_ring)
+                ).partition(buf.ball_lengths),
             )
             seen = np.asarray(buf.player_xy, dtype=np.float64).reshape(-1, 2)
             self._rec.send_columns(
                 f"{base}/players",
                 indexes=indexes,
-                columns=rr.Points2D.columns(positions=seen, labels=buf.player_labels).partition(
-                    buf.player_lengths
-                ),
+                columns=rr.Ellipses2D.columns(
+                    centers=seen,
+                    half_sizes=np.full_like(seen, player_ring),
+                    labels=buf.player_labels,
+                ).partition(buf.player_lengths),
             )
-            self._percepts[observer] = _PerceptBuffer()
+            self._percepts[observer] = _PerceptBuffer(buf.expires)
 
     def _flush_texts(self) -> None:
         """Send the buffered text rows of every text entity."""
@@ -562,13 +1037,24 @@ class TrialRecorder:
             )
             self._texts[entity] = _TextBuffer()
 
+    def _expire_percepts(self) -> None:
+        """Clear each percept that went stale before the recording's last tick."""
+        for buf in self._percepts.values():
+            if buf.expires is not None and buf.expires <= self._last_tick:
+                buf.add_empty(buf.expires)
+                buf.expires = None
+
     # --- closing ----------------------------------------------------------------------------
 
     def close(self) -> None:
-        """Flush the buffers and disconnect, which writes the file's footer. Idempotent."""
+        """Clear stale percepts, flush the buffers and disconnect (writes the footer).
+
+        Idempotent.
+        """
         if self._closed:
             return
         try:
+            self._expire_percepts()
             self.flush()
         finally:
             self._closed = True
@@ -584,6 +1070,18 @@ class TrialRecorder:
         tb: TracebackType | None,
     ) -> None:
         self.close()
+
+
+def _colour_name(colour: tuple[int, int, int]) -> str:
+    """The name the legend gives a team colour."""
+    names = {
+        _TEAM_COLOURS[LEFT]: "blue",
+        _TEAM_COLOURS[RIGHT]: "yellow",
+        _OTHER_TEAM_COLOURS[0]: "purple",
+        _OTHER_TEAM_COLOURS[1]: "teal",
+        _OTHER_TEAM_COLOURS[2]: "red",
+    }
+    return names.get(colour, "coloured")
 
 
 # ----------------------------------------------------------------------------- reading back
@@ -742,8 +1240,11 @@ def replay(path: Path) -> int:
             return 0
     else:
         print("no display found (neither DISPLAY nor WAYLAND_DISPLAY is set).")
-    print(f"On a desktop, open it with:      rerun {path}")
-    print(f"To serve it to a web browser:    rerun --web-viewer {path}")
+    # The venv's rerun is not on PATH unless the venv is active; name it in full. The web
+    # viewer binds to localhost: serving to all interfaces is the user's explicit choice.
+    print(f"On a desktop, open it with:      {exe} {path}")
+    print(f"To serve it to a web browser:    {exe} --web-viewer --bind 127.0.0.1 {path}")
+    print("  then open the http://127.0.0.1:9090 address it prints")
     print(f"verifying {path} ...", flush=True)
     ok, message = verify_recording(path)
     print(f"{'verified' if ok else 'verification FAILED'}: {message}")

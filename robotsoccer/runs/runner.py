@@ -224,21 +224,31 @@ def describe_decision(actions: tuple[Action, ...]) -> str:
 def _play_recorded(
     arena: Arena, drill: Drill, minds: dict[PlayerRef, Mind], spec: TrialSpec, index: int
 ) -> Verdict:
-    from robotsoccer.replay.recording import TrialRecorder  # rerun loads only when recording
+    """Play trial `index` with a rerun recording of it, named with its outcome.
+
+    The file is written under a temporary name (``trial_<index>.rrd.part``) and renamed to
+    :func:`~robotsoccer.replay.recording.recording_name` (``trial_<index>_<LABEL>.rrd``) once
+    the verdict is known and the file is closed; an interrupted trial leaves only the part file.
+    """
+    from robotsoccer.replay.recording import TrialRecorder, recording_name  # rerun loads late
 
     assert spec.record_dir is not None
     facts = arena.facts
-    path = Path(spec.record_dir) / f"trial_{index:04d}.rrd"
-    path.parent.mkdir(parents=True, exist_ok=True)
+    folder = Path(spec.record_dir)
+    partial = folder / f"trial_{index:04d}.rrd.part"
+    folder.mkdir(parents=True, exist_ok=True)
     every = max(1, round(1.0 / 60.0 / facts.dt_s))  # draw at ≤ 60 Hz: enough to watch
     recorder = TrialRecorder(
-        path,
+        partial,
         pitch=facts.pitch,
         players=arena.players,
         dt_s=facts.dt_s,
         recording_id=f"{spec.drill}-{spec.field_model}-seed{spec.seed}-trial{index}",
         player_shape=facts.player_shape,
         every_ticks=every,
+        sensor_period_s=facts.sensor_period_s,
+        title=f"{spec.drill} drill on {spec.field_model} ({spec.preset_name}), "
+        f"seed {spec.seed}, trial {index}",
     )
 
     def observe(a: Arena, percepts: list[Percept]) -> None:
@@ -249,13 +259,12 @@ def _play_recorded(
         recorder.log_events(a.drain_events())
 
     def decide(percept: Percept, actions: tuple[Action, ...]) -> None:
-        event = ArenaEvent(
-            percept.tick, "decision", describe_decision(actions), percept.player
-        )
+        event = ArenaEvent(percept.tick, "decision", describe_decision(actions), percept.player)
         recorder.log_events([event])
 
     with recorder:
         recorder.log_truth(arena.truth())
         verdict = play(arena, drill, minds, observe, decide)
         recorder.log_label(arena.tick, verdict.label, verdict.reason)
+    partial.replace(folder / recording_name(index, verdict.label))
     return verdict

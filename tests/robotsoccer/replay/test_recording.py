@@ -25,14 +25,21 @@ from field_models.protocol import (
 )
 from robotsoccer.replay import recording
 from robotsoccer.replay.recording import (
+    MIN_BALL_FRACTION,
+    MIN_PLAYER_FRACTION,
     TrialRecorder,
+    draw_sizes,
     egocentric_to_field,
     outline_template,
+    pitch_markings,
     place_outlines,
     read_entity_positions,
+    recording_name,
     replay,
+    text_strokes,
     verify_recording,
 )
+from robotsoccer.runs.runner import TrialSpec, run_trial
 
 PITCH = Pitch(
     length_m=2.74,
@@ -44,6 +51,14 @@ PITCH = Pitch(
 )
 A = PlayerRef(LEFT, 1)
 B = PlayerRef(RIGHT, 2)
+SERVER_PITCH = Pitch(
+    length_m=105.0,
+    width_m=68.0,
+    goal_width_m=14.02,
+    goal_depth_m=2.44,
+    ball_radius_m=0.085,
+    player_radius_m=0.3,
+)
 DT_S = 1.0 / 240.0
 N_TICKS = 50
 
@@ -169,7 +184,7 @@ def test_events_and_label_are_text(run_file: Path) -> None:
         for row in b.column("TextLog:text").to_pylist()
         for t in row
     ]
-    assert sorted(commands) == sorted(f"left1: dash 50 #{k}" for k in range(0, N_TICKS, 7))
+    assert sorted(commands) == sorted(f"[command] left1: dash 50 #{k}" for k in range(0, N_TICKS, 7))
     labels = [
         t
         for b in read_batches(run_file, "/events/label")
@@ -274,7 +289,11 @@ def test_replay_headless(
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
     assert replay(run_file) == 0
     out = capsys.readouterr().out
-    assert "no display" in out and "--web-viewer" in out and "verified" in out
+    assert "no display" in out and "verified" in out
+    # Commands that work without an active venv, and a viewer served to this machine only.
+    exe = str(recording.rerun_executable())
+    assert f"{exe} --web-viewer --bind 127.0.0.1 {run_file}" in out
+    assert f"{exe} {run_file}" in out
 
 
 def test_replay_headless_bad_file(
@@ -298,3 +317,199 @@ def test_replay_with_display_spawns_viewer(run_file: Path, monkeypatch: pytest.M
     monkeypatch.setattr(recording.subprocess, "Popen", FakePopen)
     assert replay(run_file) == 0
     assert calls == [[str(recording.rerun_executable()), str(run_file)]]
+
+
+# ----------------------------------------------------------------------------- what is drawn
+
+
+def rows(path: Path, entity: str, column: str) -> list[tuple[int, list]]:
+    """(tick, values) of every temporal row of `entity`'s `column`, in tick order."""
+    out = [
+        (tick, values)
+        for b in read_batches(path, "/" + entity)
+        if "tick" in b.schema.names and column in b.schema.names
+        for tick, values in zip(
+            b.column("tick").to_pylist(), b.column(column).to_pylist(), strict=True
+        )
+    ]
+    return sorted(out, key=lambda row: row[0])
+
+
+def static_value(path: Path, entity: str, column: str) -> list:
+    """The static value of `entity`'s `column`."""
+    for b in read_batches(path, "/" + entity):
+        if "tick" not in b.schema.names and column in b.schema.names:
+            return b.column(column).to_pylist()[0]
+    raise AssertionError(f"no static {column} on {entity}")
+
+
+def test_small_things_are_drawn_at_a_visible_minimum_size() -> None:
+    server = draw_sizes(SERVER_PITCH)
+    assert server.ball_enlarged and server.players_enlarged
+    assert server.ball_m == pytest.approx(MIN_BALL_FRACTION * SERVER_PITCH.length_m)
+    assert server.player_m == pytest.approx(MIN_PLAYER_FRACTION * SERVER_PITCH.length_m)
+    table = draw_sizes(PITCH)  # the robot table: true sizes are large enough already
+    assert not table.ball_enlarged and not table.players_enlarged
+    assert (table.ball_m, table.player_m) == (PITCH.ball_radius_m, PITCH.player_radius_m)
+    for sizes, pitch in ((server, SERVER_PITCH), (table, PITCH)):
+        # Heading arrows reach past the body by a pitch-scaled length.
+        assert sizes.arrow_length_m > sizes.player_m + 0.01 * pitch.length_m
+
+
+def test_recording_draws_the_enlarged_sizes_and_says_so(tmp_path: Path) -> None:
+    path = tmp_path / "server.rrd"
+    with TrialRecorder(
+        path, pitch=SERVER_PITCH, players=(A,), dt_s=0.1, recording_id="r", player_shape="circle"
+    ) as rec:
+        rec.log_truth(truth_at(0))
+    sizes = draw_sizes(SERVER_PITCH)
+    assert static_value(path, "field/ball", "Points2D:radii") == [pytest.approx(sizes.ball_m)]
+    assert static_value(path, "field/players/left", "Points2D:radii") == [
+        pytest.approx(sizes.player_m)
+    ]
+    (_, legend), *_ = rows(path, "legend", "TextDocument:text")
+    assert "drawn enlarged" in legend[0] and "8.5 cm" in legend[0]
+    # The data stay true: the ball is where it was logged, whatever its drawn size.
+    np.testing.assert_allclose(
+        read_entity_positions(path, "field/ball"), [[ball_at(0).x, ball_at(0).y]], atol=1e-6
+    )
+
+
+def test_field_is_flipped_for_display_only(run_file: Path) -> None:
+    # rerun's 2-D view draws y down; a scale of -1 on y at /field turns the field frame up.
+    assert static_value(run_file, "field", "Transform3D:scale") == [[1.0, -1.0, 1.0]]
+    got = read_entity_positions(run_file, "field/players/left")
+    assert np.all(got[:, 1] > 0.0)  # left1 stays at y = +0.1 in the data
+
+
+def test_pitch_markings_fit_the_pitch() -> None:
+    for pitch in (PITCH, SERVER_PITCH):
+        circle, *penalty = pitch_markings(pitch)
+        radius = np.hypot(circle[:, 0], circle[:, 1])
+        np.testing.assert_allclose(radius, radius[0])
+        assert radius[0] < pitch.half_width_m
+        assert len(penalty) == 2
+        for area in penalty:
+            assert np.all(np.abs(area[:, 1]) < pitch.half_width_m)
+            assert np.all(np.abs(area[:, 1]).max() > 0.5 * pitch.goal_width_m)
+
+
+def record_percepts(path: Path, percept_ticks: list[int], *, sensor_period_s: float | None) -> None:
+    with TrialRecorder(
+        path,
+        pitch=PITCH,
+        players=(A, B),
+        dt_s=DT_S,
+        recording_id="expiry",
+        sensor_period_s=sensor_period_s,
+    ) as rec:
+        for tick in range(N_TICKS):
+            truth = truth_at(tick)
+            rec.log_truth(truth)
+            if tick in percept_ticks:
+                seen = (SeenPlayer(1.2, 0.3, RIGHT, 2),)
+                rec.log_percept(Percept(A, tick, tick, SeenBall(0.5, 0.1), seen), truth.players[A])
+
+
+def test_percepts_are_cleared_once_stale(tmp_path: Path) -> None:
+    path = tmp_path / "expiry.rrd"
+    # A period of 10 ticks: a percept stays current for 15 ticks.
+    record_percepts(path, [5, 10, 30], sensor_period_s=10 * DT_S)
+    for entity in ("field/perceived/left1/ball", "field/perceived/left1/players"):
+        got = [(tick, len(centres)) for tick, centres in rows(path, entity, "Ellipses2D:centers")]
+        # 10 + 15 = 25 < 30: cleared at 25; 30 + 15 = 45 within the run: cleared at 45.
+        assert got == [(5, 1), (10, 1), (25, 0), (30, 1), (45, 0)], entity
+    # Without a sensor period a percept stays until the next one.
+    path = tmp_path / "no-expiry.rrd"
+    record_percepts(path, [5, 10, 30], sensor_period_s=None)
+    got = rows(path, "field/perceived/left1/ball", "Ellipses2D:centers")
+    assert [tick for tick, _ in got] == [5, 10, 30]
+
+
+def test_percept_current_at_the_end_is_kept(tmp_path: Path) -> None:
+    path = tmp_path / "end.rrd"
+    record_percepts(path, [40], sensor_period_s=10 * DT_S)  # current until 55 > last tick
+    got = rows(path, "field/perceived/left1/ball", "Ellipses2D:centers")
+    assert [(tick, len(c)) for tick, c in got] == [(40, 1)]
+
+
+def test_percept_without_ball_clears_the_ball_ring_only(run_file: Path) -> None:
+    got = rows(run_file, "field/perceived/right2/ball", "Ellipses2D:centers")
+    assert [(tick, len(c)) for tick, c in got] == [(25, 0)]
+    rings = rows(run_file, "field/perceived/left1/ball", "Ellipses2D:half_sizes")
+    assert all(len(sizes) == 1 for _, sizes in rings)  # one size per ring, so none left over
+
+
+def test_outcome_is_shown_on_the_field_from_the_verdict_on(run_file: Path) -> None:
+    verdict = N_TICKS - 1
+    text = "GOAL — ball over the right goal line"
+    ((tick, labels),) = rows(run_file, "field/outcome/reason", "Points2D:labels")
+    assert (tick, labels) == (verdict, [text])
+    ((tick, strokes),) = rows(run_file, "field/outcome", "LineStrips2D:strips")
+    assert tick == verdict and len(strokes) == len(
+        text_strokes("GOAL", height_m=1.0, centre_x_m=0.0, base_y_m=0.0)
+    )
+    assert min(y for stroke in strokes for _, y in stroke) > PITCH.half_width_m  # above it
+    ((tick, _),) = rows(run_file, "field/outcome/frame", "LineStrips2D:strips")
+    assert tick == verdict
+    legend = rows(run_file, "legend", "TextDocument:text")
+    assert [tick for tick, _ in legend] == [0, verdict]
+    assert "not yet decided" in legend[0][1][0] and legend[1][1][0].startswith(f"### {text}")
+
+
+def test_text_strokes_are_centred_and_skip_unknown_characters() -> None:
+    strokes = text_strokes("SAVE", height_m=6.0, centre_x_m=10.0, base_y_m=2.0)
+    xy = np.concatenate(strokes)
+    assert xy[:, 0].min() == pytest.approx(10.0 - 11.0) and xy[:, 0].max() == pytest.approx(21.0)
+    assert xy[:, 1].min() == pytest.approx(2.0) and xy[:, 1].max() == pytest.approx(8.0)
+    assert len(text_strokes("a?b", height_m=1.0, centre_x_m=0.0, base_y_m=0.0)) == len(
+        text_strokes("AB", height_m=1.0, centre_x_m=0.0, base_y_m=0.0)
+    )
+    assert text_strokes("", height_m=1.0, centre_x_m=0.0, base_y_m=0.0) == []
+
+
+def test_events_view_shows_the_message_body_first(run_file: Path) -> None:
+    from rerun.blueprint.encodings import TextLogColumnKind
+    from rerun.chunk import RrdReader
+
+    reader = RrdReader(str(run_file))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        chunks = reader.stream(store=reader.blueprints()[0]).to_chunks()
+    columns = [
+        c.to_record_batch().column("TextLogColumns:text_log_columns").to_pylist()[0]
+        for c in chunks
+        if c.entity_path.endswith("/TextLogColumns")
+    ]
+    assert len(columns) == 1
+    first = columns[0][0]
+    assert first == {"visible": True, "kind": TextLogColumnKind.Body.value}
+    origins = [
+        origin
+        for c in chunks
+        if "ViewBlueprint:space_origin" in c.to_record_batch().schema.names
+        for origin in c.to_record_batch().column("ViewBlueprint:space_origin").to_pylist()[0]
+    ]
+    # The field view's origin is the root, so the flip on /field applies to it.
+    assert sorted(origins) == ["/", "/events", "/legend"]
+
+
+# ----------------------------------------------------------------------------- file names
+
+
+def test_recording_name_carries_the_outcome() -> None:
+    assert recording_name(7, "GOAL") == "trial_0007_GOAL.rrd"
+    assert recording_name(12, "a/b c") == "trial_0012_a_b_c.rrd"
+
+
+@pytest.mark.parametrize("field_model", ["soccer_server", "robot_physics"])
+def test_run_trial_names_its_recording_with_the_outcome(tmp_path: Path, field_model: str) -> None:
+    spec = TrialSpec(
+        drill="intercept", field_model=field_model, record_dir=str(tmp_path), record_trials=1
+    )
+    result = run_trial(spec, 0)
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"trial_0000_{result.label}.rrd"]
+    path = tmp_path / recording_name(0, result.label)
+    assert verify_recording(path)[0]
+    ((_, labels),) = rows(path, "field/outcome/reason", "Points2D:labels")
+    assert labels == [f"{result.label} — {result.reason}"]
