@@ -21,7 +21,7 @@ import functools
 import math
 import platform
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
 import numpy as np
@@ -73,34 +73,46 @@ def run_benchmarks(
     quick: bool = False, demo_field: str = FIELD_MODELS[0], say: Progress | None = None
 ) -> dict[str, Any]:
     """All benchmark figures as a nested dict (medians of 3 repeats; 1 when `quick`)."""
+    return nest(iter_benchmarks(quick, demo_field, say))
+
+
+def iter_benchmarks(
+    quick: bool = False, demo_field: str = FIELD_MODELS[0], say: Progress | None = None
+) -> Iterator[tuple[str, Any]]:
+    """Every figure as (dotted key, value), each as soon as it is measured."""
     say = say or (lambda _: None)
     repeats = 1 if quick else 3
-    results: dict[str, Any] = {}
     for model in FIELD_MODELS:
         say(f"{model}: engine speed")
-        results[model] = entry(model).benchmarks(quick)
+        yield from flatten(entry(model).benchmarks(quick), f"{model}.")
     trials = 100 if quick else 600
     say(f"demo ({demo_field}): 1 and 2 workers")
     demo1 = median_of(repeats, lambda: demo_trials_per_s(demo_field, 1, trials // 2))
+    yield "demo.trials_per_s.1_worker", round(demo1, 1)
     demo2 = median_of(repeats, lambda: demo_trials_per_s(demo_field, 2, trials))
-    results["demo"] = {
-        "trials_per_s": {"1_worker": round(demo1, 1), "2_workers": round(demo2, 1)}
-    }
-    intercept = {}
+    yield "demo.trials_per_s.2_workers", round(demo2, 1)
     for model in FIELD_MODELS:
         say(f"intercept drill: {model}")
         measure = functools.partial(intercept_trials_per_s, model, _intercept_trials(model, quick))
-        intercept[model] = round(median_of(repeats, measure))
-    results["intercept"] = {"trials_per_s": intercept}
+        yield f"intercept.trials_per_s.{model}", round(median_of(repeats, measure))
     say("training: the interception net on 1000 saves")
-    results["training"] = {"net_1000_saves_s": round(median_of(repeats, training_seconds), 2)}
-    results["machine"] = {
-        "python": platform.python_version(),
-        "cpu_count": default_workers(),
-        "repeats": repeats,
-        "statistic": "median",
-    }
-    return results
+    yield "training.net_1000_saves_s", round(median_of(repeats, training_seconds), 2)
+    yield "machine.python", platform.python_version()
+    yield "machine.cpu_count", default_workers()
+    yield "machine.repeats", repeats
+    yield "machine.statistic", "median"
+
+
+def nest(rows: Iterable[tuple[str, Any]]) -> dict[str, Any]:
+    """Dotted-key rows as a nested dict (the inverse of :func:`flatten`)."""
+    tree: dict[str, Any] = {}
+    for key, value in rows:
+        *parents, leaf = key.split(".")
+        node = tree
+        for part in parents:
+            node = node.setdefault(part, {})
+        node[leaf] = value
+    return tree
 
 
 def _intercept_trials(field_model: str, quick: bool) -> int:

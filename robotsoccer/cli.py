@@ -1,37 +1,46 @@
 """The ``robotsoccer`` command line: demo, trace, learn, reproduce, bench, replay.
 
-Bad input never ends in a traceback: a wrong option, an unknown preset or a wrong preset file
-prints one line naming what is wrong and exits with status 2. Ctrl-C during a run keeps every
-finished trial in the results table and exits with status 130.
+Every error reaches the user as one line and a non-zero exit status, never a traceback (unless
+``--debug`` is given): a wrong option, preset or model file exits with 2; a file-system error
+or an error raised inside a worker with 1; Ctrl-C with 130, after keeping every finished trial;
+a closed output pipe (``robotsoccer demo | head``) with 141.
+
+Run folders are never mixed or silently replaced (:mod:`robotsoccer.runs.folders`): a folder
+that holds a run is continued with ``--resume`` (only if the same run made it) or replaced with
+``--overwrite``.
 
 ``learn intercept`` and ``reproduce`` run layer 1 of the paper (§5) through
 :mod:`robotsoccer.experiments.layer1`: collect saves, train nets, evaluate every condition and
-write one folder with ``report.md``, plots, models and recordings; rerunning resumes.
+write one folder with ``report.md``, plots, models and recordings.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import math
+import os
 import sys
 import time
 from collections import Counter
-from collections.abc import Sequence
-from dataclasses import asdict
+from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from field_models.arena import FieldOptions
 from field_models.presets import PresetError
 from field_models.protocol import PlayerRef
 from field_models.registry import FIELD_MODELS, default_preset
+from robotsoccer import __version__
 from robotsoccer.drills import DRILLS, make_drill
+from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers, run_trials
 from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial
 from robotsoccer.stats import wilson_interval
 
-DEMO_FIELD = "robot_physics"
-"""The field model the demo (and the demo benchmark) runs on by default: the paper's robots."""
+DEFAULT_FIELD = "robot_physics"
+"""The field model every command runs on unless told otherwise: the paper's mini-robots."""
 PAPER_MODELS = ("soccer_server", "robot_physics")
 """The field models ``reproduce`` runs, in report order."""
 BENCH_TARGETS = {
@@ -45,84 +54,69 @@ BENCH_TARGETS = {
 }
 """What ``robotsoccer bench`` checks each figure against."""
 
+EXIT_USAGE, EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_BROKEN_PIPE = 2, 1, 130, 141
+"""Exit statuses: bad input; a failure while running; Ctrl-C; the output pipe closed."""
 
-class UsageError(Exception):
+
+class UsageError(ValueError):
     """A user error reported as one line (exit status 2)."""
 
 
+class _Help(argparse.HelpFormatter):
+    """Help that shows each option's default, where it has one worth showing."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = action.help or ""
+        default = action.default
+        unshown = default is None or default is False or default == [] or "%(default)" in text
+        if unshown or default is argparse.SUPPRESS:
+            return text
+        return f"{text} (default: %(default)s)"
+
+
 class _Parser(argparse.ArgumentParser):
-    """An argument parser whose errors are one line and exit 2, without the usage dump."""
+    """An argument parser whose errors are one line and exit 2, and whose help shows defaults."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("formatter_class", _Help)
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:
-        self.exit(2, f"{self.prog}: error: {message}\n")
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The full command-line parser."""
-    parser = _Parser(prog="robotsoccer", description=__doc__.splitlines()[0])
-    commands = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-
-    demo = commands.add_parser("demo", help="run the shootout demo drill headless")
-    _add_run_options(demo, default_trials=200)
-    demo.add_argument("--drill", default="shootout", choices=sorted(DRILLS))
-
-    bench = commands.add_parser("bench", help="measure speed (simulated s per wall s, trials/s)")
-    bench.add_argument("--json", action="store_true", help="print one JSON object")
-    bench.add_argument("--quick", action="store_true", help="one short repeat of each figure")
-
-    trace = commands.add_parser("trace", help="print a paper-style trace (Figure 4) of a trial")
-    trace.add_argument("--field", default="soccer_server", choices=FIELD_MODELS)
-    trace.add_argument("--field-preset", default=None, help="preset name or .toml path")
-    trace.add_argument("--drill", default="shootout", choices=sorted(DRILLS))
-    trace.add_argument("--seed", type=int, default=0)
-    trace.add_argument("--trial", type=int, default=0, help="trial index")
-    trace.add_argument("--player", default=None, help="client to trace, e.g. left1")
-    trace.add_argument("--ball-noise", type=float, default=None, help="override ball noise")
-    trace.add_argument(
-        "--option",
-        action="append",
-        default=[],
-        type=_drill_option,
-        metavar="NAME=VALUE",
-        help="drill option, e.g. behaviour=net (repeatable)",
-    )
-
-    replay = commands.add_parser("replay", help="open a recording in the rerun viewer")
-    replay.add_argument("file", type=Path)
-
-    learn = commands.add_parser("learn", help="learn a layer: collect, train, evaluate, report")
-    targets = learn.add_subparsers(dest="target", required=True, parser_class=_Parser)
-    intercept = targets.add_parser("intercept", help="layer 1: the interception net (paper §5)")
-    intercept.add_argument("--field", required=True, choices=FIELD_MODELS, help="field model")
-    intercept.add_argument("--field-preset", default=None, help="preset name or .toml path")
-    _add_experiment_options(intercept)
-
-    reproduce = commands.add_parser(
-        "reproduce", help="run all of layer 1 on both field models; report, plots, models"
-    )
-    _add_experiment_options(reproduce)
-    return parser
+# ----------------------------------------------------------------------------- option types
 
 
-def _add_experiment_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--quick", action="store_true", help="~200 trials per condition (< 5 min)")
-    p.add_argument("--seed", type=int, default=0, help="experiment seed")
-    p.add_argument("--workers", type=_positive_int, default=None, help="default: all cores")
-    p.add_argument("--out", type=Path, default=None, help="output folder (default under runs/)")
+def _positive_int(text: str) -> int:
+    value = _int(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"expected a whole number > 0, got {text!r}")
+    return value
 
 
-def _add_run_options(p: argparse.ArgumentParser, default_trials: int) -> None:
-    p.add_argument("--trials", type=_positive_int, default=default_trials)
-    p.add_argument("--field", default=DEMO_FIELD, choices=FIELD_MODELS, help="field model")
-    p.add_argument("--field-preset", default=None, help="preset name or .toml path")
-    p.add_argument("--seed", type=int, default=0, help="experiment seed")
-    p.add_argument("--workers", type=_positive_int, default=None, help="default: all cores")
-    p.add_argument("--record", action="store_true", help="write rerun recordings")
-    p.add_argument("--record-trials", type=_positive_int, default=3, help="how many to record")
-    p.add_argument("--out", type=Path, default=None, help="run folder (default under runs/)")
-    p.add_argument("--resume", action="store_true", help="keep finished trials in --out")
-    p.add_argument("--perfect-perception", action="store_true", help="camera without noise")
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+def _index(text: str) -> int:
+    value = _int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {text!r}")
+    return value
+
+
+def _int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+
+
+def _noise(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or value < 0.0:
+        raise argparse.ArgumentTypeError(f"expected a finite number >= 0, got {text!r}")
+    return value
 
 
 def _drill_option(text: str) -> tuple[str, str | float | int | bool]:
@@ -134,92 +128,207 @@ def _drill_option(text: str) -> tuple[str, str | float | int | bool]:
         return name, raw.lower() == "true"
     for kind in (int, float):
         try:
-            return name, kind(raw)
+            value = kind(raw)
         except ValueError:
-            pass
+            continue
+        if isinstance(value, float) and not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{name}: expected a finite number, got {raw!r}")
+        return name, value
     return name, raw
 
 
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
-    return value
+# ----------------------------------------------------------------------------- the parser
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The full command-line parser."""
+    parser = _Parser(
+        prog="robotsoccer",
+        description="Layered learning on soccer mini-robots: a pymunk robot testbed and a "
+        "Soccer Server model behind one interface.",
+        epilog="`robotsoccer COMMAND --help` describes a command and its options.",
+    )
+    parser.add_argument("--version", action="version", version=f"robotsoccer {__version__}")
+    common = _Parser(add_help=False)
+    common.add_argument("--debug", action="store_true", help="show tracebacks of errors")
+    commands = parser.add_subparsers(dest="command", parser_class=_Parser, metavar="COMMAND")
+
+    def command(name: str, summary: str) -> argparse.ArgumentParser:
+        return commands.add_parser(name, help=summary, description=summary, parents=[common])
+
+    demo = command("demo", "run a drill's trials headless and print its labels' shares")
+    _field_options(demo)
+    _drill_options(demo)
+    demo.add_argument("--trials", type=_positive_int, default=200, help="how many trials")
+    _run_options(demo)
+    demo.add_argument("--record", action="store_true", help="write rerun recordings")
+    demo.add_argument(
+        "--record-trials", type=_positive_int, default=3, help="record this many first trials"
+    )
+    demo.add_argument("--quiet", action="store_true", help="no progress")
+
+    trace = command("trace", "print a paper-style trace (Figure 4) of one trial")
+    _field_options(trace)
+    _drill_options(trace)
+    trace.add_argument("--trial", type=_index, default=0, help="trial index")
+    trace.add_argument("--player", default=None, help="client to trace, e.g. left1 (first)")
+
+    learn = command("learn", "learn a layer: collect, train, evaluate, report")
+    targets = learn.add_subparsers(dest="target", required=True, parser_class=_Parser)
+    intercept = targets.add_parser(
+        "intercept", help="layer 1: the interception net (paper §5)", parents=[common]
+    )
+    intercept.add_argument("--field", default=DEFAULT_FIELD, choices=FIELD_MODELS)
+    intercept.add_argument("--field-preset", default=None, help="preset name or file")
+    _experiment_options(intercept)
+
+    reproduce = command("reproduce", "all of layer 1 on both field models: report, plots")
+    _experiment_options(reproduce)
+
+    bench = command("bench", "measure speed, each figure beside its target")
+    bench.add_argument("--json", action="store_true", help="print one JSON object at the end")
+    bench.add_argument("--quick", action="store_true", help="one short repeat of each figure")
+
+    replay = command("replay", "open a recording in the rerun viewer, or say how to")
+    replay.add_argument("file", type=Path, help="a .rrd recording")
+    return parser
+
+
+def _field_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--field", default=DEFAULT_FIELD, choices=FIELD_MODELS, help="field model")
+    p.add_argument(
+        "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
+    )
+    p.add_argument("--seed", type=_index, default=0, help="experiment seed")
+    p.add_argument(
+        "--ball-noise", type=_noise, default=None, help="ball noise (preset's when not given)"
+    )
+    p.add_argument(
+        "--perfect-perception", action="store_true", help="sensor without noise or latency"
+    )
+
+
+def _drill_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--drill", default="shootout", choices=sorted(DRILLS), help="the drill")
+    p.add_argument(
+        "--option",
+        action="append",
+        default=[],
+        type=_drill_option,
+        metavar="NAME=VALUE",
+        help="drill option, e.g. behaviour=net (repeatable)",
+    )
+
+
+def _run_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--workers", type=_positive_int, default=None, help="processes (all cores)")
+    p.add_argument("--out", type=Path, default=None, help="run folder (under runs/)")
+    p.add_argument("--resume", action="store_true", help="continue the run in --out")
+    p.add_argument("--overwrite", action="store_true", help="replace the run in --out")
+
+
+def _experiment_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--quick", action="store_true", help="200 trials per condition")
+    p.add_argument("--seed", type=_index, default=0, help="experiment seed")
+    _run_options(p)
+
+
+# ----------------------------------------------------------------------------- main
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``robotsoccer`` console script."""
-    args = build_parser().parse_args(argv)
+    """Entry point of the ``robotsoccer`` console script (module docstring: exit statuses)."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_USAGE
+    run: Callable[[argparse.Namespace], int] = COMMANDS[args.command]
+    if args.debug:
+        return run(args)
     try:
-        if args.command == "demo":
-            return cmd_demo(args)
-        if args.command == "bench":
-            return cmd_bench(args)
-        if args.command == "replay":
-            return cmd_replay(args)
-        if args.command == "trace":
-            return cmd_trace(args)
-        if args.command == "learn":
-            return cmd_learn(args)
-        if args.command == "reproduce":
-            return cmd_reproduce(args)
-    except (PresetError, UsageError, ValueError) as exc:
-        print(f"robotsoccer: error: {exc}", file=sys.stderr)
-        return 2
+        return run(args)
+    except (PresetError, ValueError) as exc:
+        return _fail(EXIT_USAGE, str(exc))
+    except BrokenPipeError:
+        _silence_stdout()
+        return EXIT_BROKEN_PIPE
+    except OSError as exc:
+        where = f" {exc.filename}" if exc.filename else ""
+        return _fail(EXIT_FAILURE, f"{exc.strerror or exc}:{where}".rstrip(":"))
     except KeyboardInterrupt:
-        print("\nrobotsoccer: interrupted", file=sys.stderr)
-        return 130
-    raise AssertionError(args.command)  # argparse allows only the commands above
+        return _fail(EXIT_INTERRUPTED, "interrupted")
+    except Exception as exc:  # e.g. raised inside a worker: one line, the traceback on --debug
+        return _fail(EXIT_FAILURE, f"{type(exc).__name__}: {exc} (--debug shows where)")
 
 
-def cmd_demo(args: argparse.Namespace) -> int:
-    """Run the demo drill and print its summary table."""
-    preset = args.field_preset or default_preset(args.field)
-    make_drill(args.drill)  # fail fast on a bad name, before any worker starts
-    run_name = f"{args.drill}-{args.field}-{Path(preset).stem}-seed{args.seed}"
-    out = args.out or Path("runs") / run_name
-    record_dir = Path("recordings") / run_name if args.record else None
+def _fail(status: int, message: str) -> int:
+    first = message.strip().splitlines()[0] if message.strip() else "failed"
+    with contextlib.suppress(BrokenPipeError):  # stderr closed too: nothing left to tell
+        print(f"robotsoccer: error: {first}", file=sys.stderr)
+    return status
+
+
+def _silence_stdout() -> None:
+    """After the reader closed the pipe, send what is left to /dev/null (no second error)."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+
+
+# ----------------------------------------------------------------------------- demo
+
+
+def spec_from(args: argparse.Namespace, **extra: Any) -> TrialSpec:
+    """The TrialSpec a command's field and drill options describe."""
+    field = FieldOptions(perfect_perception=args.perfect_perception, ball_noise=args.ball_noise)
     spec = TrialSpec(
         drill=args.drill,
         field_model=args.field,
-        preset=preset,
+        preset=args.field_preset,
         seed=args.seed,
-        field=FieldOptions(perfect_perception=args.perfect_perception),
+        field=field,
+        **extra,
+    )
+    return spec.with_options(**dict(args.option))
+
+
+def cmd_demo(args: argparse.Namespace) -> int:
+    """Run a drill's trials and print its summary table."""
+    preset = args.field_preset or default_preset(args.field)
+    run_name = f"{args.drill}-{args.field}-{Path(preset).stem}-seed{args.seed}"
+    out = args.out or Path("runs") / run_name
+    record_dir = out / "recordings" if args.record else None
+    spec = spec_from(
+        args,
         record_dir=str(record_dir) if record_dir else None,
         record_trials=args.record_trials if args.record else 0,
     )
-    _check_spec(spec)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "config.json").write_text(json.dumps(asdict(spec) | {"trials": args.trials}, indent=2))
+    check_spec(spec)
+    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     workers = args.workers or default_workers()
     results_path = out / "results.csv"
+    tally = Tally()
     start = time.perf_counter()
     try:
-        results = run_trials(
+        run_trials(
             spec,
             args.trials,
             workers=workers,
             results_path=results_path,
             resume=args.resume,
             progress=not args.quiet,
+            keep=False,
+            on_result=tally.add,
         )
     except KeyboardInterrupt:
-        print(
-            f"\nrobotsoccer: interrupted; finished trials are kept in {results_path} "
-            "(rerun with --resume to finish)",
-            file=sys.stderr,
-        )
-        return 130
+        kept = f"; finished trials are kept in {results_path}" if results_path.exists() else ""
+        return _fail(EXIT_INTERRUPTED, f"interrupted{kept} (--resume finishes the run)")
     wall = time.perf_counter() - start
-    labels = make_drill(args.drill).labels
-    print(summary_table(results, labels, title=f"{run_name}: {len(results)} trials"))
-    sim = sum(r.time_s for r in results)
+    labels = make_drill(args.drill, dict(args.option)).labels
+    print(tally.table(labels, title=f"{run_name}: {tally.n} trials"))
     print(
-        f"\n{sim:.1f} simulated s in {wall:.1f} s wall with {workers} worker(s): "
-        f"{len(results) / wall:.1f} trials/s"
+        f"\n{tally.simulated_s:.1f} simulated s in {wall:.1f} s wall with {workers} worker(s): "
+        f"{tally.n / wall:.1f} trials/s"
     )
     print(f"results: {results_path}")
     if record_dir is not None:
@@ -227,37 +336,57 @@ def cmd_demo(args: argparse.Namespace) -> int:
     return 0
 
 
-def _check_spec(spec: TrialSpec) -> None:
-    """Build trial 0 up front so a bad preset or option fails here in one line, not in a worker."""
-    build_trial(spec, 0)
+def check_spec(spec: TrialSpec) -> None:
+    """Set trial 0 up front so a bad preset, option or model fails here in one line."""
+    rngs, drill, arena = build_trial(spec, 0)
+    drill.setup(arena, rngs)
+    drill.minds(arena, rngs)
 
 
-def summary_table(results: Sequence[TrialResult], labels: Sequence[str], title: str) -> str:
-    """A plain-text table: each label's count, share and 95% Wilson interval."""
-    counts = Counter(r.label for r in results)
-    n = len(results)
-    lines = [title, f"{'label':<8}{'count':>7}{'share':>9}   95% interval"]
-    for label in list(labels) + sorted(set(counts) - set(labels)):
-        k = counts.get(label, 0)
-        low, high = wilson_interval(k, n)
-        share = 100.0 * k / n if n else 0.0
-        lines.append(f"{label:<8}{k:>7}{share:>8.1f}%   [{100 * low:.1f}, {100 * high:.1f}]")
-    return "\n".join(lines)
+class Tally:
+    """Counts of a run's labels and its simulated time, built as results arrive."""
+
+    def __init__(self) -> None:
+        self.labels: Counter[str] = Counter()
+        self.n = 0
+        self.simulated_s = 0.0
+
+    def add(self, result: TrialResult) -> None:
+        """Count one result."""
+        self.labels[result.label] += 1
+        self.n += 1
+        self.simulated_s += result.time_s
+
+    def table(self, labels: Sequence[str], title: str) -> str:
+        """A plain-text table: each label's count, share and 95% Wilson interval."""
+        n = self.n
+        lines = [title, f"{'label':<8}{'count':>7}{'share':>9}   95% interval"]
+        for label in list(labels) + sorted(set(self.labels) - set(labels)):
+            k = self.labels.get(label, 0)
+            low, high = wilson_interval(k, n)
+            share = 100.0 * k / n if n else 0.0
+            lines.append(f"{label:<8}{k:>7}{share:>8.1f}%   [{100 * low:.1f}, {100 * high:.1f}]")
+        return "\n".join(lines)
+
+
+# ----------------------------------------------------------------------------- others
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
-    """Run the benchmarks; print JSON or a readable list."""
-    from robotsoccer.bench import flatten, run_benchmarks, target_cell
+    """Run the benchmarks, printing each figure beside its target as it is measured."""
+    from robotsoccer.bench import iter_benchmarks, nest, target_cell
 
     def say(line: str) -> None:
         print(f"bench: {line}", file=sys.stderr, flush=True)
 
-    results = run_benchmarks(quick=args.quick, demo_field=DEMO_FIELD, say=say)
+    rows = []
+    for key, value in iter_benchmarks(quick=args.quick, demo_field=DEFAULT_FIELD, say=say):
+        rows.append((key, value))
+        if not args.json:
+            cell = target_cell(key, value, BENCH_TARGETS)
+            print(f"{key:<44} {value!s:>12}   {cell}".rstrip(), flush=True)
     if args.json:
-        print(json.dumps(results))
-    else:
-        for key, value in flatten(results):
-            print(f"{key:<44} {value!s:>12}   {target_cell(key, value, BENCH_TARGETS)}".rstrip())
+        print(json.dumps(nest(rows)))
     return 0
 
 
@@ -265,15 +394,8 @@ def cmd_trace(args: argparse.Namespace) -> int:
     """Print the trace of one trial for one client."""
     from robotsoccer.replay.trace import trace_trial
 
-    spec = TrialSpec(
-        drill=args.drill,
-        field_model=args.field,
-        preset=args.field_preset,
-        seed=args.seed,
-        field=FieldOptions(ball_noise=args.ball_noise),
-    ).with_options(**dict(args.option))
     client = _player(args.player) if args.player else None
-    for line in trace_trial(spec, args.trial, client):
+    for line in trace_trial(spec_from(args), args.trial, client):
         print(line)
     return 0
 
@@ -324,7 +446,8 @@ def _run_layer1(
     from robotsoccer.experiments.layer1 import plan_for, run_layer1
 
     for model, preset in models:  # a bad preset fails here with one line, not in a worker
-        _check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
+        check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
+    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     plan = plan_for(args.quick)
     workers = args.workers or default_workers()
     start = time.perf_counter()
@@ -345,16 +468,25 @@ def _run_layer1(
             progress=sys.stderr.isatty(),
         )
     except KeyboardInterrupt:
-        print(
-            f"\nrobotsoccer: interrupted; finished trials are kept under {out}/results "
-            "(rerun the same command to resume)",
-            file=sys.stderr,
+        return _fail(
+            EXIT_INTERRUPTED,
+            f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
         )
-        return 130
     print()
     print(report.read_text())
     print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
     return 0
+
+
+COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
+    "demo": cmd_demo,
+    "trace": cmd_trace,
+    "learn": cmd_learn,
+    "reproduce": cmd_reproduce,
+    "bench": cmd_bench,
+    "replay": cmd_replay,
+}
+"""Each command's function, by name."""
 
 
 if __name__ == "__main__":  # pragma: no cover

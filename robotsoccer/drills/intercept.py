@@ -83,6 +83,7 @@ import functools
 import math
 from dataclasses import dataclass
 from enum import StrEnum
+from pathlib import Path
 
 from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef
@@ -97,6 +98,7 @@ from robotsoccer.skills.intercept import (
     TaMode,
     check_behaviour,
     make_policy,
+    model_origin,
 )
 
 SHOOTER = PlayerRef(LEFT, 1)
@@ -312,6 +314,8 @@ class InterceptDrill:
         max_time_s: Simulated time after which the trial is a MISS [s].
         defender_kick: Let the defender clear a ball within reach of an aimable kick; False
             (default): it stops the ball with its body (a calibrated choice, module docstring).
+        transfer: Accept a model file trained on another field model or preset (the
+            transfer study); False (default) refuses one whose provenance is not this field.
 
     Raises:
         ValueError: An unknown behaviour, TA mode, launch or scaling, a missing model file
@@ -333,6 +337,7 @@ class InterceptDrill:
         sector_deg: float = DEFAULT_SECTOR_DEG,
         max_time_s: float = 10.0,
         defender_kick: bool | str = False,
+        transfer: bool | str = False,
     ) -> None:
         self.behaviour = check_behaviour(behaviour, model)
         self.model = model
@@ -350,6 +355,7 @@ class InterceptDrill:
         self.sector_rad = math.radians(sector_deg)
         self.max_time_s = float(max_time_s)
         self.defender_kick = flag("defender_kick", defender_kick)
+        self.transfer = flag("transfer", transfer)
         self.defender_mind: DefenderMind | None = None
         self._judge_state: _Judge | None = None
         self._plan: LaunchPlan | None = None
@@ -363,6 +369,7 @@ class InterceptDrill:
         """This drill's launch plan on `arena`'s field (cached per field)."""
         facts = arena.facts
         if facts is not self._plan_facts:  # one look-up per trial, not one per call
+            self._check_origin(facts)
             self._plan, self._plan_facts = self.plan_for(facts), facts
         assert self._plan is not None
         return self._plan
@@ -370,6 +377,19 @@ class InterceptDrill:
     def plan_for(self, facts: FieldFacts) -> LaunchPlan:
         """This drill's launch plan on a field (cached per field)."""
         return _cached_plan(facts, self.kick_power, self.launch, self.scaling)
+
+    def _check_origin(self, facts: FieldFacts) -> None:
+        """Refuse a model file trained on another field (unless this is a transfer run)."""
+        if not self.model or self.transfer:
+            return
+        origin = model_origin(self.model)
+        here = (facts.model, facts.preset)
+        if origin is None or (origin[0], Path(origin[1]).stem) != (here[0], Path(here[1]).stem):
+            trained = "an unrecorded field" if origin is None else f"{origin[0]} `{origin[1]}`"
+            raise ValueError(
+                f"model {self.model} was trained on {trained}, this run is {here[0]} "
+                f"`{here[1]}`: give option transfer=true to test it across fields"
+            )
 
     def field_settings(self, facts: FieldFacts) -> dict[str, float]:
         """The ball-noise period of the plan where it differs from the field's own."""

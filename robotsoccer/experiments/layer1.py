@@ -404,12 +404,18 @@ def build_lookup(net_path: Path, dataset: InterceptionDataset, path: Path) -> Pa
 
     model = InterceptionModel.load(net_path)
     n = model.n_train_
+    origin = dataset.provenance
     table = LookupTable.from_model(
         model.as_function(),
         PAPER_GRID_DEG,
         ball_distance_m=dataset.x[:n, 0].tolist(),
         previous_ball_distance_m=dataset.x[:n, 2].tolist(),
-        built_from={"net": net_path.name, "conditions": "training saves (BD, previous BD)"},
+        built_from={
+            "net": net_path.name,
+            "conditions": "training saves (BD, previous BD)",
+            "field_model": origin.field_model,
+            "preset": origin.preset,
+        },
     )
     return table.save(path)
 
@@ -509,9 +515,11 @@ def swept_variant(base: TrialSpec) -> str | None:
 
 
 def _on_preset(cond: Condition, preset: str, suffix: str) -> Condition:
-    return Condition(
-        cond.name + suffix, dataclasses.replace(cond.spec, preset=preset), cond.n_trials
-    )
+    """`cond` on a variant preset; a model trained on the base preset is used there on purpose."""
+    spec = dataclasses.replace(cond.spec, preset=preset)
+    if "model" in dict(spec.drill_options):
+        spec = spec.with_options(transfer=True)
+    return Condition(cond.name + suffix, spec, cond.n_trials)
 
 
 def _latency(latency_s: float, default_s: float) -> float | None:
@@ -572,7 +580,13 @@ def run_model(
     """
     results_dir = out / "results" / field_model
     facts = field_facts(field_model, preset)
-    section = ModelSection(field_model, preset, noise=plan.noise, facts=facts)
+    section = ModelSection(
+        field_model,
+        preset,
+        noise=plan.noise,
+        noise_period_s=launch_plan(facts).noise_period_s,
+        facts=facts,
+    )
     section.notes = scaling_notes(field_model, preset)
 
     log(f"[{field_model}] collect: random TA until {plan.collect_saves} saves")
@@ -642,9 +656,13 @@ def record_examples(
 ) -> int:
     """Rerun the first saves and goals of `cond` with rerun recording on; return how many.
 
-    A trial is a pure function of its seed and index, so the rerun is the same trial. Files
-    are named ``<condition>_trial<index>_<label>.rrd``.
+    A trial is a pure function of its seed and index, so the rerun is the same trial. The
+    runner names each file with its outcome (``trial_<index>_<LABEL>.rrd``); here it becomes
+    ``<condition>_trial<index>_<label>.rrd``.
     """
+    # Needed only when recording (the module itself never loads the rerun SDK).
+    from robotsoccer.replay.recording import recording_name
+
     chosen = [r for r in results if r.label == "SAVE"][: plan.record_saves]
     chosen += [r for r in results if r.label == "GOAL"][: plan.record_goals]
     record_dir.mkdir(parents=True, exist_ok=True)
@@ -653,7 +671,7 @@ def record_examples(
             cond.spec, record_dir=str(record_dir), record_trials=first.index + 1
         )
         again = run_trial(spec, first.index)
-        raw = record_dir / f"trial_{first.index:04d}.rrd"
+        raw = record_dir / recording_name(first.index, again.label)
         target = record_dir / f"{cond.name}_trial{first.index:04d}_{again.label}.rrd"
         raw.replace(target)
         if again.label != first.label:  # would mean a trial is not a function of its seed

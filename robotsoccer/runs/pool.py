@@ -21,6 +21,7 @@ import dataclasses
 import json
 import multiprocessing
 import os
+import signal
 import sys
 import time
 from collections.abc import Callable, Iterable, Iterator, Sequence
@@ -62,45 +63,92 @@ def _worker_context() -> multiprocessing.context.BaseContext:
     return context
 
 
+def _ignore_interrupts() -> None:
+    """Workers leave Ctrl-C to the parent, which stops the pool and keeps what finished.
+
+    Without this every worker would print its own KeyboardInterrupt traceback.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def run_chunk(spec: TrialSpec, indices: Sequence[int]) -> list[TrialResult]:
     """Run the trials `indices` of `spec` (the unit of work a worker receives)."""
     return [run_trial(spec, i) for i in indices]
 
 
-def chunked(indices: Sequence[int], size: int) -> Iterator[list[int]]:
-    """Split `indices` into lists of at most `size`."""
-    for start in range(0, len(indices), size):
-        yield list(indices[start : start + size])
+def chunked(indices: Iterable[int], size: int) -> Iterator[list[int]]:
+    """Split `indices` into lists of at most `size`, as they come (any iterable, lazily)."""
+    chunk: list[int] = []
+    for index in indices:
+        chunk.append(index)
+        if len(chunk) == size:
+            yield chunk
+            chunk = []
+    if chunk:
+        yield chunk
 
 
 class Progress:
-    """A one-line progress bar on a terminal stream (silent when `enabled` is False)."""
+    """Progress of a run on stderr: a tqdm bar on a terminal, plain lines anywhere else.
+
+    A bar's carriage returns garble a log file or a pipe, so when the stream is not a
+    terminal the progress is a line at every tenth of the run instead.
+
+    Args:
+        total: Trials in the run.
+        stream: Where to write.
+        enabled: False draws nothing at all.
+    """
 
     def __init__(self, total: int, stream: TextIO = sys.stderr, enabled: bool = True) -> None:
         self.total = total
         self.done = 0
         self.stream = stream
-        self.enabled = enabled
+        self.enabled = enabled and total > 0
         self.start = time.perf_counter()
+        self._bar: Any = None
+        self._next_line = 0.1
+        if self.enabled and stream.isatty():
+            from tqdm import tqdm
+
+            self._bar = tqdm(total=total, file=stream, unit="trial", dynamic_ncols=True)
 
     def advance(self, count: int) -> None:
-        """Count `count` more finished trials and redraw."""
+        """Count `count` more finished trials."""
         self.done += count
         if not self.enabled:
             return
-        elapsed = time.perf_counter() - self.start
-        rate = self.done / elapsed if elapsed > 0 else 0.0
-        filled = int(30 * self.done / max(1, self.total))
-        bar = "#" * filled + "-" * (30 - filled)
-        end = "\n" if self.done >= self.total else ""
-        self.stream.write(f"\r[{bar}] {self.done}/{self.total} trials  {rate:6.1f}/s{end}")
-        self.stream.flush()
+        if self._bar is not None:
+            self._bar.update(count)
+            return
+        share = self.done / self.total
+        if share + 1e-12 >= self._next_line or self.done >= self.total:
+            elapsed = time.perf_counter() - self.start
+            rate = self.done / elapsed if elapsed > 0 else 0.0
+            self.stream.write(
+                f"progress: {self.done}/{self.total} trials ({100 * share:.0f}%), "
+                f"{rate:.1f} trials/s\n"
+            )
+            self.stream.flush()
+            self._next_line = (int(share * 10) + 1) / 10
+
+    def close(self) -> None:
+        """End the bar (a no-op for plain lines)."""
+        if self._bar is not None:
+            self._bar.close()
 
 
 def read_results(
     path: Path, warn: Callable[[str], None] | None = None
 ) -> dict[int, TrialResult]:
-    """Results already in a table (for resuming); an absent file holds none.
+    """Results already in a table, by index (:func:`iter_results`); an absent file holds none."""
+    return {result.index: result for result in iter_results(path, warn)}
+
+
+def iter_results(
+    path: Path, warn: Callable[[str], None] | None = None
+) -> Iterator[TrialResult]:
+    """The results in a table, one at a time (a resumed run of any size reads it in passing).
 
     A last row without its line end was cut short by a killed write: it is dropped (and the
     file truncated after the last complete row, so appending goes on cleanly), with a warning.
@@ -110,22 +158,34 @@ def read_results(
             not parse.
     """
     if not path.exists():
-        return {}
-    text = path.read_text()
-    lines = text.split("\n")
-    if lines[0] != TrialResult.CSV_HEADER:
-        raise ResumeError(f"{path}: not a results table of this version (header {lines[0]!r})")
-    if lines[-1]:  # no line end after the last row: a write was cut short
-        (warn or _warn)(f"{path}: dropped a last row cut short by an interrupted write")
-        path.write_text("\n".join(lines[:-1]) + "\n")
-    results: dict[int, TrialResult] = {}
-    for number, line in enumerate(lines[1:-1], start=2):
-        try:
-            result = TrialResult.from_csv_row(line)
-        except ValueError as exc:
-            raise ResumeError(f"{path}: line {number} is not a result row ({exc})") from None
-        results[result.index] = result
-    return results
+        return
+    _drop_torn_row(path, warn or _warn)
+    with path.open() as table:
+        header = table.readline().rstrip("\n")
+        if header != TrialResult.CSV_HEADER:
+            raise ResumeError(f"{path}: not a results table of this version (header {header!r})")
+        for number, line in enumerate(table, start=2):
+            try:
+                yield TrialResult.from_csv_row(line)
+            except ValueError as exc:
+                raise ResumeError(f"{path}: line {number} is not a result row ({exc})") from None
+
+
+def _drop_torn_row(path: Path, warn: Callable[[str], None]) -> None:
+    """Cut a last row that has no line end (a write killed half-way) off the file."""
+    with path.open("rb+") as table:
+        size = table.seek(0, os.SEEK_END)
+        if size == 0:
+            return
+        table.seek(size - 1)
+        if table.read(1) == b"\n":
+            return
+        block = min(size, 1 << 16)
+        table.seek(size - block)
+        tail = table.read(block)
+        cut = size - block + tail.rfind(b"\n") + 1  # 0 when no line end at all
+        table.truncate(cut)
+    warn(f"{path}: dropped a last row cut short by an interrupted write")
 
 
 def _warn(message: str) -> None:
@@ -195,8 +255,13 @@ def run_trials(
     resume: bool = False,
     progress: bool = True,
     chunk_size: int | None = None,
+    keep: bool = True,
+    on_result: Callable[[TrialResult], None] | None = None,
 ) -> list[TrialResult]:
     """Run trials 0..n_trials-1 of `spec` and return their results sorted by index.
+
+    Trial indices are generated as the work goes, and with ``keep=False`` no result is held:
+    memory does not grow with `n_trials` beyond one byte per trial.
 
     Args:
         spec: What to run.
@@ -205,38 +270,55 @@ def run_trials(
         results_path: CSV table to stream results into (appended as chunks finish).
         resume: Keep the trials already in `results_path` and run only the others; refused
             (ResumeError) when another spec, code version or model file made them.
-        progress: Draw a progress bar on stderr.
+        progress: Show progress on stderr (a bar on a terminal, lines otherwise).
         chunk_size: Trials per unit of work (default: small enough to balance the workers).
+        keep: Return the results (False: return [] and let `on_result` see them).
+        on_result: Called with every result, the resumed ones first.
 
     Raises:
         KeyboardInterrupt: after flushing every finished trial to `results_path`.
         ResumeError: `resume` onto a table another run made, or a damaged table.
     """
     workers = workers or default_workers()
-    done: dict[int, TrialResult] = {}
+    finished = bytearray(n_trials)  # one byte a trial: which indices are done
+    kept: dict[int, TrialResult] = {}
+
+    def record(result: TrialResult) -> None:
+        finished[result.index] = 1
+        if keep:
+            kept[result.index] = result
+        if on_result is not None:
+            on_result(result)
+
+    resumed = 0
     if results_path is not None:
         if resume:
             check_resumable(results_path, spec)
-            done = read_results(results_path)
+            for result in iter_results(results_path):
+                if result.index < n_trials and not finished[result.index]:
+                    record(result)
+                    resumed += 1
         _write_manifest(results_path, spec)
-    todo = [i for i in range(n_trials) if i not in done]
-    size = chunk_size or max(1, min(50, len(todo) // (4 * workers) or 1))
+    remaining = n_trials - resumed
+    todo = (i for i in range(n_trials) if not finished[i])
+    size = chunk_size or max(1, min(50, remaining // (4 * workers) or 1))
     bar = Progress(n_trials, enabled=progress)
-    bar.advance(len(done))
-    sink = _open_sink(results_path, keep=bool(done))
+    bar.advance(resumed)
+    sink = _open_sink(results_path, keep_rows=resume and results_path is not None)
     try:
         for chunk in _execute(spec, chunked(todo, size), workers):
             for result in chunk:
-                done[result.index] = result
+                record(result)
                 if sink is not None:
                     sink.write(result.csv_row() + "\n")
             if sink is not None:
                 sink.flush()
             bar.advance(len(chunk))
     finally:
+        bar.close()
         if sink is not None:
             sink.close()
-    return [done[i] for i in sorted(done) if i < n_trials]
+    return [kept[i] for i in sorted(kept)]
 
 
 def _write_manifest(results_path: Path, spec: TrialSpec) -> None:
@@ -244,11 +326,11 @@ def _write_manifest(results_path: Path, spec: TrialSpec) -> None:
     manifest_path(results_path).write_text(json.dumps(manifest(spec), indent=2) + "\n")
 
 
-def _open_sink(path: Path | None, keep: bool) -> TextIO | None:
+def _open_sink(path: Path | None, keep_rows: bool) -> TextIO | None:
     if path is None:
         return None
     path.parent.mkdir(parents=True, exist_ok=True)
-    if keep:
+    if keep_rows and path.exists() and path.stat().st_size > 0:
         return path.open("a")
     sink = path.open("w")
     sink.write(TrialResult.CSV_HEADER + "\n")
@@ -264,7 +346,9 @@ def _execute(
             yield run_chunk(spec, chunk)
         return
     context = _worker_context()
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=context)
+    pool = ProcessPoolExecutor(
+        max_workers=workers, mp_context=context, initializer=_ignore_interrupts
+    )
     pending: set[Future[list[TrialResult]]] = set()
     queue = iter(chunks)
     try:

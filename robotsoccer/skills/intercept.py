@@ -74,7 +74,7 @@ import numpy as np
 
 from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Turn, wrap_angle
 from learning.analytic import MOTION_MULTIPLIER, analytic_turn_angle_xy
-from learning.interception_file import TurnAngleFunction, load_turn_function
+from learning.interception_file import TurnAngleFunction, load_turn_function, read_net_file
 from learning.lookup import LookupTable
 from robotsoccer.options import choice
 
@@ -270,6 +270,31 @@ def load_lookup_table(path: str | os.PathLike[str]) -> LookupTable:
     if table is None:
         table = _TABLES[key] = LookupTable.load(path)
     return table
+
+
+def model_origin(path: str | os.PathLike[str]) -> tuple[str, str] | None:
+    """The (field model, preset) a net or lookup file was trained on; None where not recorded.
+
+    A net's provenance names them; a lookup table built from a net records them in its
+    ``built_from``.
+
+    Raises:
+        learning.features.ModelFileError: The file is unreadable.
+    """
+    key = _file_key(path)
+    if key not in _ORIGINS:
+        if Path(path).suffix == ".npz":
+            provenance = read_net_file(path).provenance
+            _ORIGINS[key] = (provenance.field_model, provenance.preset)
+        else:
+            built = load_lookup_table(path).built_from
+            model, preset = built.get("field_model"), built.get("preset")
+            both = isinstance(model, str) and isinstance(preset, str)
+            _ORIGINS[key] = (str(model), str(preset)) if both else None
+    return _ORIGINS[key]
+
+
+_ORIGINS: dict[tuple[str, int, int], tuple[str, str] | None] = {}
 
 
 def make_policy(

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 
@@ -58,7 +59,8 @@ def test_demo_prints_a_summary_table_and_writes_results(tmp_path, capsys) -> Non
         assert label in text
     assert "95% interval" in text
     assert len((out / "results.csv").read_text().splitlines()) == 7
-    assert (out / "config.json").exists()
+    manifest = json.loads((out / "results.json").read_text())
+    assert manifest["spec"]["drill"] == "shootout" and manifest["code_version"]
 
 
 def test_demo_with_record_writes_a_recording_that_replays(tmp_path, monkeypatch, capsys) -> None:
@@ -69,7 +71,7 @@ def test_demo_with_record_writes_a_recording_that_replays(tmp_path, monkeypatch,
         ["demo", "--trials", "2", "--workers", "1", "--record", "--record-trials", "1", "--quiet"]
     )
     assert code == 0
-    files = sorted((tmp_path / "recordings").rglob("*.rrd"))
+    files = sorted((tmp_path / "runs").rglob("recordings/*.rrd"))  # inside the run folder
     assert len(files) == 1
     assert main(["replay", str(files[0])]) == 0
     assert main(["replay", str(tmp_path / "absent.rrd")]) == 2

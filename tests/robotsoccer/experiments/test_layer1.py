@@ -307,7 +307,6 @@ def test_tiny_pipeline_writes_report_plots_models_and_results(tmp_path) -> None:
 
 def test_cli_learn_and_reproduce_refuse_bad_input_in_one_line() -> None:
     for args in (
-        ("learn", "intercept"),
         ("learn", "intercept", "--field", "mars"),
         ("learn", "pass", "--field", "soccer_server"),
         ("reproduce", "--workers", "0"),

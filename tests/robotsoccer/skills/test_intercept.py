@@ -327,7 +327,7 @@ def test_loading_a_net_for_the_skill_does_not_import_torch(tmp_path: Path) -> No
         f"f = load_net_function({str(path)!r})\n"
         "assert isinstance(f(12.0, 0.01, 13.0), float)\n"
         "spec = TrialSpec(drill='intercept', field_model='soccer_server',\n"
-        "    preset='soccer_server_1996').with_options(behaviour='net', model="
+        "    preset='soccer_server_1996').with_options(behaviour='net', transfer=True, model="
         f"{str(path)!r})\n"
         "result = run_trial(spec, 0)\n"
         "assert len(result.data) == 4, result\n"
