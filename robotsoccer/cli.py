@@ -178,8 +178,12 @@ def build_parser() -> argparse.ArgumentParser:
     intercept = targets.add_parser(
         "intercept", help="layer 1: the interception net (paper §5)", parents=[common]
     )
-    intercept.add_argument("--field", default=DEFAULT_FIELD, choices=FIELD_MODELS)
-    intercept.add_argument("--field-preset", default=None, help="preset name or file")
+    intercept.add_argument(
+        "--field", default=DEFAULT_FIELD, choices=FIELD_MODELS, help="field model"
+    )
+    intercept.add_argument(
+        "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
+    )
     _experiment_options(intercept)
 
     reproduce = command("reproduce", "all of layer 1 on both field models: report, plots")

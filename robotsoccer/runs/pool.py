@@ -222,14 +222,14 @@ def check_resumable(results_path: Path, spec: TrialSpec) -> None:
     except (OSError, ValueError):
         raise ResumeError(
             f"{results_path}: no readable record of the run that made it ({where.name}); "
-            "remove it or choose another output folder"
+            "--overwrite replaces it, or choose another --out"
         ) from None
     new = manifest(spec)
     differences = _differences(old, new)
     if differences:
         raise ResumeError(
             f"{results_path} was made by another run ({'; '.join(differences)}); "
-            "remove it or choose another output folder"
+            "--overwrite replaces it, or choose another --out"
         )
 
 

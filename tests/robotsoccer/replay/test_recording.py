@@ -184,7 +184,8 @@ def test_events_and_label_are_text(run_file: Path) -> None:
         for row in b.column("TextLog:text").to_pylist()
         for t in row
     ]
-    assert sorted(commands) == sorted(f"[command] left1: dash 50 #{k}" for k in range(0, N_TICKS, 7))
+    expected = [f"[command] left1: dash 50 #{k}" for k in range(0, N_TICKS, 7)]
+    assert sorted(commands) == sorted(expected)
     labels = [
         t
         for b in read_batches(run_file, "/events/label")
