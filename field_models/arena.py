@@ -185,6 +185,8 @@ class FieldFacts:
         heading_sigma_rad: Noise on the heading the sensor gives of a player [rad] (0: exact).
         player_shape: Footprint, for drawing.
         perfect_perception: The sensor runs without noise, misses or latency.
+        say_max_chars: The longest message a ``Say`` may carry [characters]; None: no limit
+            (the robots' host relays any text).
     """
 
     model: str
@@ -203,6 +205,7 @@ class FieldFacts:
     heading_sigma_rad: float
     player_shape: PlayerShape
     perfect_perception: bool = False
+    say_max_chars: int | None = None
     _hash: int = field(init=False, repr=False, compare=False, default=0)
 
     def __post_init__(self) -> None:

@@ -78,6 +78,7 @@ def facts(preset: ServerPreset) -> FieldFacts:
         heading_sigma_rad=0.0,
         player_shape="circle",
         perfect_perception=s.perfect,
+        say_max_chars=s.say_msg_size,
     )
 
 

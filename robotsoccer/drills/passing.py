@@ -1,0 +1,403 @@
+"""The paper's pass drill (§6, Figures 9–13) on any field model; labels SUCCESS, FAILURE, MISS.
+
+**Placement** (Figure 9), in *units* (Soccer Server metres; on another field one unit is its
+``unit_m``, as in layer 1). The paper draws the region but gives no numbers, so these are ours
+(drill constants, below):
+
+* the ball is at x in [-30, -10], y in [-12, 12]; the passer stands behind it (toward its own
+  goal), touching distance plus half its kick reach away, facing +x;
+* the 3 receivers (left 2–4) and 4 defenders (right 1–4) are uniform in the region ahead of
+  the ball: 8–30 units further along x, within ±15 units of the ball's y, inside the pitch;
+* 2 more players of each team (left 5–6, right 5–6) are uniform on the whole pitch;
+* no two players closer than :data:`MIN_SEPARATION_UNITS` (or two player diameters on a field
+  whose players are bigger), and none within 4 units of the ball;
+* every player but the passer faces a random direction within ±90° of the ball.
+
+**The conversation and the minds** are in :mod:`robotsoccer.skills.passing`. Receivers and
+defenders use layer 1's interception (``interceptor``, ``net`` with the run's own net file) with
+layer 1's trigger distance and turn tolerance on this field
+(:func:`robotsoccer.drills.intercept.launch_plan`). The pass itself is layer 1's launch: the same
+kick power on the Soccer Server. On a field without an aimable kick (the 1997 robots), the coach
+launches the ball at the plan's launch speed along the direction the passer chose, one tick
+after its announcement.
+
+**The coach's labels.** From the pass on, at every tick, the first player other than the passer
+within *control* distance of the ball (its kick reach, or touching plus a quarter unit on a field
+without a kick) decides the trial:
+
+* the chosen receiver: SUCCESS (the paper's receiver then plays it back; taking control is
+  what we judge);
+* an opponent: FAILURE (the paper's defender clears it);
+* another teammate: MISS (no receiver or defender got it);
+* the ball leaves the pitch, stops, or time runs out: MISS.
+
+**Data** per trial (:meth:`PassDrill.data`): the chosen receiver's number, the tree's success
+confidence (nan without a tree), the numbers of candidates found and reports heard, then the 174
+attributes (:data:`learning.pass_features.ATTRIBUTE_NAMES`).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+
+from field_models.arena import Arena, FieldFacts
+from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
+from field_models.seeding import TrialRngs
+from learning.pass_features import PASS_SCHEMA
+from learning.pass_tree import PassTree, load_pass_tree
+from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.intercept import Launch, LaunchPlan, Scaling, _cached_plan
+from robotsoccer.options import choice, flag
+from robotsoccer.skills.intercept import Behaviour, DefenderMind, check_behaviour, make_policy
+from robotsoccer.skills.passing import (
+    Chooser,
+    PasserMind,
+    PassPhysics,
+    ReceiverMind,
+    WaitingInterceptorMind,
+)
+
+PASSER = PlayerRef(LEFT, 1)
+RECEIVERS = (PlayerRef(LEFT, 2), PlayerRef(LEFT, 3), PlayerRef(LEFT, 4))
+DEFENDERS = tuple(PlayerRef(RIGHT, n) for n in (1, 2, 3, 4))
+ELSEWHERE = (PlayerRef(LEFT, 5), PlayerRef(LEFT, 6), PlayerRef(RIGHT, 5), PlayerRef(RIGHT, 6))
+PLAYERS = (PASSER, *RECEIVERS, ELSEWHERE[0], ELSEWHERE[1], *DEFENDERS, ELSEWHERE[2], ELSEWHERE[3])
+
+BALL_X_UNITS = (-30.0, -10.0)
+BALL_Y_UNITS = (-12.0, 12.0)
+REGION_AHEAD_UNITS = (8.0, 30.0)
+"""The region of Figure 9 starts and ends this far ahead of the ball (ours: no numbers given)."""
+REGION_HALF_WIDTH_UNITS = 15.0
+MIN_SEPARATION_UNITS = 3.0
+BALL_CLEARANCE_UNITS = 4.0
+CONTROL_MARGIN_UNITS = 0.25
+"""On a field without a kick, touching plus this much is "control" of the ball."""
+STOPPED_SPEED_PER_LENGTH = 1e-3
+"""The ball has stopped below this share of the pitch length per second."""
+
+
+@functools.lru_cache(maxsize=8)
+def _tree_file(key: tuple[str, int, int]) -> tuple[PassTree, dict[str, object]]:
+    """A tree file, read once per process (keyed by path, modification time and size)."""
+    return load_pass_tree(key[0], schema=PASS_SCHEMA)
+
+
+def load_tree(path: str | os.PathLike[str]) -> tuple[PassTree, dict[str, object]]:
+    """The tree in `path` and its provenance (cached per process while the file is unchanged)."""
+    resolved = Path(path).resolve()
+    try:
+        stat = resolved.stat()
+        key = (str(resolved), stat.st_mtime_ns, stat.st_size)
+    except OSError:
+        key = (str(resolved), -1, -1)
+    return _tree_file(key)
+
+
+class PassDrill:
+    """The paper's Figure 9–13 trial (module docstring).
+
+    Args:
+        chooser: How the passer picks (``random``, ``tree``, ``closest``, ``analytic``).
+        model: The tree file (JSON) for ``tree``.
+        interceptor: Layer 1's behaviour for receivers and defenders (``net``, ``straight``,
+            ...).
+        net: The interception net (or lookup) file for ``net``/``lookup``.
+        defenders: ``intercept`` (default) or ``still`` (Table 2's "no defenders" test).
+        max_time_s: Simulated time after which the trial is a MISS [s].
+        transfer: Accept a tree or net trained on another field model or preset.
+
+    Raises:
+        ValueError: An unknown chooser, interceptor or defenders mode, a missing model file
+            name, a time limit that is not positive, or a model from another field.
+    """
+
+    name: str = "pass"
+    labels: tuple[str, ...] = ("SUCCESS", "FAILURE", "MISS")
+
+    def __init__(
+        self,
+        chooser: Chooser | str = Chooser.RANDOM,
+        model: str = "",
+        interceptor: Behaviour | str = Behaviour.STRAIGHT,
+        net: str = "",
+        defenders: str = "intercept",
+        max_time_s: float = 12.0,
+        transfer: bool | str = False,
+    ) -> None:
+        self.chooser = choice(Chooser, chooser, "chooser")
+        if self.chooser is Chooser.TREE and not model:
+            raise ValueError("chooser 'tree' needs a tree file (option model=...)")
+        self.model = model
+        self.interceptor = check_behaviour(interceptor, net)
+        self.net = net
+        if defenders not in ("intercept", "still"):
+            raise ValueError(f"unknown defenders {defenders!r} (known: intercept, still)")
+        self.defenders_still = defenders == "still"
+        if not max_time_s > 0.0:
+            raise ValueError(f"max_time_s must be > 0, got {max_time_s!r}")
+        self.max_time_s = float(max_time_s)
+        self.transfer = flag("transfer", transfer)
+        self.passer: PasserMind | None = None
+        self._judge: _PassJudge | None = None
+        self._checked: FieldFacts | None = None
+
+    def players(self) -> tuple[PlayerRef, ...]:
+        """The passer, its 3 receivers and 2 more teammates; 4 defenders and 2 more opponents."""
+        return PLAYERS
+
+    def plan(self, facts: FieldFacts) -> LaunchPlan:
+        """Layer 1's plan on this field: launch, trigger distance, turn tolerance."""
+        return _cached_plan(facts, 100.0, Launch.AUTO, Scaling.AUTO)
+
+    def field_settings(self, facts: FieldFacts) -> dict[str, float]:
+        """Layer 1's ball-noise period where it differs from the field's own."""
+        plan = self.plan(facts)
+        if math.isclose(plan.noise_period_s, facts.ball_noise_period_s):
+            return {}
+        return {"ball_noise_period_s": plan.noise_period_s}
+
+    def inputs(self) -> tuple[str, ...]:
+        """The tree and net files the trials read."""
+        return tuple(f for f in (self.model, self.net) if f)
+
+    def _check_origins(self, facts: FieldFacts) -> None:
+        """Refuse a tree or net trained on another field (unless this is a transfer run)."""
+        if facts is self._checked:
+            return
+        self._checked = facts
+        if self.transfer:
+            return
+        here = (facts.model, Path(facts.preset).stem)
+        if self.model:
+            _, provenance = load_tree(self.model)
+            origin = (str(provenance.get("field_model")), Path(str(provenance.get("preset"))).stem)
+            if origin != here:
+                raise ValueError(
+                    f"tree {self.model} was trained on {origin[0]} `{origin[1]}`, this run is "
+                    f"{here[0]} `{here[1]}`: give option transfer=true to test it across fields"
+                )
+        if self.net:
+            from robotsoccer.skills.intercept import model_origin
+
+            net_origin = model_origin(self.net)
+            if net_origin is None or (net_origin[0], Path(net_origin[1]).stem) != here:
+                trained = "an unrecorded field" if net_origin is None else str(net_origin)
+                raise ValueError(
+                    f"net {self.net} was trained on {trained}, this run is {here[0]} "
+                    f"`{here[1]}`: give option transfer=true to test it across fields"
+                )
+
+    def setup(self, arena: Arena, rngs: TrialRngs) -> None:
+        """Place ball and players (module docstring)."""
+        facts = arena.facts
+        self._check_origins(facts)
+        plan = self.plan(facts)
+        rng = rngs["placement"]
+        unit = facts.unit_m
+        pitch = facts.pitch
+        bx = float(rng.uniform(*BALL_X_UNITS)) * unit
+        by = float(rng.uniform(*BALL_Y_UNITS)) * unit
+        arena.place_ball(bx, by)
+        reach = facts.kick.reach_m if facts.kick is not None else facts.touch_distance_m
+        gap = 0.5 * (facts.touch_distance_m + reach)
+        arena.place_player(PASSER, bx - gap, by, 0.0)
+        separation = max(MIN_SEPARATION_UNITS * unit, 4.0 * pitch.player_radius_m)
+        taken = [(bx - gap, by)]
+        clear = BALL_CLEARANCE_UNITS * unit
+        x_lim = pitch.half_length_m - 2.0 * pitch.player_radius_m
+        y_lim = pitch.half_width_m - 2.0 * pitch.player_radius_m
+        region_x = (
+            bx + REGION_AHEAD_UNITS[0] * unit,
+            min(bx + REGION_AHEAD_UNITS[1] * unit, x_lim),
+        )
+        half = REGION_HALF_WIDTH_UNITS * unit
+        region_y = (max(by - half, -y_lim), min(by + half, y_lim))
+        for ref in (*RECEIVERS, *DEFENDERS):
+            self._place(arena, rng, ref, region_x, region_y, taken, separation, (bx, by), clear)
+        for ref in ELSEWHERE:
+            self._place(arena, rng, ref, (-x_lim, x_lim), (-y_lim, y_lim), taken, separation,
+                        (bx, by), clear)  # fmt: skip
+        self._judge = _PassJudge(arena, plan)
+        self.passer = None
+
+    @staticmethod
+    def _place(
+        arena: Arena,
+        rng: np.random.Generator,
+        ref: PlayerRef,
+        xs: tuple[float, float],
+        ys: tuple[float, float],
+        taken: list[tuple[float, float]],
+        separation: float,
+        ball: tuple[float, float],
+        clear: float,
+    ) -> None:
+        """Place `ref` uniformly in the box, away from the others and the ball."""
+        for _ in range(1000):
+            x, y = float(rng.uniform(*xs)), float(rng.uniform(*ys))
+            if math.hypot(x - ball[0], y - ball[1]) < clear:
+                continue
+            if all(math.hypot(x - px, y - py) >= separation for px, py in taken):
+                break
+        taken.append((x, y))
+        to_ball = math.atan2(ball[1] - y, ball[0] - x)
+        arena.place_player(ref, x, y, to_ball + float(rng.uniform(-0.5, 0.5)) * math.pi)
+
+    def minds(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
+        """The passer, the receivers and the defenders (the others stand still)."""
+        facts = arena.facts
+        plan = self.plan(facts)
+        policy_rng = rngs["policy"]
+        tree = load_tree(self.model)[0] if self.model else None
+        physics = PassPhysics(
+            facts.ball,
+            plan.launch_speed_mps,
+            facts.player_top_speed_mps,
+            facts.kick.reach_m if facts.kick is not None else facts.touch_distance_m,
+        )
+        aimable = facts.kick is not None and facts.kick.aimable
+        passer = PasserMind(
+            [r.number for r in RECEIVERS],
+            self.chooser,
+            policy_rng,
+            unit_m=facts.unit_m,
+            sensor_period_s=facts.sensor_period_s,
+            dt_s=facts.dt_s,
+            kick_power=plan.kick_power if aimable else None,
+            tree=tree,
+            physics=physics,
+        )
+        self.passer = passer
+        assert self._judge is not None
+        self._judge.passer = passer
+
+        def interceptor() -> DefenderMind:
+            return DefenderMind(
+                make_policy(self.interceptor, policy_rng, self.net),
+                plan.trigger_distance_m,
+                turn_tolerance_rad=plan.turn_tolerance_rad,
+            )
+
+        minds: dict[PlayerRef, Mind] = {PASSER: passer}
+        for slot, ref in enumerate(RECEIVERS):
+            minds[ref] = ReceiverMind(
+                ref.number,
+                interceptor(),
+                unit_m=facts.unit_m,
+                sensor_period_s=facts.sensor_period_s,
+                dt_s=facts.dt_s,
+                slot=slot,
+                say_max_chars=facts.say_max_chars,
+            )
+        for ref in DEFENDERS:
+            minds[ref] = WaitingInterceptorMind(interceptor(), still=self.defenders_still)
+        return minds
+
+    def judge(self, arena: Arena) -> Verdict | None:
+        """SUCCESS, FAILURE, MISS or carry on (module docstring)."""
+        if self._judge is None:
+            raise RuntimeError("judge() before setup()")
+        return self._judge.judge(arena)
+
+    def timeout(self, arena: Arena) -> Verdict:
+        """Out of time: a MISS."""
+        passer = self.passer
+        if passer is None or passer.chosen is None:
+            return Verdict("MISS", "time ran out before the pass")
+        return Verdict("MISS", "time ran out: nobody took the ball")
+
+    def data(self) -> tuple[float, ...]:
+        """(receiver, confidence, candidates, reports, *174 attributes), or () without a pass."""
+        passer = self.passer
+        if passer is None or passer.chosen is None or passer.attributes is None:
+            return ()
+        head = (float(passer.chosen), passer.confidence, passer.candidates, passer.reports)
+        return (*map(float, head), *map(float, passer.attributes))
+
+    def measures(self) -> dict[str, float]:
+        """The pass's length [units] and how long it ran [s]."""
+        judge = self._judge
+        if judge is None or judge.launched_tick is None:
+            return {}
+        out = {"pass_time_s": (judge.end_tick - judge.launched_tick) * judge.dt_s}
+        if judge.pass_length_m is not None:
+            out["pass_distance_units"] = judge.pass_length_m / judge.unit_m
+        return out
+
+
+class _PassJudge:
+    """The coach's labelling rule for one trial (module docstring)."""
+
+    def __init__(self, arena: Arena, plan: LaunchPlan) -> None:
+        facts = arena.facts
+        pitch = facts.pitch
+        self.dt_s = facts.dt_s
+        self.unit_m = facts.unit_m
+        self.plan = plan
+        kick = facts.kick
+        self.coach_launch = kick is None or not kick.aimable
+        reach = (
+            kick.reach_m
+            if kick is not None
+            else facts.touch_distance_m + (CONTROL_MARGIN_UNITS * facts.unit_m)
+        )
+        self.reach2 = reach * reach
+        self.half_length = pitch.half_length_m
+        self.half_width = pitch.half_width_m
+        self.eps2 = (STOPPED_SPEED_PER_LENGTH * pitch.length_m) ** 2
+        self.passer: PasserMind | None = None
+        self.launched_tick: int | None = None
+        self.end_tick = 0
+        self.pass_length_m: float | None = None
+        self.order = [p for p in PLAYERS if p != PASSER]
+
+    def judge(self, arena: Arena) -> Verdict | None:
+        """The verdict of this tick, or None."""
+        passer = self.passer
+        if passer is None or passer.decided_tick is None:
+            return None
+        tick = arena.tick
+        self.end_tick = tick
+        if self.launched_tick is None:
+            if tick <= passer.decided_tick:
+                return None
+            self._launch(arena, passer)
+            return None
+        x, y, _, vx, vy = arena.ball_state()
+        chosen = PlayerRef(LEFT, passer.chosen) if passer.chosen is not None else None
+        for ref in self.order:
+            p = arena.player_state(ref)
+            if (p.x - x) ** 2 + (p.y - y) ** 2 <= self.reach2:
+                return self._taken(ref, chosen)
+        if abs(x) > self.half_length or abs(y) > self.half_width:
+            return Verdict("MISS", "the ball left the field")
+        if tick > self.launched_tick + 2 and vx * vx + vy * vy < self.eps2:
+            return Verdict("MISS", "the ball stopped; nobody took it")
+        return None
+
+    def _launch(self, arena: Arena, passer: PasserMind) -> None:
+        """Note the pass (and launch the ball on a field without an aimable kick)."""
+        self.launched_tick = arena.tick
+        p = arena.player_state(PASSER)
+        if passer.chosen is not None:
+            r = arena.player_state(PlayerRef(LEFT, passer.chosen))
+            self.pass_length_m = math.hypot(r.x - p.x, r.y - p.y)
+        if self.coach_launch:
+            ball = arena.ball_state()
+            direction = p.heading + (passer.pass_direction_rad or 0.0)
+            speed = self.plan.launch_speed_mps
+            arena.place_ball(
+                ball.x, ball.y, speed * math.cos(direction), speed * math.sin(direction)
+            )
+
+    def _taken(self, ref: PlayerRef, chosen: PlayerRef | None) -> Verdict:
+        if ref == chosen:
+            return Verdict("SUCCESS", f"the receiver {ref} took the ball")
+        if ref.team == RIGHT:
+            return Verdict("FAILURE", f"the defender {ref} took the ball")
+        return Verdict("MISS", f"the ball reached {ref}, not the receiver")

@@ -1,0 +1,496 @@
+"""Layer 2 as client minds: the passer, its receivers and the defenders (paper §6, Figures 9–13).
+
+One trial's conversation, through the field model's own say/hear (the Soccer Server's ``say``
+with its length and hearing limits; on the robots the central host relays the text):
+
+1. **Intention** (Figure 9). At its first percept the passer, placed behind the ball, says
+   :data:`INTENT`.
+2. **Reports** (Figure 10). A receiver that heard the intention turns to face the ball. Once it
+   faces it, it says its report in its own time slot, :data:`REPORT_SLOT_PERIODS` sensor
+   periods apart by uniform number. The slots exist because the 1996 server lets a player hear
+   only one message every two cycles (``hear_decay`` 2, ``hear_inc`` 1), so three replies in
+   one cycle would be lost. A report is ``r<NN>`` and then the receiver's view
+   (:func:`learning.pass_features.encode_view`): the passer's distance and direction, and every
+   other player it sees. When the field's say limit cannot hold that view (rcssserver 19 allows
+   10 characters), it says only ``r<NN>d<distance>``, its distance to the passer. Then the passer
+   decides on its own half of the attributes; the receiver's half is *unknown* (§6: "marked as
+   unknown").
+3. **Choice** (Figure 11). The passer waits for every report, or :data:`REPORT_WAIT_PERIODS`
+   sensor periods. It then finds each receiver in its own view: by uniform number where the
+   view shows it, else by the distance that receiver reported (the distance between two players
+   is the same from either end). It builds the 174 attributes for each candidate and picks one
+   with its :class:`Chooser`.
+4. **Announcement** (Figure 12). It says ``k<NN>`` and kicks toward the receiver. On a field
+   without an aimable kick, the coach launches the ball along the passer's chosen direction
+   instead (:attr:`PasserMind.pass_direction_rad`).
+5. **Interception** (Figure 13). The chosen receiver and the defenders go for the ball with
+   layer 1's interception (:class:`~robotsoccer.skills.intercept.DefenderMind`). The other
+   receivers stand still from the announcement on.
+
+Choosers (the rows of Table 2 and those beyond it):
+
+* ``random``: a receiver drawn from the trial's ``"policy"`` stream (training);
+* ``tree``: the decision tree's highest success confidence (forced to pass, as in Table 2),
+  the Laplace-corrected share of successes at the leaf
+  (:meth:`learning.pass_tree.PassTree.success_confidence`);
+* ``closest``: the nearest seen receiver (the paper's heuristic, 64%);
+* ``analytic``: "can any defender reach the ball's path before the receiver?". This is
+  predicted with the field's own ball law and the players' top speed: the receiver with the
+  largest time margin is chosen.
+
+Distances inside the attributes are in units (Soccer Server metres, the field's ``unit_m``) and
+angles in degrees (:mod:`learning.pass_features`). The minds work in metres and radians.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from enum import StrEnum
+
+import numpy as np
+
+from field_models.arena import BallLaw
+from field_models.protocol import Action, Kick, Percept, Say, SeenPlayer, Turn, wrap_angle
+from learning.pass_features import (
+    decode_view,
+    encode_view,
+    pass_attributes,
+    passer_attributes,
+    receiver_attributes,
+    unknown_half,
+)
+from learning.pass_tree import PassTree
+from robotsoccer.options import choice
+from robotsoccer.skills.intercept import DefenderMind
+
+INTENT = "pass"
+"""What the passer says first (Figure 9)."""
+REPORT_SLOT_PERIODS = 2.0
+"""Sensor periods between two receivers' report slots (module docstring, step 2)."""
+REPORT_WAIT_PERIODS = 12.0
+"""The passer decides at the latest this many sensor periods after its intention."""
+FACING_TOLERANCE_RAD = math.radians(10.0)
+"""A player "faces the ball" when the ball is within this of its heading."""
+
+
+class Chooser(StrEnum):
+    """How the passer picks its receiver (module docstring)."""
+
+    RANDOM = "random"
+    TREE = "tree"
+    CLOSEST = "closest"
+    ANALYTIC = "analytic"
+
+
+def report_text(number: int, view: str | None, distance_units: float) -> str:
+    """A receiver's report: ``r<NN>`` + its encoded view, or ``r<NN>d<distance>`` without one."""
+    if view is None:
+        return f"r{number:02d}d{distance_units:.1f}"
+    return f"r{number:02d}{view}"
+
+
+def announce_text(number: int) -> str:
+    """The passer's announcement of its receiver (Figure 12)."""
+    return f"k{number:02d}"
+
+
+def announced_number(text: str) -> int | None:
+    """The receiver number an announcement names, or None if `text` is not one."""
+    if len(text) == 3 and text[0] == "k" and text[1:].isdigit():
+        return int(text[1:])
+    return None
+
+
+@dataclass(frozen=True, slots=True)
+class Report:
+    """A receiver's report as the passer decoded it.
+
+    Attributes:
+        number: The receiver's uniform number.
+        passer_distance_units: The receiver's distance to the passer [units].
+        half: The receiver's 87 attributes, all unknown when it sent only its distance.
+    """
+
+    number: int
+    passer_distance_units: float
+    half: np.ndarray
+
+
+def parse_report(text: str) -> Report | None:
+    """A report from its text; None if `text` is not a well-formed report."""
+    if len(text) < 4 or text[0] != "r" or not text[1:3].isdigit():
+        return None
+    number, body = int(text[1:3]), text[3:]
+    if body.startswith("d"):
+        try:
+            distance = float(body[1:])
+        except ValueError:
+            return None
+        return Report(number, distance, unknown_half())
+    try:
+        passer_distance, passer_angle, dist, angle, team = decode_view(body)
+    except ValueError:
+        return None
+    half = receiver_attributes(passer_distance, passer_angle, dist, angle, team)
+    return Report(number, passer_distance, half)
+
+
+def view_arrays(
+    seen: Sequence[SeenPlayer], own_team: str, unit_m: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Seen players as (distance [units], angle [deg], team: +1 mate, -1 opponent, 0 unknown)."""
+    distance = np.array([s.distance_m / unit_m for s in seen], dtype=float)
+    angle = np.array([math.degrees(s.angle_rad) for s in seen], dtype=float)
+    team = np.array(
+        [0 if s.team is None else (1 if s.team == own_team else -1) for s in seen], dtype=np.int8
+    )
+    return distance, angle, team
+
+
+@dataclass(frozen=True, slots=True)
+class PassPhysics:
+    """What the analytic chooser needs to know about the field (from its facts).
+
+    Attributes:
+        ball: How a free ball slows down.
+        pass_speed_mps: The ball's speed as the pass leaves [m/s].
+        player_speed_mps: A player's top speed [m/s].
+        reach_m: How close a player must come to the ball to take it [m].
+    """
+
+    ball: BallLaw
+    pass_speed_mps: float
+    player_speed_mps: float
+    reach_m: float
+
+
+def analytic_margin(
+    physics: PassPhysics,
+    receiver: tuple[float, float],
+    opponents: Sequence[tuple[float, float]],
+) -> float:
+    """Time [s] to spare before any opponent could take the pass (< 0: one gets there first).
+
+    Positions are (distance [m], angle [rad]) from the passer. The ball runs along the
+    receiver's direction under the field's ball law, and the path is sampled every half reach.
+    Each player runs straight at top speed to a point on the path and takes the ball there if
+    it arrives no later than the ball. The receiver takes it at the first point it can. The
+    margin is the least time by which any opponent is late at a point before that one.
+    """
+    rd, ra = receiver
+    step = 0.5 * max(physics.reach_m, 1e-3)
+    along = np.arange(step, rd + step, step)
+    ball_t = np.array(
+        [_or_inf(physics.ball.time_to_cover(s, physics.pass_speed_mps)) for s in along]
+    )
+    xs, ys = along * math.cos(ra), along * math.sin(ra)
+
+    def arrival(d: float, a: float) -> np.ndarray:
+        gap = np.hypot(xs - d * math.cos(a), ys - d * math.sin(a)) - physics.reach_m
+        return np.maximum(gap, 0.0) / physics.player_speed_mps
+
+    in_time = arrival(rd, ra) <= ball_t
+    end = int(np.argmax(in_time)) + 1 if in_time.any() else len(along)
+    margin = math.inf
+    for d, a in opponents:
+        margin = min(margin, float(np.min(arrival(d, a)[:end] - ball_t[:end])))
+    return margin
+
+
+def _or_inf(t: float | None) -> float:
+    return math.inf if t is None else t
+
+
+class PasserMind:
+    """The passer (module docstring): intention, wait for reports, choose, announce, kick.
+
+    Args:
+        receivers: The uniform numbers of its receivers (its teammates in the region).
+        chooser: How it picks (:class:`Chooser`, or its name).
+        rng: The trial's ``"policy"`` stream (``random``).
+        unit_m: The field's unit [m].
+        sensor_period_s: Time between two percepts [s].
+        dt_s: One tick [s].
+        kick_power: The pass's kick power; None: the field has no aimable kick (the coach
+            launches the ball along :attr:`pass_direction_rad`).
+        tree: The decision tree (``tree``).
+        physics: The field's numbers (``analytic``).
+
+    Attributes:
+        chosen: The receiver's number once chosen.
+        confidence: The tree's success confidence in the chosen receiver (nan without a tree).
+        attributes: The 174 attributes of the chosen receiver.
+        pass_direction_rad: The pass's direction relative to the passer's heading [rad].
+        decided_tick: The tick of the decision.
+        candidates: How many receivers the passer could find in its view.
+        reports: How many reports it heard.
+    """
+
+    def __init__(
+        self,
+        receivers: Sequence[int],
+        chooser: Chooser | str,
+        rng: np.random.Generator,
+        *,
+        unit_m: float,
+        sensor_period_s: float,
+        dt_s: float,
+        kick_power: float | None,
+        tree: PassTree | None = None,
+        physics: PassPhysics | None = None,
+    ) -> None:
+        self.receivers = tuple(receivers)
+        self.chooser = choice(Chooser, chooser, "chooser")
+        if self.chooser is Chooser.TREE and tree is None:
+            raise ValueError("chooser 'tree' needs a tree file (option model=...)")
+        if self.chooser is Chooser.ANALYTIC and physics is None:
+            raise ValueError("chooser 'analytic' needs the field's pass physics")
+        self.rng = rng
+        self.unit_m = unit_m
+        self.kick_power = kick_power
+        self.tree = tree
+        self.physics = physics
+        self.wait_ticks = round(REPORT_WAIT_PERIODS * sensor_period_s / dt_s)
+        self.intent_tick: int | None = None
+        self.heard: dict[int, Report] = {}
+        self.chosen: int | None = None
+        self.confidence = math.nan
+        self.attributes: np.ndarray | None = None
+        self.pass_direction_rad: float | None = None
+        self.decided_tick: int | None = None
+        self.candidates = 0
+        self.reports = 0
+        self.done = False
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """Say the intention, gather reports, then decide once and kick."""
+        if self.chosen is not None:
+            self.done = True
+            return ()
+        if self.intent_tick is None:
+            self.intent_tick = percept.tick
+            return (Say(INTENT),)
+        for heard in percept.heard:
+            report = parse_report(heard.text)
+            if report is not None and report.number in self.receivers:
+                self.heard.setdefault(report.number, report)
+        everyone = len(self.heard) == len(self.receivers)
+        if not everyone and percept.tick - self.intent_tick < self.wait_ticks:
+            return ()
+        return self._decide(percept)
+
+    def _decide(self, percept: Percept) -> tuple[Action, ...]:
+        own = percept.player.team
+        found: dict[int, int | None] = dict(self._find_receivers(percept, own))
+        self.candidates, self.reports = len(found), len(self.heard)
+        if not found:  # nobody in view: kick ahead, to the first receiver by number
+            found = {self.receivers[0]: None}
+        options: list[tuple[int, float, float, np.ndarray]] = []
+        for number, index in found.items():
+            options.append(self._option(percept, own, number, index))
+        pick = self._pick(percept, options)
+        number, angle, confidence, x = options[pick]
+        self.chosen, self.confidence, self.attributes = number, confidence, x
+        self.pass_direction_rad, self.decided_tick = angle, percept.tick
+        actions: list[Action] = [Say(announce_text(number))]
+        if self.kick_power is not None:
+            actions.append(Kick(self.kick_power, angle))
+        return tuple(actions)
+
+    def _find_receivers(self, percept: Percept, own: str) -> dict[int, int]:
+        """Receiver number → index in the percept's players, for the receivers in view."""
+        found: dict[int, int] = {}
+        seen = percept.players
+        for i, s in enumerate(seen):
+            if s.team == own and s.number in self.receivers:
+                found[int(s.number)] = i
+        for number, report in self.heard.items():
+            if number in found:
+                continue
+            taken = set(found.values())
+            best, best_gap = None, 3.0  # units: a wider gap is someone else
+            for i, s in enumerate(seen):
+                if i in taken or s.team not in (own, None) or s.number is not None:
+                    continue
+                gap = abs(s.distance_m / self.unit_m - report.passer_distance_units)
+                if gap < best_gap:
+                    best, best_gap = i, gap
+            if best is not None:
+                found[number] = best
+        return found
+
+    def _option(
+        self, percept: Percept, own: str, number: int, index: int | None
+    ) -> tuple[int, float, float, np.ndarray]:
+        """(number, direction [rad], tree confidence, attributes) of passing to one receiver."""
+        seen = percept.players
+        if index is None:
+            return number, 0.0, math.nan, pass_attributes(unknown_half(), unknown_half())
+        target = seen[index]
+        others = [s for i, s in enumerate(seen) if i != index]
+        dist, ang, team = view_arrays(others, own, self.unit_m)
+        mine = passer_attributes(
+            target.distance_m / self.unit_m, math.degrees(target.angle_rad), dist, ang, team
+        )
+        report = self.heard.get(number)
+        theirs = report.half if report is not None else unknown_half()
+        x = pass_attributes(mine, theirs)
+        confidence = math.nan
+        if self.tree is not None:
+            confidence = self.tree.success_confidence(x)
+        return number, target.angle_rad, confidence, x
+
+    def _pick(self, percept: Percept, options: list[tuple[int, float, float, np.ndarray]]) -> int:
+        """The index of the chosen option."""
+        if len(options) == 1:
+            return 0
+        if self.chooser is Chooser.RANDOM:
+            return int(self.rng.integers(len(options)))
+        if self.chooser is Chooser.TREE:
+            return int(np.argmax([o[2] for o in options]))
+        if self.chooser is Chooser.CLOSEST:
+            return int(np.argmin([o[3][0] for o in options]))  # "passer receiver distance"
+        return self._pick_analytic(percept, options)
+
+    def _pick_analytic(
+        self, percept: Percept, options: list[tuple[int, float, float, np.ndarray]]
+    ) -> int:
+        assert self.physics is not None
+        own = percept.player.team
+        opponents = [(s.distance_m, s.angle_rad) for s in percept.players if s.team != own]
+        margins = []
+        for _, angle, _, x in options:
+            receiver = (float(x[0]) * self.unit_m, angle)
+            margins.append(analytic_margin(self.physics, receiver, opponents))
+        return int(np.argmax(margins))
+
+
+class ReceiverMind:
+    """A receiver (module docstring): face the ball, report, then intercept or stand.
+
+    Args:
+        number: Its uniform number.
+        interceptor: Layer 1's interception, used once it is the chosen receiver.
+        unit_m: The field's unit [m].
+        sensor_period_s: Time between two percepts [s].
+        dt_s: One tick [s].
+        slot: Its report slot (0, 1, 2, ...).
+        say_max_chars: The field's say limit; None: no limit.
+    """
+
+    def __init__(
+        self,
+        number: int,
+        interceptor: DefenderMind,
+        *,
+        unit_m: float,
+        sensor_period_s: float,
+        dt_s: float,
+        slot: int,
+        say_max_chars: int | None,
+    ) -> None:
+        self.number = number
+        self.interceptor = interceptor
+        self.unit_m = unit_m
+        self.slot_ticks = round(slot * REPORT_SLOT_PERIODS * sensor_period_s / dt_s)
+        self.say_max_chars = say_max_chars
+        self.intent_tick: int | None = None
+        self.reported = False
+        self.chosen: bool | None = None  # None until the announcement
+        self.done = False
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """Before the announcement: face the ball and report; then intercept or stand."""
+        for heard in percept.heard:
+            if heard.text == INTENT and self.intent_tick is None:
+                self.intent_tick = percept.tick
+            number = announced_number(heard.text)
+            if number is not None and self.chosen is None:
+                self.chosen = number == self.number
+        if self.chosen is not None:
+            if self.chosen:
+                return self.interceptor.act(percept)
+            self.done = True  # stands still from now on: it needs no more percepts
+            return ()
+        ball = percept.ball
+        if ball is None:
+            return (Turn(math.pi / 2),)  # look for it
+        if abs(ball.angle_rad) > FACING_TOLERANCE_RAD:
+            return (Turn(ball.angle_rad),)
+        if (
+            self.intent_tick is not None
+            and not self.reported
+            and percept.tick - self.intent_tick >= self.slot_ticks
+        ):
+            text = self._report(percept)
+            if text is not None:
+                self.reported = True
+                return (Say(text),)
+        return ()
+
+    def _report(self, percept: Percept) -> str | None:
+        """Its report; None when it cannot see the passer (next to the ball)."""
+        ball = percept.ball
+        assert ball is not None
+        own = percept.player.team
+        passer = _nearest_to(percept.players, ball.distance_m, ball.angle_rad, own)
+        if passer is None:
+            return None
+        others = [s for i, s in enumerate(percept.players) if i != passer]
+        p = percept.players[passer]
+        pd, pa = p.distance_m / self.unit_m, math.degrees(p.angle_rad)
+        dist, ang, team = view_arrays(others, own, self.unit_m)
+        full = report_text(self.number, encode_view(pd, pa, dist, ang, team), pd)
+        if self.say_max_chars is None or len(full) <= self.say_max_chars:
+            return full
+        short = report_text(self.number, None, pd)
+        return short if len(short) <= self.say_max_chars else None
+
+
+def _nearest_to(
+    seen: Sequence[SeenPlayer], distance_m: float, angle_rad: float, team: str
+) -> int | None:
+    """The seen teammate (or player of unknown team) closest to a point given in polar form."""
+    best, best_gap = None, math.inf
+    for i, s in enumerate(seen):
+        if s.team not in (team, None):
+            continue
+        gap = (
+            distance_m**2
+            + s.distance_m**2
+            - 2.0 * distance_m * s.distance_m * math.cos(s.angle_rad - angle_rad)
+        )
+        if gap < best_gap:
+            best, best_gap = i, gap
+    return best
+
+
+class WaitingInterceptorMind:
+    """A defender: faces the ball until the passer announces, then intercepts (Figure 13).
+
+    Args:
+        interceptor: Layer 1's interception.
+        still: Stand still after the announcement too (Table 2's "no defenders" test).
+    """
+
+    def __init__(self, interceptor: DefenderMind, *, still: bool = False) -> None:
+        self.interceptor = interceptor
+        self.still = still
+        self.started = False
+        self.done = False
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """Face the ball; from the announcement on, intercept."""
+        if not self.started:
+            self.started = any(announced_number(h.text) is not None for h in percept.heard)
+        if self.started:
+            if self.still:
+                self.done = True
+                return ()
+            return self.interceptor.act(percept)
+        ball = percept.ball
+        if ball is not None and abs(ball.angle_rad) > FACING_TOLERANCE_RAD:
+            return (Turn(wrap_angle(ball.angle_rad)),)
+        return ()
