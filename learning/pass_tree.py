@@ -823,6 +823,7 @@ def save_pass_tree(
         raise ValueError("provenance must map names to strings or finite numbers")
     doc = {**tree.to_json(), "provenance": notes}
     path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(path.name + ".tmp")
     tmp.write_text(json.dumps(doc, indent=1, allow_nan=False) + "\n", encoding="utf-8")
     os.replace(tmp, path)

@@ -11,6 +11,8 @@ figure's target beside it (:func:`target_cell`).
 * ``intercept.trials_per_s.<field model>`` — the layer-1 interception drill (straight defender,
   ball noise 0.05) through the pool with 2 workers, pool start included; enough trials that
   start-up is a small share.
+* ``pass.trials_per_s.<field model>`` — the layer-2 pass drill (random receiver, straight
+  interceptors, 12 players) through the pool with 2 workers, sized the same way.
 * ``training.net_1000_saves_s`` — wall seconds to train the paper's 3-4-1 net for 3000 epochs
   on 1000 synthetic saves (torch on the CPU, one thread).
 """
@@ -50,6 +52,17 @@ def intercept_trials_per_s(field_model: str, trials: int, workers: int = 2) -> f
     """Interception-drill trials per wall second through the pool (straight defender)."""
     spec = TrialSpec(drill="intercept", field_model=field_model, seed=1)
     spec = spec.with_options(behaviour="straight").with_field(ball_noise=0.05)
+    start = time.perf_counter()
+    run_trials(spec, trials, workers=workers, progress=False)
+    return trials / (time.perf_counter() - start)
+
+
+def pass_trials_per_s(field_model: str, trials: int, workers: int = 2) -> float:
+    """Pass-drill trials per wall second through the pool (random receiver, straight interceptors).
+
+    Straight interceptors measure the drill's own cost, without a net file to read.
+    """
+    spec = TrialSpec(drill="pass", field_model=field_model, seed=1)
     start = time.perf_counter()
     run_trials(spec, trials, workers=workers, progress=False)
     return trials / (time.perf_counter() - start)
@@ -95,6 +108,11 @@ def iter_benchmarks(
         say(f"intercept drill: {model}")
         measure = functools.partial(intercept_trials_per_s, model, _intercept_trials(model, quick))
         yield f"intercept.trials_per_s.{model}", round(median_of(repeats, measure))
+    for model in FIELD_MODELS:
+        say(f"pass drill: {model}")
+        n = _sized(functools.partial(pass_trials_per_s, model), quick)
+        measure = functools.partial(pass_trials_per_s, model, n)
+        yield f"pass.trials_per_s.{model}", round(median_of(repeats, measure))
     say("training: the interception net on 1000 saves")
     yield "training.net_1000_saves_s", round(median_of(repeats, training_seconds), 2)
     yield "machine.python", platform.python_version()
@@ -116,19 +134,24 @@ def nest(rows: Iterable[tuple[str, Any]]) -> dict[str, Any]:
 
 
 def _intercept_trials(field_model: str, quick: bool) -> int:
+    """Interception trials enough for several seconds of work (:func:`_sized`)."""
+    return _sized(functools.partial(intercept_trials_per_s, field_model), quick)
+
+
+def _sized(run: Callable[[int], float], quick: bool) -> int:
     """Trials enough for several seconds of work, so pool start-up is a small share.
 
-    Probes with doubling trial counts until a run takes a quarter of the wanted time, then
-    scales to the whole (rounded up to 1000 trials).
+    Probes with doubling trial counts (from 100) until a run takes a quarter of the wanted
+    time, then scales to the whole (rounded up to 100 trials).
     """
     wanted_s = 2.0 if quick else 8.0
-    n = 500
+    n = 100
     while True:
         start = time.perf_counter()
-        intercept_trials_per_s(field_model, n)
+        run(n)
         seconds = time.perf_counter() - start
         if seconds >= 0.25 * wanted_s or n >= 100_000:
-            return 1000 * math.ceil(n * wanted_s / seconds / 1000)
+            return 100 * math.ceil(n * wanted_s / seconds / 100)
         n *= 2
 
 

@@ -50,6 +50,8 @@ BENCH_TARGETS = {
     "soccer_server.object_cycles_per_s.batch": (">=", 2_000_000.0),
     "intercept.trials_per_s.soccer_server": (">=", 3_000.0),
     "intercept.trials_per_s.robot_physics": (">=", 100.0),
+    "pass.trials_per_s.soccer_server": (">=", 300.0),
+    "pass.trials_per_s.robot_physics": (">=", 40.0),
     "training.net_1000_saves_s": ("<=", 5.0),
 }
 """What ``robotsoccer bench`` checks each figure against."""
@@ -185,8 +187,22 @@ def build_parser() -> argparse.ArgumentParser:
         "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
     )
     _experiment_options(intercept)
+    passing = targets.add_parser(
+        "pass", help="layer 2: the pass-evaluation tree (paper §6)", parents=[common]
+    )
+    passing.add_argument("--field", default=DEFAULT_FIELD, choices=FIELD_MODELS, help="field model")
+    passing.add_argument(
+        "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
+    )
+    passing.add_argument(
+        "--net",
+        type=Path,
+        default=None,
+        help="layer 1's interception net (.npz) for receivers and defenders (trained here)",
+    )
+    _experiment_options(passing)
 
-    reproduce = command("reproduce", "all of layer 1 on both field models: report, plots")
+    reproduce = command("reproduce", "layers 1 and 2 on both field models: report, plots")
     _experiment_options(reproduce)
 
     bench = command("bench", "measure speed, each figure beside its target")
@@ -421,7 +437,9 @@ def cmd_replay(args: argparse.Namespace) -> int:
 
 
 def cmd_learn(args: argparse.Namespace) -> int:
-    """``learn intercept``: layer 1 on one field model (collect → train → evaluate → report)."""
+    """``learn intercept`` / ``learn pass``: one layer on one field model."""
+    if args.target == "pass":
+        return cmd_learn_pass(args)
     preset = args.field_preset or default_preset(args.field)
     tag = f"learn-intercept-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
@@ -429,15 +447,75 @@ def cmd_learn(args: argparse.Namespace) -> int:
     return _run_layer1(args, [(args.field, preset)], out, title, "robotsoccer learn intercept")
 
 
+def cmd_learn_pass(args: argparse.Namespace) -> int:
+    """``learn pass``: layer 2 on one field model (collect → train → evaluate → report)."""
+    from robotsoccer.experiments.layer1 import plan_for, seeds_for, train_main_net
+    from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
+
+    preset = args.field_preset or default_preset(args.field)
+    tag = f"learn-pass-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
+    out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
+    check_spec(TrialSpec(drill="pass", field_model=args.field, preset=preset))
+    if args.net is not None:
+        check_spec(
+            TrialSpec(drill="pass", field_model=args.field, preset=preset).with_options(
+                interceptor="net", net=str(args.net)
+            )
+        )
+    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
+    plan = layer2_plan(args.quick)
+    workers = args.workers or default_workers()
+    seeds = seeds_for(args.seed)
+    log = _clock_log()
+    progress = sys.stderr.isatty()
+    start = time.perf_counter()
+    try:
+        net = args.net
+        if net is None:
+            net = train_main_net(
+                args.field, preset, plan_for(args.quick), out, seeds, workers, log, progress
+            )
+        section = run_layer2_model(
+            args.field, preset, net, plan, out, seeds, workers, log, progress
+        )
+    except KeyboardInterrupt:
+        return _fail(
+            EXIT_INTERRUPTED,
+            f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
+        )
+    title = f"# Layer 2 (pass evaluation) on {args.field}" + (
+        " — quick plan" if args.quick else ""
+    )
+    report = out / "report.md"
+    report.write_text(f"{title}\n\n{layer2_markdown([section], plan)}")
+    (out / "config.json").write_text(
+        json.dumps({"plan": plan.to_dict(), "seed": args.seed, "net": str(net)}, indent=2) + "\n"
+    )
+    print()
+    print(report.read_text())
+    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
+    return 0
+
+
+def _clock_log() -> Callable[[str], None]:
+    """A log that prefixes each line with the seconds since it was made."""
+    start = time.perf_counter()
+
+    def log(line: str) -> None:
+        print(f"[{time.perf_counter() - start:6.1f} s] {line}", flush=True)
+
+    return log
+
+
 def cmd_reproduce(args: argparse.Namespace) -> int:
     """``reproduce``: all of layer 1 on both field models into one folder."""
     name = f"reproduce-quick-seed{args.seed}" if args.quick else f"reproduce-seed{args.seed}"
     out = args.out or Path("runs") / name
     models = [(model, default_preset(model)) for model in PAPER_MODELS]
-    title = "Layer 1 reproduction (Stone & Veloso 1996, §5)" + (
+    title = "Layers 1 and 2 reproduced (Stone & Veloso 1996, §5 and §6)" + (
         " — quick plan" if args.quick else ""
     )
-    return _run_layer1(args, models, out, title, "robotsoccer reproduce")
+    return _run_layer1(args, models, out, title, "robotsoccer reproduce", with_layer2=True)
 
 
 def _run_layer1(
@@ -446,8 +524,11 @@ def _run_layer1(
     out: Path,
     title: str,
     created_by: str,
+    *,
+    with_layer2: bool = False,
 ) -> int:
-    from robotsoccer.experiments.layer1 import plan_for, run_layer1
+    from robotsoccer.experiments.layer1 import plan_for, run_layer1, seeds_for
+    from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
 
     for model, preset in models:  # a bad preset fails here with one line, not in a worker
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
@@ -460,7 +541,7 @@ def _run_layer1(
         print(f"[{time.perf_counter() - start:6.1f} s] {line}", flush=True)
 
     try:
-        report, _ = run_layer1(
+        report, sections = run_layer1(
             models,
             plan,
             out,
@@ -471,6 +552,24 @@ def _run_layer1(
             created_by=created_by,
             progress=sys.stderr.isatty(),
         )
+        if with_layer2:
+            plan2 = layer2_plan(args.quick)
+            layer2 = [
+                run_layer2_model(
+                    s.field_model,
+                    s.preset,
+                    out / "models" / s.field_model / f"net_{s.net_examples}.npz",
+                    plan2,
+                    out,
+                    seeds_for(args.seed),
+                    workers,
+                    log,
+                    sys.stderr.isatty(),
+                )
+                for s in sections
+            ]
+            with report.open("a") as f:
+                f.write("\n" + layer2_markdown(layer2, plan2))
     except KeyboardInterrupt:
         return _fail(
             EXIT_INTERRUPTED,

@@ -868,3 +868,35 @@ def _training_times(sections: Sequence[ModelSection]) -> list[str]:
     if not parts:
         return []
     return ["", "Training time of the largest net in this run: " + "; ".join(parts) + "."]
+
+
+def train_main_net(
+    field_model: str,
+    preset: str,
+    plan: Layer1Plan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    progress: bool = False,
+) -> Path:
+    """Layer 1's collection and its main net only (no evaluations), for a layer-2 run.
+
+    The same collection and training as :func:`run_model` (same seeds, same files), so a later
+    ``reproduce`` into the same folder resumes them. Returns the net's file.
+    """
+    log(f"[{field_model}] layer 1 for layer 2: random TA until {plan.collect_saves} saves")
+    dataset, collected, timing = collect(
+        base_spec(field_model, preset, seeds.collection, plan.ta_mode),
+        plan,
+        out / "results" / field_model,
+        out / "datasets" / field_model / "train.npz",
+        workers,
+        "robotsoccer learn pass",
+        progress,
+    )
+    log(f"  {collected.saves} saves of {collected.n} trials ({timing.wall_s:.1f} s)")
+    sizes = training_sizes(plan, len(dataset))
+    fitting = [n for n in sizes if n <= plan.net_examples] or [min(sizes)]
+    main = max(fitting)
+    return train_series(dataset, [main], plan.epochs, out / "models" / field_model, log)[main]

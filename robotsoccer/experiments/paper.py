@@ -113,3 +113,39 @@ CALIBRATED: dict[tuple[str, float], str] = {
     ("still", PAPER_NOISE): "the blocking defender was chosen so that this row matches §5",
 }
 """(behaviour, noise) → why: the rows a setting of ours was chosen to match (not reproduced)."""
+
+
+# ----------------------------------------------------------------------------- layer 2 (§6)
+
+LAYER2_TRIALS = 5000
+"""Training passes and test trials per condition in §6."""
+
+LAYER2_TRAINING_SHARES = {"SUCCESS": 51.0, "FAILURE": 42.0, "MISS": 7.0}
+"""§6: the 5000 training passes (random receiver) were 51% successes, 42% failures, 7% misses."""
+
+TREE_NODES = 87
+"""§6: "a pruned tree with 87 nodes"."""
+
+TREE_TRAINING_ERROR_PCT = 26.0
+"""§6: "giving 26% error on the training set"."""
+
+TABLE_2_BINS: tuple[tuple[float, float], ...] = ((0.8, 0.9), (0.7, 0.8), (0.6, 0.7))
+"""Table 2's success-confidence bins, in the paper's column order."""
+
+TABLE_2: dict[str, dict[str, float]] = {
+    "overall": {"n": 5000, "SUCCESS": 65.0, "FAILURE": 26.0, "MISS": 8.0},
+    ".8-.9": {"n": 1050, "SUCCESS": 79.0, "FAILURE": 15.0, "MISS": 5.0},
+    ".7-.8": {"n": 3485, "SUCCESS": 63.0, "FAILURE": 29.0, "MISS": 8.0},
+    ".6-.7": {"n": 185, "SUCCESS": 58.0, "FAILURE": 31.0, "MISS": 10.0},
+}
+"""Table 2: the DT forced to pass, overall and by the chosen receiver's success confidence."""
+
+PASS_SUCCESS_PCT: dict[str, float] = {
+    "tree": 65.0,
+    "random": 51.0,
+    "closest": 64.0,
+    "tree_confident": 79.0,
+    "tree_no_defenders": 86.0,
+}
+"""§6 text: success rates of the DT (forced), a random receiver, the closest teammate, the DT
+passing only above .8 confidence, and the DT with no defenders moving."""

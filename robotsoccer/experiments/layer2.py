@@ -1,0 +1,398 @@
+"""Layer 2 end to end: collect passes, train the tree, run Table 2's conditions, report (§6).
+
+The pipeline for one field model, on top of layer 1's net from the same run:
+
+1. :func:`collect_passes` — the pass drill (:mod:`robotsoccer.drills.passing`) with a random
+   receiver: the plan's trials (paper: 5000). Each trial that passed becomes a row of 174
+   attributes and the coach's label, saved as a :class:`~learning.pass_dataset.PassDataset`
+   with its provenance.
+2. :func:`train_tree` — the C4.5-like tree (:func:`learning.pass_tree.fit_pass_tree`), saved as
+   JSON with its provenance: its node count and training error go beside the paper's 87 nodes
+   and 26%, and its first levels are printed in Figure 14's style.
+3. The test conditions (:func:`layer2_conditions`), the plan's trials each (paper: 5000), on one
+   evaluation seed, so trial i places every player identically whatever the chooser (paired):
+   the tree forced to pass (Table 2), a random receiver, the closest teammate, the analytic
+   evaluator (beyond the paper) and the tree with the defenders standing still.
+   "Pass only when confidence > .8" is the tree run's trials above .8, as in the paper.
+4. :func:`layer2_markdown` — Table 2 and the comparison rows with n and 95% intervals beside the
+   paper's numbers, the reliability of the tree's confidence, and what this run measured where
+   we differ.
+
+Seeds: collection uses the run's derived collection seed, evaluation the experiment seed
+(:func:`robotsoccer.experiments.layer1.seeds_for`), so the tree is never tested on its own
+placements.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from learning.pass_dataset import PassDataset
+from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
+from learning.pass_tree import LABELS, PassTree, fit_pass_tree, reliability, save_pass_tree
+from robotsoccer.experiments import paper
+from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
+from robotsoccer.experiments.report import StageTiming, percent_cell
+from robotsoccer.runs.runner import TrialResult, TrialSpec
+
+DRILL = "pass"
+HEAD = 4
+"""Leading values of a pass trial's data before the attributes: receiver, confidence,
+candidates, reports (:meth:`robotsoccer.drills.passing.PassDrill.data`)."""
+RELIABILITY_BINS = tuple(round(0.1 * k, 1) for k in range(11))
+"""Bins of the reliability table and plot: tenths of confidence."""
+
+
+@dataclass(frozen=True)
+class Layer2Plan:
+    """What a layer-2 run does on each field model.
+
+    Attributes:
+        name: ``"quick"``, ``"full"`` or a free name (tests).
+        collect_trials: Training trials with a random receiver (paper: 5000).
+        eval_trials: Trials per test condition (paper: 5000).
+        confident: The "pass only when confident" threshold (paper: .8).
+        tree_depth_shown: Levels of the tree printed in the report.
+    """
+
+    name: str
+    collect_trials: int
+    eval_trials: int
+    confident: float = 0.8
+    tree_depth_shown: int = 4
+
+    def to_dict(self) -> dict[str, Any]:
+        """The plan as plain JSON types."""
+        return dataclasses.asdict(self)
+
+
+def layer2_plan(quick: bool) -> Layer2Plan:
+    """The paper's 5000 and 5000, or a quick 1000 and 500."""
+    if quick:
+        return Layer2Plan("quick", collect_trials=1000, eval_trials=500)
+    return Layer2Plan("full", collect_trials=paper.LAYER2_TRIALS, eval_trials=paper.LAYER2_TRIALS)
+
+
+@dataclass
+class Layer2Section:
+    """Everything the report shows for one field model's layer 2."""
+
+    field_model: str
+    preset: str
+    net: str
+    collected: Counter[str] = field(default_factory=Counter)
+    dataset_rows: int = 0
+    tree_nodes: int = 0
+    tree_leaves: int = 0
+    training_error: float = math.nan
+    holdout_error: float = math.nan
+    tree_text: str = ""
+    receiver_tests: int = 0
+    passer_tests: int = 0
+    results: dict[str, list[TrialResult]] = field(default_factory=dict)
+    stages: list[StageTiming] = field(default_factory=list)
+    reports_heard: float = math.nan
+
+
+def pass_spec(field_model: str, preset: str, seed: int, net: Path) -> TrialSpec:
+    """The pass drill on a field model, receivers and defenders intercepting with `net`."""
+    spec = TrialSpec(drill=DRILL, field_model=field_model, preset=preset, seed=seed)
+    return spec.with_options(interceptor="net", net=str(net.resolve()))
+
+
+def layer2_conditions(base: TrialSpec, n: int, tree: Path) -> dict[str, Condition]:
+    """Table 2's conditions and those beyond it, by name (module docstring, step 3)."""
+    model = str(tree.resolve())
+    specs = {
+        "tree": base.with_options(chooser="tree", model=model),
+        "random": base.with_options(chooser="random"),
+        "closest": base.with_options(chooser="closest"),
+        "analytic": base.with_options(chooser="analytic"),
+        "tree_no_defenders": base.with_options(chooser="tree", model=model, defenders="still"),
+    }
+    return {name: Condition(name, spec, n) for name, spec in specs.items()}
+
+
+def passes(results: Sequence[TrialResult]) -> list[TrialResult]:
+    """The trials in which the passer passed (their data carry the attributes)."""
+    return [r for r in results if len(r.data) == HEAD + len(ATTRIBUTE_NAMES)]
+
+
+def dataset_from(results: Sequence[TrialResult], provenance: dict[str, Any]) -> PassDataset:
+    """The passes' attributes and labels, in trial order."""
+    done = passes(results)
+    x = np.array([r.data[HEAD:] for r in done], dtype=np.float64).reshape(
+        len(done), len(ATTRIBUTE_NAMES)
+    )
+    y = np.array([r.label for r in done], dtype=str)
+    return PassDataset(x, y, provenance)
+
+
+def collect_passes(
+    base: TrialSpec, plan: Layer2Plan, results_dir: Path, path: Path, workers: int | None,
+    progress: bool,
+) -> tuple[PassDataset, list[TrialResult], StageTiming]:  # fmt: skip
+    """The training drill: a random receiver for the plan's trials; save the dataset."""
+    spec = base.with_options(chooser="random")
+    cond = Condition("collect_random", spec, plan.collect_trials)
+    results, ran, wall = evaluate(cond, results_dir, workers, progress)
+    provenance = {
+        "field_model": base.field_model,
+        "preset": base.preset_name,
+        "seed": base.seed,
+        "chooser": "random",
+        "drill": DRILL,
+        "n_trials": plan.collect_trials,
+        "interceptor_net": Path(str(dict(base.drill_options)["net"])).name,
+    }
+    dataset = dataset_from(results, provenance)
+    dataset.save(path)
+    return dataset, results, StageTiming("collect (random receiver)", ran, wall)
+
+
+HOLDOUT_SHARE = 0.3
+"""The last share of the training passes that a second tree, fitted on the rest, is tested on."""
+
+
+def train_tree(dataset: PassDataset, path: Path, seed: int) -> tuple[PassTree, float]:
+    """Fit the C4.5-like tree on the dataset, save it with its provenance; measure generality.
+
+    Returns:
+        The tree and the error of the same procedure on held-out passes: a tree fitted on the
+        first 70% (trial order) and tested on the last 30%. The paper gives only the training
+        error; a held-out error says how much of ours is memorised.
+    """
+    tree = fit_pass_tree(dataset.x, dataset.y, ATTRIBUTE_NAMES, schema=PASS_SCHEMA, seed=seed)
+    provenance = {**dataset.provenance, "rows": len(dataset)}
+    save_pass_tree(tree, path, provenance)
+    cut = round((1.0 - HOLDOUT_SHARE) * len(dataset))
+    if cut < 2 or cut >= len(dataset):
+        return tree, math.nan
+    part = fit_pass_tree(
+        dataset.x[:cut], dataset.y[:cut], ATTRIBUTE_NAMES, schema=PASS_SCHEMA, seed=seed
+    )
+    return tree, part.training_error(dataset.x[cut:], dataset.y[cut:])
+
+
+def run_layer2_model(
+    field_model: str,
+    preset: str,
+    net: Path,
+    plan: Layer2Plan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    progress: bool = False,
+) -> Layer2Section:
+    """Collect, train and test layer 2 on one field model (module docstring)."""
+    results_dir = out / "results" / field_model / "layer2"
+    section = Layer2Section(field_model, preset, net.name)
+    log(f"[{field_model}] layer 2: collect {plan.collect_trials} passes to a random receiver")
+    base = pass_spec(field_model, preset, seeds.collection, net)
+    dataset, collected, timing = collect_passes(
+        base, plan, results_dir, out / "datasets" / field_model / "passes.npz", workers, progress
+    )
+    section.stages.append(timing)
+    section.collected = Counter(r.label for r in collected)
+    section.dataset_rows = len(dataset)
+    log(f"  {len(dataset)} passes: {dict(section.collected)} ({timing.wall_s:.1f} s)")
+
+    start = time.perf_counter()
+    tree_path = out / "models" / field_model / "pass_tree.json"
+    tree, section.holdout_error = train_tree(dataset, tree_path, seeds.collection)
+    section.tree_nodes, section.tree_leaves = tree.n_nodes, tree.n_leaves
+    section.training_error = tree.training_error(dataset.x, dataset.y)
+    section.tree_text = tree.render(max_depth=plan.tree_depth_shown)
+    section.passer_tests, section.receiver_tests = _tests_by_side(tree)
+    (tree_path.parent / "pass_tree.txt").write_text(tree.render() + "\n")
+    section.stages.append(StageTiming("train tree", 0, time.perf_counter() - start))
+    log(
+        f"  tree: {tree.n_nodes} nodes, training error {100 * section.training_error:.1f}% "
+        f"({time.perf_counter() - start:.1f} s)"
+    )
+
+    test_base = pass_spec(field_model, preset, seeds.evaluation, net)
+    for name, cond in layer2_conditions(test_base, plan.eval_trials, tree_path).items():
+        results, ran, wall = evaluate(cond, results_dir, workers, progress)
+        section.results[name] = results
+        section.stages.append(StageTiming(name, ran, wall))
+        counts = Counter(r.label for r in results)
+        log(f"  {name}: {dict(counts)} ({wall:.1f} s)")
+    heard = [r.data[3] for r in passes(section.results["tree"])]
+    section.reports_heard = float(np.mean(heard)) if heard else math.nan
+    return section
+
+
+def _tests_by_side(tree: PassTree) -> tuple[int, int]:
+    """How many of the tree's tests use the passer's attributes, and how many the receiver's."""
+    used = [tree.feature_names[f] for f in tree.feature.tolist() if f >= 0]
+    passer = sum(1 for name in used if name.startswith("passer"))
+    return passer, len(used) - passer
+
+
+# ----------------------------------------------------------------------------- the report
+
+
+def confidence_of(result: TrialResult) -> float:
+    """The tree's success confidence in the chosen receiver (nan where none was recorded)."""
+    return result.data[1] if len(result.data) > 1 else math.nan
+
+
+def label_cells(results: Sequence[TrialResult]) -> list[str]:
+    """SUCCESS / FAILURE / MISS as percentages with 95% intervals, then n."""
+    counts = Counter(r.label for r in results)
+    n = len(results)
+    return [percent_cell(counts[label], n) for label in LABELS] + [str(n)]
+
+
+def in_bin(results: Sequence[TrialResult], low: float, high: float) -> list[TrialResult]:
+    """The trials whose success confidence lies in [low, high)."""
+    return [r for r in results if low <= confidence_of(r) < high]
+
+
+def table2_lines(section: Layer2Section) -> list[str]:
+    """Table 2: the tree forced to pass, overall and by confidence bin, beside the paper."""
+    tree = section.results.get("tree", [])
+    rows = [("overall", tree, paper.TABLE_2["overall"])]
+    for low, high in paper.TABLE_2_BINS:
+        key = f".{round(10 * low)}-.{round(10 * high)}"
+        rows.append((key, in_bin(tree, low, high), paper.TABLE_2[key]))
+    others = [r for r in tree if not 0.6 <= confidence_of(r) < 0.9]
+    lines = [
+        "| confidence | SUCCESS (%) | paper | FAILURE (%) | paper | MISS (%) | paper | n "
+        "| paper n |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for key, results, ref in rows:
+        s, f, m, n = label_cells(results)
+        lines.append(
+            f"| {key} | {s} | {ref['SUCCESS']:g} | {f} | {ref['FAILURE']:g} | {m} | "
+            f"{ref['MISS']:g} | {n} | {ref['n']:g} |"
+        )
+    s, f, m, n = label_cells(others)
+    lines.append(f"| outside .6-.9 | {s} | — | {f} | — | {m} | — | {n} | 280 |")
+    return lines
+
+
+def comparison_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
+    """Success of every chooser beside the paper's (§6 text), with n and 95% intervals."""
+    res = section.results
+    confident = [r for r in res.get("tree", []) if confidence_of(r) > plan.confident]
+    rows = [
+        ("DT, forced to pass (Table 2)", res.get("tree", []), paper.PASS_SUCCESS_PCT["tree"]),
+        ("random receiver", res.get("random", []), paper.PASS_SUCCESS_PCT["random"]),
+        ("closest teammate", res.get("closest", []), paper.PASS_SUCCESS_PCT["closest"]),
+        (
+            f"DT, only passes with confidence > {plan.confident:g}",
+            confident,
+            paper.PASS_SUCCESS_PCT["tree_confident"],
+        ),
+        (
+            "DT, defenders still",
+            res.get("tree_no_defenders", []),
+            paper.PASS_SUCCESS_PCT["tree_no_defenders"],
+        ),
+        ("analytic: can a defender reach the path first? (ours)", res.get("analytic", []), None),
+    ]
+    lines = [
+        "| receiver chosen by | SUCCESS (%) | paper | FAILURE (%) | MISS (%) | n |",
+        "|---|---|---|---|---|---|",
+    ]
+    for name, results, ref in rows:
+        s, f, m, n = label_cells(results)
+        lines.append(f"| {name} | {s} | {'—' if ref is None else f'{ref:g}'} | {f} | {m} | {n} |")
+    return lines
+
+
+def reliability_lines(section: Layer2Section) -> list[str]:
+    """The tree's success confidence against the success observed, in tenths."""
+    tree = passes(section.results.get("tree", []))
+    if not tree:
+        return []
+    conf = np.array([confidence_of(r) for r in tree])
+    success = np.array([r.label == "SUCCESS" for r in tree])
+    lines = [
+        "| confidence | n | mean confidence | observed success (%) |",
+        "|---|---|---|---|",
+    ]
+    for b in reliability(conf, success, RELIABILITY_BINS):
+        if b.n == 0:
+            continue
+        k = round(b.observed * b.n)
+        lines.append(f"| {b.lo:.1f}-{b.hi:.1f} | {b.n} | {b.mean_confidence:.3f} | "
+                     f"{percent_cell(k, b.n)} |")  # fmt: skip
+    return lines
+
+
+def differences_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
+    """What this run measured where it differs from the paper (generated from the numbers)."""
+    out = []
+    n = sum(section.collected.values())
+    shares = ", ".join(
+        f"{label} {percent_cell(section.collected[label], n)}"
+        f" (paper {paper.LAYER2_TRAINING_SHARES[label]:g})"
+        for label in LABELS
+    )
+    out.append(f"- **Training passes** ({n} trials, random receiver): {shares}.")
+    out.append(
+        f"- **Tree size**: {section.tree_nodes} nodes, {section.tree_leaves} leaves "
+        f"(paper: {paper.TREE_NODES} nodes); training error "
+        f"{100 * section.training_error:.1f}% (paper: {paper.TREE_TRAINING_ERROR_PCT:g}%); "
+        f"the same procedure on the first 70% of the passes errs on "
+        f"{100 * section.holdout_error:.1f}% of the last 30%. "
+        f"Its tests use the passer's attributes {section.passer_tests} times and the "
+        f"receiver's {section.receiver_tests} times."
+    )
+    if not math.isnan(section.reports_heard):
+        out.append(
+            f"- **Receivers' reports**: the passer had heard {section.reports_heard:.2f} of 3 "
+            "reports, on average, when it chose (tree run)."
+        )
+    still = section.results.get("tree_no_defenders", [])
+    if still:
+        k = sum(r.label == "SUCCESS" for r in still)
+        out.append(
+            f"- **The interception limit**: with the defenders still, "
+            f"{percent_cell(k, len(still))}% of the tree's passes succeed (paper: 86%): the "
+            "receivers' layer-1 interception bounds every row above."
+        )
+    return out
+
+
+def layer2_markdown(sections: Sequence[Layer2Section], plan: Layer2Plan) -> str:
+    """Layer 2's part of the report: per field model, Table 2, the comparison rows, the tree."""
+    out = [
+        "## Layer 2: pass evaluation (§6)",
+        "",
+        f"Plan `{plan.name}`: {plan.collect_trials} training trials (random receiver), "
+        f"{plan.eval_trials} trials per test condition, all conditions on one evaluation seed "
+        "(paired placements). Receivers and defenders intercept with this run's layer-1 net. "
+        "Percentages carry 95% Wilson intervals; paper numbers are the Soccer Server's (1996).",
+        "",
+    ]
+    for s in sections:
+        out += [f"### {s.field_model} (`{s.preset}`), interception net `{s.net}`", ""]
+        out += ["**Table 2**: the tree forced to pass, by its success confidence in the "
+                "chosen receiver.", "", *table2_lines(s), ""]  # fmt: skip
+        out += ["**Choosing the receiver**:", "", *comparison_lines(s, plan), ""]
+        rel = reliability_lines(s)
+        if rel:
+            out += ["**Reliability** of the tree's confidence (tree run):", "", *rel, ""]
+        whole = f"`models/{s.field_model}/pass_tree.txt`"
+        out += [f"**The tree** (first levels, Figure 14's style; the whole tree is in {whole}):"]
+        out += ["", "```", s.tree_text, "```", ""]
+        out += ["**Where we differ, measured**:", "", *differences_lines(s, plan), ""]
+        out += ["| stage | trials | wall (s) | trials/s |", "|---|---|---|---|"]
+        out += [f"| {t.name} | {t.trials} | {t.wall_s:.1f} | {t.rate()} |" for t in s.stages]
+        out += [""]
+    return "\n".join(out).rstrip() + "\n"

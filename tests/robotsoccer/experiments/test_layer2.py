@@ -1,0 +1,102 @@
+"""Layer 2's pipeline on a small plan: collect, train, test, report, resume."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from learning.datasets import Provenance
+from learning.pass_dataset import PassDataset
+from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
+from learning.pass_tree import load_pass_tree
+from robotsoccer.experiments.layer1 import seeds_for
+from robotsoccer.experiments.layer2 import (
+    Layer2Plan,
+    layer2_markdown,
+    run_layer2_model,
+    table2_lines,
+)
+
+PLAN = Layer2Plan("test", collect_trials=60, eval_trials=16, tree_depth_shown=2)
+
+
+@pytest.fixture(scope="module")
+def net(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from learning.interception import InterceptionModel
+
+    rng = np.random.default_rng(0)
+    x = rng.uniform([5, -0.2, 5], [14, 0.2, 16], (40, 3))
+    origin = Provenance("soccer_server", "soccer_server_1996", 0, 0.05, "random", 100)
+    path = tmp_path_factory.mktemp("net") / "net_40.npz"
+    return InterceptionModel(epochs=5).fit(x, 0.3 * x[:, 1]).save(path, origin)
+
+
+@pytest.fixture(scope="module")
+def run(net: Path, tmp_path_factory: pytest.TempPathFactory):
+    out = tmp_path_factory.mktemp("layer2")
+    lines: list[str] = []
+    section = run_layer2_model(
+        "soccer_server", "soccer_server_1996", net, PLAN, out, seeds_for(0), 2, lines.append
+    )
+    return out, section, lines
+
+
+def test_the_pipeline_leaves_a_dataset_a_tree_and_every_condition(run) -> None:
+    out, section, _ = run
+    dataset = PassDataset.load(out / "datasets" / "soccer_server" / "passes.npz")
+    assert len(dataset) == section.dataset_rows > 0
+    assert dataset.provenance["field_model"] == "soccer_server"
+    assert dataset.provenance["interceptor_net"] == "net_40.npz"
+    tree, provenance = load_pass_tree(
+        out / "models" / "soccer_server" / "pass_tree.json", schema=PASS_SCHEMA
+    )
+    assert tree.n_nodes == section.tree_nodes and provenance["rows"] == len(dataset)
+    assert tree.feature_names == ATTRIBUTE_NAMES
+    assert 0.0 <= section.training_error <= 1.0
+    assert set(section.results) == {"tree", "random", "closest", "analytic", "tree_no_defenders"}
+    assert all(len(r) == PLAN.eval_trials for r in section.results.values())
+    # The tree run records its confidence; a random run has none.
+    assert all(0.0 < r.data[1] < 1.0 for r in section.results["tree"] if r.data)
+    assert all(np.isnan(r.data[1]) for r in section.results["random"] if r.data)
+
+
+def test_the_conditions_share_their_placements(run) -> None:
+    out, _, _ = run
+    csvs = out / "results" / "soccer_server" / "layer2"
+    assert {p.stem for p in csvs.glob("*.csv")} >= {"tree", "random", "collect_random"}
+
+
+def test_the_report_has_table_2_beside_the_paper(run) -> None:
+    _, section, _ = run
+    text = layer2_markdown([section], PLAN)
+    assert "## Layer 2" in text and "**Table 2**" in text
+    table = table2_lines(section)
+    assert table[2].startswith("| overall |") and "| 65 |" in table[2]
+    assert any(line.startswith("| .8-.9 |") for line in table)
+    assert "87 nodes" in text and "26%" in text  # the paper's tree beside ours
+    assert "```" in text  # the printed tree
+
+
+def test_a_second_run_resumes_without_running_trials(run, net: Path) -> None:
+    out, first, _ = run
+    again = run_layer2_model(
+        "soccer_server", "soccer_server_1996", net, PLAN, out, seeds_for(0), 1, lambda _: None
+    )
+    assert all(stage.trials == 0 for stage in again.stages)
+    for name, results in first.results.items():
+        assert [r.label for r in results] == [r.label for r in again.results[name]]
+
+
+def test_learn_pass_refuses_a_net_from_another_field(net: Path, tmp_path: Path) -> None:
+    done = subprocess.run(
+        [sys.executable, "-m", "robotsoccer.cli", "learn", "pass", "--field", "robot_physics",
+         "--net", str(net), "--quick", "--out", str(tmp_path / "x")],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert done.returncode == 2
+    assert len(done.stderr.strip().splitlines()) == 1 and "transfer=true" in done.stderr
+    assert not (tmp_path / "x").exists()
