@@ -451,6 +451,7 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
     """``learn pass``: layer 2 on one field model (collect → train → evaluate → report)."""
     from robotsoccer.experiments.layer1 import plan_for, seeds_for, train_main_net
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
+    from robotsoccer.experiments.plots_layer2 import layer2_plots
 
     preset = args.field_preset or default_preset(args.field)
     tag = f"learn-pass-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
@@ -487,7 +488,8 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
         " — quick plan" if args.quick else ""
     )
     report = out / "report.md"
-    report.write_text(f"{title}\n\n{layer2_markdown([section], plan)}")
+    plots = layer2_plots([section], out)
+    report.write_text(f"{title}\n\n{layer2_markdown([section], plan, plots)}")
     (out / "config.json").write_text(
         json.dumps({"plan": plan.to_dict(), "seed": args.seed, "net": str(net)}, indent=2) + "\n"
     )
@@ -529,6 +531,7 @@ def _run_layer1(
 ) -> int:
     from robotsoccer.experiments.layer1 import plan_for, run_layer1, seeds_for
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
+    from robotsoccer.experiments.plots_layer2 import layer2_plots
 
     for model, preset in models:  # a bad preset fails here with one line, not in a worker
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
@@ -568,8 +571,9 @@ def _run_layer1(
                 )
                 for s in sections
             ]
+            plots = layer2_plots(layer2, out)
             with report.open("a") as f:
-                f.write("\n" + layer2_markdown(layer2, plan2))
+                f.write("\n" + layer2_markdown(layer2, plan2, plots))
     except KeyboardInterrupt:
         return _fail(
             EXIT_INTERRUPTED,

@@ -110,6 +110,8 @@ class PassDrill:
         defenders: ``intercept`` (default) or ``still`` (Table 2's "no defenders" test).
         max_time_s: Simulated time after which the trial is a MISS [s].
         transfer: Accept a tree or net trained on another field model or preset.
+        receiver_half: ``use`` (default) the receivers' reported half of the attributes, or
+            ``ignore`` it (unknown), to measure what the reports add.
 
     Raises:
         ValueError: An unknown chooser, interceptor or defenders mode, a missing model file
@@ -128,6 +130,7 @@ class PassDrill:
         defenders: str = "intercept",
         max_time_s: float = 12.0,
         transfer: bool | str = False,
+        receiver_half: str = "use",
     ) -> None:
         self.chooser = choice(Chooser, chooser, "chooser")
         if self.chooser is Chooser.TREE and not model:
@@ -142,6 +145,9 @@ class PassDrill:
             raise ValueError(f"max_time_s must be > 0, got {max_time_s!r}")
         self.max_time_s = float(max_time_s)
         self.transfer = flag("transfer", transfer)
+        if receiver_half not in ("use", "ignore"):
+            raise ValueError(f"unknown receiver_half {receiver_half!r} (known: use, ignore)")
+        self.use_reports = receiver_half == "use"
         self.passer: PasserMind | None = None
         self._judge: _PassJudge | None = None
         self._checked: FieldFacts | None = None
@@ -271,6 +277,7 @@ class PassDrill:
             kick_power=plan.kick_power if aimable else None,
             tree=tree,
             physics=physics,
+            use_reports=self.use_reports,
         )
         self.passer = passer
         assert self._judge is not None

@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from learning.pass_dataset import PassDataset
-from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
+from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
 from learning.pass_tree import LABELS, PassTree, fit_pass_tree, reliability, save_pass_tree
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
@@ -95,6 +95,7 @@ class Layer2Section:
     tree_leaves: int = 0
     training_error: float = math.nan
     holdout_error: float = math.nan
+    passer_only_nodes: int = 0
     tree_text: str = ""
     receiver_tests: int = 0
     passer_tests: int = 0
@@ -109,11 +110,15 @@ def pass_spec(field_model: str, preset: str, seed: int, net: Path) -> TrialSpec:
     return spec.with_options(interceptor="net", net=str(net.resolve()))
 
 
-def layer2_conditions(base: TrialSpec, n: int, tree: Path) -> dict[str, Condition]:
+def layer2_conditions(
+    base: TrialSpec, n: int, tree: Path, passer_only: Path
+) -> dict[str, Condition]:
     """Table 2's conditions and those beyond it, by name (module docstring, step 3)."""
     model = str(tree.resolve())
+    own = str(passer_only.resolve())
     specs = {
         "tree": base.with_options(chooser="tree", model=model),
+        "tree_passer_only": base.with_options(chooser="tree", model=own, receiver_half="ignore"),
         "random": base.with_options(chooser="random"),
         "closest": base.with_options(chooser="closest"),
         "analytic": base.with_options(chooser="analytic"),
@@ -210,6 +215,9 @@ def run_layer2_model(
     start = time.perf_counter()
     tree_path = out / "models" / field_model / "pass_tree.json"
     tree, section.holdout_error = train_tree(dataset, tree_path, seeds.collection)
+    own_path = tree_path.with_name("pass_tree_passer_only.json")
+    own, _ = train_tree(passer_half_only(dataset), own_path, seeds.collection)
+    section.passer_only_nodes = own.n_nodes
     section.tree_nodes, section.tree_leaves = tree.n_nodes, tree.n_leaves
     section.training_error = tree.training_error(dataset.x, dataset.y)
     section.tree_text = tree.render(max_depth=plan.tree_depth_shown)
@@ -222,7 +230,8 @@ def run_layer2_model(
     )
 
     test_base = pass_spec(field_model, preset, seeds.evaluation, net)
-    for name, cond in layer2_conditions(test_base, plan.eval_trials, tree_path).items():
+    conditions = layer2_conditions(test_base, plan.eval_trials, tree_path, own_path)
+    for name, cond in conditions.items():
         results, ran, wall = evaluate(cond, results_dir, workers, progress)
         section.results[name] = results
         section.stages.append(StageTiming(name, ran, wall))
@@ -231,6 +240,13 @@ def run_layer2_model(
     heard = [r.data[3] for r in passes(section.results["tree"])]
     section.reports_heard = float(np.mean(heard)) if heard else math.nan
     return section
+
+
+def passer_half_only(dataset: PassDataset) -> PassDataset:
+    """The dataset with the receivers' half unknown: what a passer that hears no report has."""
+    x = dataset.x.copy()
+    x[:, HALF:] = np.nan
+    return PassDataset(x, dataset.y, {**dataset.provenance, "receiver_half": "ignored"})
 
 
 def _tests_by_side(tree: PassTree) -> tuple[int, int]:
@@ -302,6 +318,7 @@ def comparison_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
             res.get("tree_no_defenders", []),
             paper.PASS_SUCCESS_PCT["tree_no_defenders"],
         ),
+        ("DT on the passer's half only (ours)", res.get("tree_passer_only", []), None),
         ("analytic: can a defender reach the path first? (ours)", res.get("analytic", []), None),
     ]
     lines = [
@@ -358,6 +375,15 @@ def differences_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
             f"- **Receivers' reports**: the passer had heard {section.reports_heard:.2f} of 3 "
             "reports, on average, when it chose (tree run)."
         )
+    both, own = section.results.get("tree", []), section.results.get("tree_passer_only", [])
+    if both and len(both) == len(own):
+        low, mid, high = paired_success_difference(both, own)
+        out.append(
+            f"- **What the receivers' reports add**: the tree on both halves minus a tree "
+            f"({section.passer_only_nodes} nodes) on the passer's half only, trial by trial on "
+            f"the same placements: {100 * mid:+.1f} [{100 * low:+.1f}, {100 * high:+.1f}] "
+            "points of success (95% paired interval)."
+        )
     still = section.results.get("tree_no_defenders", [])
     if still:
         k = sum(r.label == "SUCCESS" for r in still)
@@ -369,8 +395,27 @@ def differences_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
     return out
 
 
-def layer2_markdown(sections: Sequence[Layer2Section], plan: Layer2Plan) -> str:
-    """Layer 2's part of the report: per field model, Table 2, the comparison rows, the tree."""
+def paired_success_difference(
+    a: Sequence[TrialResult], b: Sequence[TrialResult]
+) -> tuple[float, float, float]:
+    """(low, mean, high) of success(a) - success(b) over paired trials, normal 95% interval."""
+    d = np.array(
+        [(x.label == "SUCCESS") - (y.label == "SUCCESS") for x, y in zip(a, b, strict=True)]
+    )
+    mean = float(d.mean())
+    half = 1.959963984540054 * float(d.std(ddof=1)) / math.sqrt(len(d)) if len(d) > 1 else math.inf
+    return mean - half, mean, mean + half
+
+
+def layer2_markdown(
+    sections: Sequence[Layer2Section],
+    plan: Layer2Plan,
+    plots: Sequence[tuple[str, str]] = (),
+) -> str:
+    """Layer 2's part of the report: per field model, Table 2, the comparison rows, the tree.
+
+    `plots` are (caption, path relative to the report) of the images to show first.
+    """
     out = [
         "## Layer 2: pass evaluation (§6)",
         "",
@@ -380,6 +425,8 @@ def layer2_markdown(sections: Sequence[Layer2Section], plan: Layer2Plan) -> str:
         "Percentages carry 95% Wilson intervals; paper numbers are the Soccer Server's (1996).",
         "",
     ]
+    for caption, path in plots:
+        out += [f"![{caption}]({path})", ""]
     for s in sections:
         out += [f"### {s.field_model} (`{s.preset}`), interception net `{s.net}`", ""]
         out += ["**Table 2**: the tree forced to pass, by its success confidence in the "

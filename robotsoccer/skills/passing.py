@@ -217,6 +217,8 @@ class PasserMind:
             launches the ball along :attr:`pass_direction_rad`).
         tree: The decision tree (``tree``).
         physics: The field's numbers (``analytic``).
+        use_reports: False decides on the passer's own half only, the receivers' half unknown
+            (as on a field whose says cannot hold a report; the reports still identify them).
 
     Attributes:
         chosen: The receiver's number once chosen.
@@ -240,8 +242,10 @@ class PasserMind:
         kick_power: float | None,
         tree: PassTree | None = None,
         physics: PassPhysics | None = None,
+        use_reports: bool = True,
     ) -> None:
         self.receivers = tuple(receivers)
+        self.use_reports = use_reports
         self.chooser = choice(Chooser, chooser, "chooser")
         if self.chooser is Chooser.TREE and tree is None:
             raise ValueError("chooser 'tree' needs a tree file (option model=...)")
@@ -335,7 +339,8 @@ class PasserMind:
             target.distance_m / self.unit_m, math.degrees(target.angle_rad), dist, ang, team
         )
         report = self.heard.get(number)
-        theirs = report.half if report is not None else unknown_half()
+        use = report is not None and self.use_reports
+        theirs = report.half if use and report is not None else unknown_half()
         x = pass_attributes(mine, theirs)
         confidence = math.nan
         if self.tree is not None:

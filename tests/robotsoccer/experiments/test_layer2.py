@@ -57,7 +57,12 @@ def test_the_pipeline_leaves_a_dataset_a_tree_and_every_condition(run) -> None:
     assert tree.n_nodes == section.tree_nodes and provenance["rows"] == len(dataset)
     assert tree.feature_names == ATTRIBUTE_NAMES
     assert 0.0 <= section.training_error <= 1.0
-    assert set(section.results) == {"tree", "random", "closest", "analytic", "tree_no_defenders"}
+    assert set(section.results) == {
+        "tree", "tree_passer_only", "random", "closest", "analytic", "tree_no_defenders"
+    }  # fmt: skip
+    # The passer-only tree never reads the receivers' half.
+    own, _ = load_pass_tree(out / "models" / "soccer_server" / "pass_tree_passer_only.json")
+    assert all(own.feature_names[f].startswith("passer") for f in own.feature if f >= 0)
     assert all(len(r) == PLAN.eval_trials for r in section.results.values())
     # The tree run records its confidence; a random run has none.
     assert all(0.0 < r.data[1] < 1.0 for r in section.results["tree"] if r.data)
@@ -79,6 +84,18 @@ def test_the_report_has_table_2_beside_the_paper(run) -> None:
     assert any(line.startswith("| .8-.9 |") for line in table)
     assert "87 nodes" in text and "26%" in text  # the paper's tree beside ours
     assert "```" in text  # the printed tree
+    assert "What the receivers' reports add" in text
+
+
+def test_the_plots_are_drawn(run) -> None:
+    from robotsoccer.experiments.plots_layer2 import layer2_plots
+
+    out, section, _ = run
+    drawn = layer2_plots([section], out)
+    assert [path for _, path in drawn] == ["plots/table2.png", "plots/reliability.png"]
+    for _, path in drawn:
+        assert (out / path).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert layer2_plots([], out) == []
 
 
 def test_a_second_run_resumes_without_running_trials(run, net: Path) -> None:
