@@ -10,7 +10,8 @@ that holds a run is continued with ``--resume`` (only if the same run made it) o
 ``--overwrite``.
 
 ``learn intercept`` and ``reproduce`` run layer 1 of the paper (§5) through
-:mod:`robotsoccer.experiments.layer1`: collect saves, train nets, evaluate every condition and
+:mod:`robotsoccer.experiments.layer1`, ``learn pass`` and ``reproduce`` layer 2 (§6) through
+:mod:`robotsoccer.experiments.layer2`: collect, train, evaluate every condition and
 write one folder with ``report.md``, plots, models and recordings.
 """
 
@@ -248,7 +249,12 @@ def _run_options(p: argparse.ArgumentParser) -> None:
 
 
 def _experiment_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--quick", action="store_true", help="200 trials per condition")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help="quick plan: layer 1 200 trials per condition, 1500 saves; layer 2 1000 training "
+        "and 500 test trials per condition",
+    )
     p.add_argument("--seed", type=_index, default=0, help="experiment seed")
     _run_options(p)
 
@@ -484,9 +490,7 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
             EXIT_INTERRUPTED,
             f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
         )
-    title = f"# Layer 2 (pass evaluation) on {args.field}" + (
-        " — quick plan" if args.quick else ""
-    )
+    title = f"# Layer 2 (pass evaluation) on {args.field}" + (" — quick plan" if args.quick else "")
     report = out / "report.md"
     plots = layer2_plots([section], out)
     report.write_text(f"{title}\n\n{layer2_markdown([section], plan, plots)}")

@@ -42,14 +42,16 @@ import functools
 import math
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
+from learning.pass_boost import load_pass_boost
 from learning.pass_features import PASS_SCHEMA
-from learning.pass_tree import PassTree, load_pass_tree
+from learning.pass_tree import load_pass_tree
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept import Launch, LaunchPlan, Scaling, _cached_plan
 from robotsoccer.options import choice, flag
@@ -57,6 +59,7 @@ from robotsoccer.skills.intercept import Behaviour, DefenderMind, check_behaviou
 from robotsoccer.skills.passing import (
     Chooser,
     PasserMind,
+    PassEvaluator,
     PassPhysics,
     ReceiverMind,
     WaitingInterceptorMind,
@@ -82,28 +85,33 @@ STOPPED_SPEED_PER_LENGTH = 1e-3
 
 
 @functools.lru_cache(maxsize=8)
-def _tree_file(key: tuple[str, int, int]) -> tuple[PassTree, dict[str, object]]:
-    """A tree file, read once per process (keyed by path, modification time and size)."""
+def _model_file(key: tuple[str, int, int], boost: bool) -> tuple[PassEvaluator, dict[str, Any]]:
+    """A tree or boosted-trees file, read once per process (keyed by path, mtime and size)."""
+    if boost:
+        return load_pass_boost(key[0], schema=PASS_SCHEMA)
     return load_pass_tree(key[0], schema=PASS_SCHEMA)
 
 
-def load_tree(path: str | os.PathLike[str]) -> tuple[PassTree, dict[str, object]]:
-    """The tree in `path` and its provenance (cached per process while the file is unchanged)."""
+def load_evaluator(
+    path: str | os.PathLike[str], *, boost: bool = False
+) -> tuple[PassEvaluator, dict[str, Any]]:
+    """The evaluator in `path` and its provenance (cached per process while it is unchanged)."""
     resolved = Path(path).resolve()
     try:
         stat = resolved.stat()
         key = (str(resolved), stat.st_mtime_ns, stat.st_size)
     except OSError:
         key = (str(resolved), -1, -1)
-    return _tree_file(key)
+    return _model_file(key, boost)
 
 
 class PassDrill:
     """The paper's Figure 9–13 trial (module docstring).
 
     Args:
-        chooser: How the passer picks (``random``, ``tree``, ``closest``, ``analytic``).
-        model: The tree file (JSON) for ``tree``.
+        chooser: How the passer picks (``random``, ``tree``, ``boost``, ``closest``,
+            ``analytic``).
+        model: The tree or boosted-trees file (JSON) for ``tree`` / ``boost``.
         interceptor: Layer 1's behaviour for receivers and defenders (``net``, ``straight``,
             ...).
         net: The interception net (or lookup) file for ``net``/``lookup``.
@@ -133,8 +141,10 @@ class PassDrill:
         receiver_half: str = "use",
     ) -> None:
         self.chooser = choice(Chooser, chooser, "chooser")
-        if self.chooser is Chooser.TREE and not model:
-            raise ValueError("chooser 'tree' needs a tree file (option model=...)")
+        if self.chooser in (Chooser.TREE, Chooser.BOOST) and not model:
+            raise ValueError(
+                f"chooser {self.chooser.value!r} needs a model file (option model=...)"
+            )
         self.model = model
         self.interceptor = check_behaviour(interceptor, net)
         self.net = net
@@ -180,7 +190,7 @@ class PassDrill:
             return
         here = (facts.model, Path(facts.preset).stem)
         if self.model:
-            _, provenance = load_tree(self.model)
+            _, provenance = load_evaluator(self.model, boost=self.chooser is Chooser.BOOST)
             origin = (str(provenance.get("field_model")), Path(str(provenance.get("preset"))).stem)
             if origin != here:
                 raise ValueError(
@@ -259,7 +269,8 @@ class PassDrill:
         facts = arena.facts
         plan = self.plan(facts)
         policy_rng = rngs["policy"]
-        tree = load_tree(self.model)[0] if self.model else None
+        boost = self.chooser is Chooser.BOOST
+        tree = load_evaluator(self.model, boost=boost)[0] if self.model else None
         physics = PassPhysics(
             facts.ball,
             plan.launch_speed_mps,

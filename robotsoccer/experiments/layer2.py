@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from learning.pass_boost import PassBoost, fit_pass_boost, save_pass_boost
 from learning.pass_dataset import PassDataset
 from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
 from learning.pass_tree import LABELS, PassTree, fit_pass_tree, reliability, save_pass_tree
@@ -111,13 +112,14 @@ def pass_spec(field_model: str, preset: str, seed: int, net: Path) -> TrialSpec:
 
 
 def layer2_conditions(
-    base: TrialSpec, n: int, tree: Path, passer_only: Path
+    base: TrialSpec, n: int, tree: Path, passer_only: Path, boost: Path
 ) -> dict[str, Condition]:
     """Table 2's conditions and those beyond it, by name (module docstring, step 3)."""
     model = str(tree.resolve())
     own = str(passer_only.resolve())
     specs = {
         "tree": base.with_options(chooser="tree", model=model),
+        "boost": base.with_options(chooser="boost", model=str(boost.resolve())),
         "tree_passer_only": base.with_options(chooser="tree", model=own, receiver_half="ignore"),
         "random": base.with_options(chooser="random"),
         "closest": base.with_options(chooser="closest"),
@@ -218,6 +220,8 @@ def run_layer2_model(
     own_path = tree_path.with_name("pass_tree_passer_only.json")
     own, _ = train_tree(passer_half_only(dataset), own_path, seeds.collection)
     section.passer_only_nodes = own.n_nodes
+    boost_path = tree_path.with_name("pass_boost.json")
+    train_boost(dataset, boost_path, seeds.collection)
     section.tree_nodes, section.tree_leaves = tree.n_nodes, tree.n_leaves
     section.training_error = tree.training_error(dataset.x, dataset.y)
     section.tree_text = tree.render(max_depth=plan.tree_depth_shown)
@@ -230,7 +234,7 @@ def run_layer2_model(
     )
 
     test_base = pass_spec(field_model, preset, seeds.evaluation, net)
-    conditions = layer2_conditions(test_base, plan.eval_trials, tree_path, own_path)
+    conditions = layer2_conditions(test_base, plan.eval_trials, tree_path, own_path, boost_path)
     for name, cond in conditions.items():
         results, ran, wall = evaluate(cond, results_dir, workers, progress)
         section.results[name] = results
@@ -240,6 +244,13 @@ def run_layer2_model(
     heard = [r.data[3] for r in passes(section.results["tree"])]
     section.reports_heard = float(np.mean(heard)) if heard else math.nan
     return section
+
+
+def train_boost(dataset: PassDataset, path: Path, seed: int) -> PassBoost:
+    """Fit gradient-boosted trees on the dataset and save them with its provenance."""
+    model = fit_pass_boost(dataset.x, dataset.y, ATTRIBUTE_NAMES, schema=PASS_SCHEMA, seed=seed)
+    save_pass_boost(model, path, {**dataset.provenance, "rows": len(dataset)})
+    return model
 
 
 def passer_half_only(dataset: PassDataset) -> PassDataset:
@@ -319,6 +330,7 @@ def comparison_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
             paper.PASS_SUCCESS_PCT["tree_no_defenders"],
         ),
         ("DT on the passer's half only (ours)", res.get("tree_passer_only", []), None),
+        ("gradient-boosted trees (ours)", res.get("boost", []), None),
         ("analytic: can a defender reach the path first? (ours)", res.get("analytic", []), None),
     ]
     lines = [
@@ -331,9 +343,9 @@ def comparison_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
     return lines
 
 
-def reliability_lines(section: Layer2Section) -> list[str]:
-    """The tree's success confidence against the success observed, in tenths."""
-    tree = passes(section.results.get("tree", []))
+def reliability_lines(section: Layer2Section, run: str = "tree") -> list[str]:
+    """A run's success confidence against the success observed, in tenths."""
+    tree = passes(section.results.get(run, []))
     if not tree:
         return []
     conf = np.array([confidence_of(r) for r in tree])
@@ -432,9 +444,10 @@ def layer2_markdown(
         out += ["**Table 2**: the tree forced to pass, by its success confidence in the "
                 "chosen receiver.", "", *table2_lines(s), ""]  # fmt: skip
         out += ["**Choosing the receiver**:", "", *comparison_lines(s, plan), ""]
-        rel = reliability_lines(s)
-        if rel:
-            out += ["**Reliability** of the tree's confidence (tree run):", "", *rel, ""]
+        for run, what in (("tree", "the tree's confidence"), ("boost", "the boosted trees")):
+            rel = reliability_lines(s, run)
+            if rel:
+                out += [f"**Reliability** of {what} ({run} run):", "", *rel, ""]
         whole = f"`models/{s.field_model}/pass_tree.txt`"
         out += [f"**The tree** (first levels, Figure 14's style; the whole tree is in {whole}):"]
         out += ["", "```", s.tree_text, "```", ""]

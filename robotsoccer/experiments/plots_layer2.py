@@ -40,7 +40,8 @@ def plot_table2(sections: Sequence[Layer2Section], path: Path) -> Path | None:
         groups = [tree] + [in_bin(tree, lo, hi) for lo, hi in TABLE_2_BINS]
         x = np.arange(len(keys))
         for k, label in enumerate(LABELS):
-            ours, err = [], [[], []]
+            ours: list[float] = []
+            err: list[list[float]] = [[], []]
             for results in groups:
                 n = len(results)
                 hits = Counter(r.label for r in results)[label]
@@ -75,8 +76,10 @@ def plot_reliability(sections: Sequence[Layer2Section], path: Path) -> Path | No
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(5.5, 5.0))
     ax.plot([0, 1], [0, 1], color="black", linestyle=":", label="perfect calibration")
-    for colour, section in zip(_MODEL_COLOURS, shown, strict=False):
-        tree = [r for r in section.results["tree"] if r.data]
+    lines = [(s, run) for s in shown for run in ("tree", "boost") if s.results.get(run)]
+    for k, (section, run) in enumerate(lines):
+        colour = _MODEL_COLOURS[k % len(_MODEL_COLOURS)]
+        tree = [r for r in section.results[run] if r.data]
         conf = np.array([confidence_of(r) for r in tree])
         success = np.array([r.label == "SUCCESS" for r in tree])
         bins = [b for b in reliability(conf, success, RELIABILITY_BINS) if b.n]
@@ -87,12 +90,12 @@ def plot_reliability(sections: Sequence[Layer2Section], path: Path) -> Path | No
             [b.observed_high - b.observed for b in bins],
         ]
         ax.errorbar(xs, ys, yerr=err, marker="o", color=colour, capsize=3,
-                    label=f"{section.field_model} (n={len(tree)})")  # fmt: skip
+                    label=f"{section.field_model}, {run} (n={len(tree)})")  # fmt: skip
     ax.set_xlim(0, 1)
     ax.set_ylim(0, 1)
-    ax.set_xlabel("the tree's success confidence (mean in each tenth)")
+    ax.set_xlabel("predicted success (mean in each tenth)")
     ax.set_ylabel("observed success")
-    ax.set_title("Reliability of the tree's confidence (tree run)")
+    ax.set_title("Reliability: the tree and the boosted trees")
     ax.legend(fontsize=8, loc="upper left")
     ax.grid(alpha=0.3)
     return _save(plt, fig, path)
@@ -103,7 +106,7 @@ def layer2_plots(sections: Sequence[Layer2Section], out: Path) -> list[tuple[str
     drawn = []
     for caption, draw, name in (
         ("Table 2: the tree's passes by success confidence", plot_table2, "table2.png"),
-        ("Reliability of the tree's success confidence", plot_reliability, "reliability.png"),
+        ("Reliability of the predicted success", plot_reliability, "reliability.png"),
     ):
         if draw(sections, out / "plots" / name) is not None:
             drawn.append((caption, f"plots/{name}"))

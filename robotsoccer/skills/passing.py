@@ -33,6 +33,8 @@ Choosers (the rows of Table 2 and those beyond it):
 * ``tree``: the decision tree's highest success confidence (forced to pass, as in Table 2),
   the Laplace-corrected share of successes at the leaf
   (:meth:`learning.pass_tree.PassTree.success_confidence`);
+* ``boost``: gradient-boosted trees' highest probability of success (beyond the paper;
+  :class:`learning.pass_boost.PassBoost`);
 * ``closest``: the nearest seen receiver (the paper's heuristic, 64%);
 * ``analytic``: "can any defender reach the ball's path before the receiver?". This is
   predicted with the field's own ball law and the players' top speed: the receiver with the
@@ -48,6 +50,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import StrEnum
+from typing import Protocol
 
 import numpy as np
 
@@ -61,7 +64,6 @@ from learning.pass_features import (
     receiver_attributes,
     unknown_half,
 )
-from learning.pass_tree import PassTree
 from robotsoccer.options import choice
 from robotsoccer.skills.intercept import DefenderMind
 
@@ -75,11 +77,20 @@ FACING_TOLERANCE_RAD = math.radians(10.0)
 """A player "faces the ball" when the ball is within this of its heading."""
 
 
+class PassEvaluator(Protocol):
+    """A learned pass evaluator: the tree or the boosted trees."""
+
+    def success_confidence(self, x: np.ndarray) -> float:
+        """The confidence that a pass with attributes `x` (174,) succeeds."""
+        ...
+
+
 class Chooser(StrEnum):
     """How the passer picks its receiver (module docstring)."""
 
     RANDOM = "random"
     TREE = "tree"
+    BOOST = "boost"
     CLOSEST = "closest"
     ANALYTIC = "analytic"
 
@@ -215,7 +226,7 @@ class PasserMind:
         dt_s: One tick [s].
         kick_power: The pass's kick power; None: the field has no aimable kick (the coach
             launches the ball along :attr:`pass_direction_rad`).
-        tree: The decision tree (``tree``).
+        tree: The learned evaluator (``tree``, ``boost``).
         physics: The field's numbers (``analytic``).
         use_reports: False decides on the passer's own half only, the receivers' half unknown
             (as on a field whose says cannot hold a report; the reports still identify them).
@@ -240,15 +251,17 @@ class PasserMind:
         sensor_period_s: float,
         dt_s: float,
         kick_power: float | None,
-        tree: PassTree | None = None,
+        tree: PassEvaluator | None = None,
         physics: PassPhysics | None = None,
         use_reports: bool = True,
     ) -> None:
         self.receivers = tuple(receivers)
         self.use_reports = use_reports
         self.chooser = choice(Chooser, chooser, "chooser")
-        if self.chooser is Chooser.TREE and tree is None:
-            raise ValueError("chooser 'tree' needs a tree file (option model=...)")
+        if self.chooser in (Chooser.TREE, Chooser.BOOST) and tree is None:
+            raise ValueError(
+                f"chooser {self.chooser.value!r} needs a model file (option model=...)"
+            )
         if self.chooser is Chooser.ANALYTIC and physics is None:
             raise ValueError("chooser 'analytic' needs the field's pass physics")
         self.rng = rng
@@ -353,7 +366,7 @@ class PasserMind:
             return 0
         if self.chooser is Chooser.RANDOM:
             return int(self.rng.integers(len(options)))
-        if self.chooser is Chooser.TREE:
+        if self.chooser in (Chooser.TREE, Chooser.BOOST):
             return int(np.argmax([o[2] for o in options]))
         if self.chooser is Chooser.CLOSEST:
             return int(np.argmin([o[3][0] for o in options]))  # "passer receiver distance"

@@ -164,7 +164,7 @@ def test_the_tree_chooser_records_its_confidence(tmp_path: Path) -> None:
 def test_bad_options_are_refused() -> None:
     with pytest.raises(ValueError, match="chooser"):
         make_drill("pass", {"chooser": "oracle"})
-    with pytest.raises(ValueError, match="tree file"):
+    with pytest.raises(ValueError, match="model file"):
         make_drill("pass", {"chooser": "tree"})
     with pytest.raises(ValueError, match="defenders"):
         make_drill("pass", {"defenders": "asleep"})

@@ -58,7 +58,7 @@ def test_the_pipeline_leaves_a_dataset_a_tree_and_every_condition(run) -> None:
     assert tree.feature_names == ATTRIBUTE_NAMES
     assert 0.0 <= section.training_error <= 1.0
     assert set(section.results) == {
-        "tree", "tree_passer_only", "random", "closest", "analytic", "tree_no_defenders"
+        "tree", "boost", "tree_passer_only", "random", "closest", "analytic", "tree_no_defenders"
     }  # fmt: skip
     # The passer-only tree never reads the receivers' half.
     own, _ = load_pass_tree(out / "models" / "soccer_server" / "pass_tree_passer_only.json")
