@@ -150,10 +150,7 @@ class RobotArena:
             return []
         percepts: list[Percept] = []
         for frame in frames:
-            percepts.extend(host.percepts(frame, tick))
-        listeners = self._listeners
-        if listeners is not None:
-            percepts = [p for p in percepts if p.player in listeners]
+            percepts.extend(host.percepts(frame, tick, self._listeners))
         if self.trace:
             self._events += [ArenaEvent(tick, "see", percept_text(p), p.player) for p in percepts]
         return percepts

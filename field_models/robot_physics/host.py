@@ -155,8 +155,14 @@ class CentralHost:
         """The host's newest detected pose of `ref`, or None if never detected."""
         return self._poses[self._index[ref]]
 
-    def percepts(self, frame: Frame, tick: int) -> list[Percept]:
-        """One egocentric percept per robot, in `refs` order, from a delivered frame."""
+    def percepts(
+        self, frame: Frame, tick: int, only: frozenset[PlayerRef] | None = None
+    ) -> list[Percept]:
+        """One egocentric percept per robot, in `refs` order, from a delivered frame.
+
+        With `only`, percepts are built for those robots alone (the rest would go unread); the
+        others' heard messages are dropped as if their percepts had been delivered.
+        """
         poses = self._poses
         index = self._index
         for det in frame.robots:
@@ -167,6 +173,9 @@ class CentralHost:
         observed = frame.capture_tick
         out: list[Percept] = []
         for i, ref in enumerate(self.refs):
+            if only is not None and ref not in only:
+                self._heard[i].clear()
+                continue
             heard = tuple(self._heard[i])
             self._heard[i].clear()
             pose = poses[i]
