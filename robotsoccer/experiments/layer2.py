@@ -398,11 +398,14 @@ def differences_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
         )
     still = section.results.get("tree_no_defenders", [])
     if still:
-        k = sum(r.label == "SUCCESS" for r in still)
+        counts = Counter(r.label for r in still)
         out.append(
-            f"- **The interception limit**: with the defenders still, "
-            f"{percent_cell(k, len(still))}% of the tree's passes succeed (paper: 86%): the "
-            "receivers' layer-1 interception bounds every row above."
+            f"- **Defenders still** (percentages): the tree's passes succeed in "
+            f"{percent_cell(counts['SUCCESS'], len(still))} (paper, with no defenders: "
+            f"{paper.PASS_SUCCESS_PCT['tree_no_defenders']:g}). Ours stay on the field, so a "
+            f"pass played into one still counts as a FAILURE "
+            f"({percent_cell(counts['FAILURE'], len(still))}), and a ball that stops short of "
+            f"everyone is a MISS ({percent_cell(counts['MISS'], len(still))})."
         )
     return out
 

@@ -308,7 +308,8 @@ def test_tiny_pipeline_writes_report_plots_models_and_results(tmp_path) -> None:
 def test_cli_learn_and_reproduce_refuse_bad_input_in_one_line() -> None:
     for args in (
         ("learn", "intercept", "--field", "mars"),
-        ("learn", "pass", "--field", "soccer_server"),
+        ("learn", "tackle", "--field", "soccer_server"),
+        ("learn", "pass", "--field", "soccer_server", "--net", "no-such-net.npz"),
         ("reproduce", "--workers", "0"),
         ("learn", "intercept", "--field", "soccer_server", "--field-preset", "nope"),
     ):
