@@ -1,0 +1,21 @@
+"""Standard learning interfaces over the drills: Gymnasium environments.
+
+* :mod:`robotsoccer.envs.intercept` — the paper's layer-1 decision (TA from BD, BA, previous BD)
+  as ``robotsoccer/Intercept-v0`` on any field model.
+
+Importing this package registers the ids with Gymnasium.
+"""
+
+from __future__ import annotations
+
+from gymnasium.envs.registration import register, registry
+
+from robotsoccer.envs.intercept import InterceptEnv
+
+INTERCEPT_ID = "robotsoccer/Intercept-v0"
+"""The versioned Gymnasium id of :class:`~robotsoccer.envs.intercept.InterceptEnv`."""
+
+if INTERCEPT_ID not in registry:
+    register(id=INTERCEPT_ID, entry_point="robotsoccer.envs.intercept:InterceptEnv")
+
+__all__ = ["INTERCEPT_ID", "InterceptEnv"]

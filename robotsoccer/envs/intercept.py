@@ -1,0 +1,221 @@
+"""The paper's layer-1 learning problem as a Gymnasium environment, on any field model.
+
+The paper's defender makes one learned decision per trial (§5): when the ball first comes within
+14 units, it picks TA, the angle to turn after facing the ball, from (BD, BA, previous BD). This
+environment poses exactly that decision:
+
+* :meth:`InterceptEnv.reset` places a trial of the interception drill
+  (:class:`~robotsoccer.drills.intercept.InterceptDrill`) and runs it, with the shooter's kick
+  and the defender watching the ball, up to the defender's first percept within the trigger
+  distance. It returns that percept's (BD [units], BA [rad], previous BD [units]). A trial in
+  which the ball never comes that close is skipped: nothing was decided in it.
+* :meth:`InterceptEnv.step` takes TA [rad]. The defender turns by BA + TA and dashes at every
+  percept, exactly as the drill's defender does, until the coach's verdict. The episode then
+  ends: reward 1 for a SAVE, 0 for a GOAL or a MISS, and the label and reason in ``info``.
+
+An episode is one trial: a contextual bandit, the setting the paper's net was trained in (it
+regressed the TA of saves made with random TA). Distances are in drill units (field length /
+105, :attr:`~field_models.arena.FieldFacts.unit_m`), so a policy means the same on every field.
+
+**Seeds** follow Gymnasium: ``reset(seed=s)`` starts the episode stream of experiment seed `s`.
+Episode k of that stream is trial k of the drill with seed `s`: the placement and noise that
+``robotsoccer demo --drill intercept --seed s`` gives trial k. With TA = 0 an episode ends as
+that trial does with ``behaviour=straight`` (a test checks it). ``reset()`` without a seed
+continues the stream, and the first reset without one draws a seed from the OS.
+
+Registered as ``robotsoccer/Intercept-v0``
+(``gymnasium.make("robotsoccer/Intercept-v0", field_model="robot_physics")``).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+from field_models.arena import Arena
+from field_models.protocol import Mind, Percept, PlayerRef
+from field_models.registry import FIELD_MODELS, field_facts
+from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.intercept import DEFENDER, TRIGGER_UNITS, InterceptDrill
+from robotsoccer.runs.runner import TrialSpec, build_trial
+from robotsoccer.skills.intercept import TA_CLIP_RAD
+
+MAX_DISTANCE_UNITS = 60.0
+"""The observation's distance bound (the drill places the ball at most 30 units away)."""
+SKIP_LIMIT = 1000
+"""reset() gives up after this many trials in a row without a decision."""
+
+
+class _AgentTurn:
+    """The defender's TA rule: whatever the agent chose for this episode (the policy protocol)."""
+
+    def __init__(self) -> None:
+        self.ta_rad = 0.0
+
+    def __call__(self, *_: object) -> float:
+        return self.ta_rad
+
+
+class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
+    """The defender's TA decision of the paper's interception drill (module docstring).
+
+    Args:
+        field_model: A registered field model (default: the first registered).
+        preset: Its preset; None: the model's default.
+        ball_noise: Ball-motion noise; None: the preset's.
+        drill_options: Further options of the interception drill (``ta_mode`` excepted: the
+            agent's TA is held, as in the paper).
+    """
+
+    metadata: dict[str, Any] = {"render_modes": []}  # noqa: RUF012 (Gymnasium's class attribute)
+
+    def __init__(
+        self,
+        field_model: str = FIELD_MODELS[0],
+        preset: str | None = None,
+        ball_noise: float | None = None,
+        drill_options: dict[str, Any] | None = None,
+    ) -> None:
+        options = {**(drill_options or {}), "behaviour": "analytic", "ta_mode": "hold"}
+        spec = TrialSpec(drill="intercept", field_model=field_model, preset=preset)
+        self.spec_ = spec.with_options(**options).with_field(ball_noise=ball_noise)
+        self.observation_space = spaces.Box(
+            low=np.array([0.0, -math.pi, 0.0], dtype=np.float32),
+            high=np.array([MAX_DISTANCE_UNITS, math.pi, MAX_DISTANCE_UNITS], dtype=np.float32),
+        )
+        self.action_space = spaces.Box(
+            low=np.array([-TA_CLIP_RAD], dtype=np.float32),
+            high=np.array([TA_CLIP_RAD], dtype=np.float32),
+        )
+        self.unit_m = field_facts(field_model, self.spec_.preset_name).unit_m
+        self._experiment_seed: int | None = None
+        self._next_trial = 0
+        self._episode: _Episode | None = None
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Run the next trial up to the defender's decision; its (BD, BA, previous BD)."""
+        super().reset(seed=seed)
+        if seed is not None:
+            self._experiment_seed, self._next_trial = int(seed), 0
+        elif self._experiment_seed is None:
+            self._experiment_seed = int(self.np_random.integers(2**31 - 1))
+        for _ in range(SKIP_LIMIT):
+            trial = self._next_trial
+            self._next_trial += 1
+            episode = _Episode(dataclasses.replace(self.spec_, seed=self._experiment_seed), trial)
+            if episode.run_to_decision():
+                self._episode = episode
+                info = {"trial": trial, "seed": self._experiment_seed}
+                return episode.observation(), info
+        raise RuntimeError(f"no decision in {SKIP_LIMIT} trials in a row: check the drill options")
+
+    def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        """Turn by BA + TA and dash to the verdict; reward 1 for a SAVE."""
+        episode = self._episode
+        if episode is None:
+            raise RuntimeError("step() before reset(), or after the episode ended")
+        ta = float(np.clip(np.asarray(action, dtype=np.float64).reshape(-1)[0], -TA_CLIP_RAD,
+                           TA_CLIP_RAD))  # fmt: skip
+        verdict = episode.finish(ta)
+        self._episode = None
+        reward = 1.0 if verdict.label == "SAVE" else 0.0
+        info = {"label": verdict.label, "reason": verdict.reason, "ticks": episode.arena.tick}
+        return episode.observation(), reward, True, False, info
+
+
+class _Episode:
+    """One trial of the drill, stepped by hand around the defender's decision."""
+
+    def __init__(self, spec: TrialSpec, trial: int) -> None:
+        rngs, drill, arena = build_trial(spec, trial)
+        assert isinstance(drill, InterceptDrill)
+        drill.setup(arena, rngs)
+        self.minds: dict[PlayerRef, Mind] = drill.minds(arena, rngs)
+        self.drill, self.arena = drill, arena
+        mind = drill.defender_mind
+        assert mind is not None
+        self.turn = _AgentTurn()
+        mind.policy = self.turn
+        self.defender = mind
+        self.unit_m = arena.facts.unit_m
+        self.trigger_m = TRIGGER_UNITS * self.unit_m
+        self.max_ticks = round(drill.max_time_s / arena.facts.dt_s)
+        self.thinking = dict(self.minds)
+        arena.listen(frozenset(self.thinking))
+        self.pending: list[Percept] = []
+        self.tick_open = False
+        self.previous_bd: float | None = None
+        self.features = np.zeros(3, dtype=np.float32)
+        self.verdict: Verdict | None = None
+
+    def run_to_decision(self) -> bool:
+        """Step until the defender's first percept within the trigger; False: the trial ended."""
+        return self._run(stop_at_decision=True)
+
+    def finish(self, ta_rad: float) -> Verdict:
+        """Let the defender act with TA = `ta_rad` and run the trial to its verdict."""
+        self.turn.ta_rad = ta_rad
+        self._run(stop_at_decision=False)
+        assert self.verdict is not None
+        return self.verdict
+
+    def observation(self) -> np.ndarray:
+        """(BD [units], BA [rad], previous BD [units]) at the decision."""
+        return self.features.copy()
+
+    def _run(self, *, stop_at_decision: bool) -> bool:
+        """The runner's loop (:func:`robotsoccer.runs.runner.play`), able to pause.
+
+        Step, let each mind act on its percept, then ask the coach; with `stop_at_decision`,
+        return True just before the defender's decision.
+        """
+        arena, drill = self.arena, self.drill
+        while self.verdict is None:
+            if not self.tick_open:
+                if arena.tick >= self.max_ticks:
+                    self.verdict = drill.timeout(arena)
+                    break
+                self.pending = list(arena.step())
+                self.tick_open = True
+            while self.pending:
+                percept = self.pending[0]
+                if stop_at_decision and self._is_decision(percept):
+                    return True
+                self.pending.pop(0)
+                self._act(arena, percept)
+            self.tick_open = False
+            self.verdict = drill.judge(arena)
+        return False
+
+    def _is_decision(self, percept: Percept) -> bool:
+        """The defender's first percept with the ball within the trigger distance."""
+        if percept.player != DEFENDER or self.defender.triggered or percept.ball is None:
+            return False
+        bd = percept.ball.distance_m
+        previous = bd if self.previous_bd is None else self.previous_bd
+        if bd > self.trigger_m:
+            return False
+        u = self.unit_m
+        self.features = np.array(
+            [min(bd / u, MAX_DISTANCE_UNITS), percept.ball.angle_rad,
+             min(previous / u, MAX_DISTANCE_UNITS)], dtype=np.float32,
+        )  # fmt: skip
+        return True
+
+    def _act(self, arena: Arena, percept: Percept) -> None:
+        mind = self.thinking.get(percept.player)
+        if percept.player == DEFENDER and percept.ball is not None:
+            self.previous_bd = percept.ball.distance_m
+        if mind is None:
+            return
+        arena.submit(percept.player, mind.act(percept))
+        if getattr(mind, "done", False):  # as the runner: a mind that is done stops listening
+            del self.thinking[percept.player]
+            arena.listen(frozenset(self.thinking))
