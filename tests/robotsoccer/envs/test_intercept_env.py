@@ -13,6 +13,7 @@ from robotsoccer.runs.runner import TrialSpec, run_trial
 FIELDS = ["soccer_server", "robot_physics"]
 
 
+@pytest.mark.filterwarnings("ignore:.*symmetric and normalized")  # TA is in radians, on purpose
 @pytest.mark.parametrize("field_model", FIELDS)
 def test_gymnasiums_checker_passes(field_model: str) -> None:
     env = gym.make(INTERCEPT_ID, field_model=field_model).unwrapped
