@@ -171,6 +171,9 @@ class CentralHost:
                 poses[i] = (det.x, det.y, det.heading)
         ball = frame.ball
         observed = frame.capture_tick
+        # Each detection once, with its robot's row, so the loop below compares rows (ints), not
+        # identities (dataclass equality is the costliest part of building a percept).
+        seen = [(index.get(d.ref, -1), d.x, d.y, d.ref.team, d.ref.number) for d in frame.robots]
         out: list[Percept] = []
         for i, ref in enumerate(self.refs):
             if only is not None and ref not in only:
@@ -190,13 +193,13 @@ class CentralHost:
                 seen_ball = SeenBall(math.hypot(dx, dy), wrap_angle(math.atan2(dy, dx) - heading))
             players = tuple(
                 SeenPlayer(
-                    math.hypot(det.x - px, det.y - py),
-                    wrap_angle(math.atan2(det.y - py, det.x - px) - heading),
-                    det.ref.team,
-                    det.ref.number,
+                    math.hypot(x - px, y - py),
+                    wrap_angle(math.atan2(y - py, x - px) - heading),
+                    team,
+                    number,
                 )
-                for det in frame.robots
-                if det.ref != ref
+                for row, x, y, team, number in seen
+                if row != i
             )
             goals = tuple(
                 SeenLandmark(
