@@ -199,7 +199,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--net",
         type=Path,
         default=None,
-        help="layer 1's interception net (.npz) for receivers and defenders (trained here)",
+        help="layer 1's interception net (.npz) for receivers and defenders (default: train it)",
     )
     _experiment_options(passing)
 
