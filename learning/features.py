@@ -18,9 +18,12 @@ store plain metres; the scale belongs to the model that reads them.
 
 from __future__ import annotations
 
+import json
 import math
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -49,6 +52,31 @@ class ModelFileError(ValueError):
     Defined here, beside the schema, so the torch-free lookup table can raise it without
     importing the torch-based net.
     """
+
+
+def read_model_json(path: str | os.PathLike[str], what: str, *, finite: bool = True) -> Any:
+    """The parsed JSON document of a model file (lookup table, pass tree, boosted trees).
+
+    With `finite` (the default) NaN and Infinity are refused: ``json.loads`` accepts them, but
+    in most model files a non-finite threshold, count or table entry is corruption, not data.
+    (Boosted trees keep scikit-learn's infinite thresholds, so they read with ``finite=False``.)
+
+    Raises:
+        ModelFileError: The file is missing or not readable JSON; the message names the file
+            and `what` it should have been.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+        return json.loads(text, parse_constant=_reject_constant) if finite else json.loads(text)
+    except FileNotFoundError:
+        raise ModelFileError(f"{path}: file not found") from None
+    except (OSError, ValueError) as exc:  # JSON and Unicode decode errors are ValueErrors
+        raise ModelFileError(f"{path}: not a readable {what} file ({exc})") from None
+
+
+def _reject_constant(token: str) -> Any:
+    raise ValueError(f"non-finite number {token}")
 
 
 @dataclass(frozen=True, slots=True)

@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from learning.features import SCHEMA_VERSION, TARGET_NAME, ModelFileError
+from learning.features import SCHEMA_VERSION, TARGET_NAME, ModelFileError, read_model_json
 
 LOOKUP_FORMAT = "robotsoccer/interception-lookup"
 """Format tag stored in every lookup-table file."""
@@ -171,12 +171,7 @@ class LookupTable:
                 feature schema, or its grid is malformed.
         """
         path = Path(path)
-        try:
-            doc = json.loads(path.read_text(encoding="utf-8"), parse_constant=_reject_constant)
-        except FileNotFoundError:
-            raise ModelFileError(f"{path}: file not found") from None
-        except (OSError, ValueError) as exc:  # JSON and Unicode decode errors are ValueErrors
-            raise ModelFileError(f"{path}: not a readable lookup-table file ({exc})") from None
+        doc = read_model_json(path, "lookup-table")
         try:
             return cls._from_doc(doc)
         except (ModelFileError, ValueError) as exc:
@@ -224,8 +219,3 @@ def _is_number(value: object) -> bool:
 
 def _is_note(value: object) -> bool:
     return isinstance(value, str | int | float) and not isinstance(value, bool)
-
-
-def _reject_constant(token: str) -> Any:
-    # json.loads accepts NaN/Infinity; a table entry of NaN would poison the control loop.
-    raise ValueError(f"non-finite number {token}")

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from learning.features import ModelFileError
+from learning.features import ModelFileError, read_model_json
 from learning.pass_tree import LABELS
 
 BOOST_FORMAT = "robotsoccer/pass-boost"
@@ -254,10 +254,7 @@ def load_pass_boost(
             of another attribute schema.
     """
     path = Path(path)
-    try:
-        data = json.loads(path.read_text())
-    except (OSError, ValueError) as err:
-        raise ModelFileError(f"{path}: not a readable pass-boost file ({err})") from None
+    data = read_model_json(path, "pass-boost", finite=False)
     model = PassBoost.from_json(data, str(path))
     if schema is not None and model.schema != schema:
         raise ModelFileError(f"{path}: attributes of schema {model.schema!r}, expected {schema!r}")

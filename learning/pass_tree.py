@@ -63,7 +63,7 @@ from typing import Any, NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from learning.features import ModelFileError
+from learning.features import ModelFileError, read_model_json
 
 LABELS: tuple[str, ...] = ("SUCCESS", "FAILURE", "MISS")
 """The pass outcomes (paper §6), in the column order of every probability and count array."""
@@ -847,12 +847,7 @@ def load_pass_tree(
             format version, inconsistent, or for another schema; the message names the file.
     """
     path = Path(path)
-    try:
-        doc = json.loads(path.read_text(encoding="utf-8"), parse_constant=_reject_constant)
-    except FileNotFoundError:
-        raise ModelFileError(f"{path}: file not found") from None
-    except (OSError, ValueError) as exc:  # JSON and Unicode decode errors are ValueErrors
-        raise ModelFileError(f"{path}: not a readable pass-tree file ({exc})") from None
+    doc = read_model_json(path, "pass-tree")
     tree = PassTree.from_json(doc, source=str(path))
     notes = doc.get("provenance")
     if not isinstance(notes, dict) or not all(_is_note(v) for v in notes.values()):
@@ -1012,8 +1007,3 @@ def _is_note(value: object) -> bool:
     if isinstance(value, float):
         return math.isfinite(value)
     return isinstance(value, str | int) and not isinstance(value, bool)
-
-
-def _reject_constant(token: str) -> Any:
-    # json.loads accepts NaN/Infinity; a NaN threshold or count is corruption, not data.
-    raise ValueError(f"non-finite number {token}")
