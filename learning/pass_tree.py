@@ -58,7 +58,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -79,9 +79,6 @@ Note = str | int | float
 
 Setting = str | int | float | bool
 """Value types of :attr:`PassTree.settings` (JSON scalars)."""
-
-_Z_95 = 1.959963984540054
-"""Normal quantile of a two-sided 95% interval."""
 
 # C4.5 release 8, stats.c: the normal deviate for a confidence factor CF is interpolated linearly
 # in this table (Val[], Dev[]), not computed exactly; at CF = 0.25 it gives 0.6925, not 0.6745.
@@ -855,92 +852,6 @@ def load_pass_tree(
     if schema is not None and tree.schema != schema:
         raise ModelFileError(f"{path}: trained on attribute schema {tree.schema!r}, not {schema!r}")
     return tree, notes
-
-
-# ----------------------------------------------------------------------------- calibration
-
-
-class ReliabilityBin(NamedTuple):
-    """One confidence bin of :func:`reliability` (paper Table 2's columns)."""
-
-    lo: float
-    """Lower edge of the bin (included)."""
-    hi: float
-    """Upper edge (excluded, except for the last bin)."""
-    n: int
-    """Cases whose confidence falls in the bin."""
-    mean_confidence: float
-    """Their mean predicted confidence (NaN when n = 0)."""
-    observed: float
-    """Share of them that succeeded (NaN when n = 0)."""
-    observed_low: float
-    """Lower end of the Wilson 95% interval of the observed share (0 when n = 0)."""
-    observed_high: float
-    """Upper end of that interval (1 when n = 0)."""
-
-
-def reliability(
-    confidence: npt.ArrayLike,
-    success: npt.ArrayLike,
-    bins: Sequence[float] | npt.NDArray[np.float64],
-) -> list[ReliabilityBin]:
-    """Observed success share against predicted confidence, bin by bin (paper Table 2).
-
-    Args:
-        confidence: (n,) predicted probability of success of each pass.
-        success: (n,) whether each pass succeeded (bool or 0/1).
-        bins: Bin edges, strictly increasing; every confidence must lie within the outer edges.
-            Bins are ``[lo, hi)``, the last one ``[lo, hi]``.
-
-    Returns:
-        One :class:`ReliabilityBin` per bin, with the Wilson 95% interval of the observed share.
-
-    Raises:
-        ValueError: Mismatched lengths, NaN confidences, non-0/1 outcomes, bad edges, or a
-            confidence outside the bins.
-    """
-    conf = np.asarray(confidence, dtype=np.float64).reshape(-1)
-    outcome = np.asarray(success).reshape(-1)
-    edges = np.asarray(bins, dtype=np.float64)
-    if conf.shape != outcome.shape:
-        raise ValueError(f"{conf.shape[0]} confidences but {outcome.shape[0]} outcomes")
-    if not np.isin(outcome, (0, 1)).all():
-        raise ValueError("outcomes must be booleans or 0/1")
-    if edges.ndim != 1 or edges.shape[0] < 2 or not np.isfinite(edges).all():
-        raise ValueError("need at least two finite bin edges")
-    if np.any(np.diff(edges) <= 0.0):
-        raise ValueError("bin edges must be strictly increasing")
-    if np.isnan(conf).any() or np.any(conf < edges[0]) or np.any(conf > edges[-1]):
-        raise ValueError(f"confidences must lie in [{edges[0]}, {edges[-1]}] (and not be NaN)")
-    which = np.clip(np.searchsorted(edges, conf, side="right") - 1, 0, edges.shape[0] - 2)
-    won = outcome.astype(bool)
-    result = []
-    for b in range(edges.shape[0] - 1):
-        mask = which == b
-        n = int(mask.sum())
-        successes = int(won[mask].sum())
-        mean = float(conf[mask].mean()) if n else math.nan
-        observed = successes / n if n else math.nan
-        low, high = wilson_interval(successes, n)
-        result.append(
-            ReliabilityBin(float(edges[b]), float(edges[b + 1]), n, mean, observed, low, high)
-        )
-    return result
-
-
-def wilson_interval(successes: int, trials: int, z: float = _Z_95) -> tuple[float, float]:
-    """Wilson score interval of a binomial share ((0, 1) for no trials).
-
-    >>> [round(v, 4) for v in wilson_interval(53, 100)]
-    [0.4329, 0.6249]
-    """
-    if trials <= 0:
-        return 0.0, 1.0
-    p = successes / trials
-    denom = 1.0 + z * z / trials
-    centre = (p + z * z / (2 * trials)) / denom
-    half = z * math.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials)) / denom
-    return max(0.0, centre - half), min(1.0, centre + half)
 
 
 # ----------------------------------------------------------------------------- helpers

@@ -39,11 +39,12 @@ import numpy as np
 from learning.pass_boost import PassBoost, fit_pass_boost, save_pass_boost
 from learning.pass_dataset import PassDataset
 from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
-from learning.pass_tree import LABELS, PassTree, fit_pass_tree, reliability, save_pass_tree
+from learning.pass_tree import LABELS, PassTree, fit_pass_tree, save_pass_tree
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
 from robotsoccer.experiments.report import StageTiming, percent_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
+from robotsoccer.stats import reliability
 
 DRILL = "pass"
 HEAD = 4

@@ -16,11 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
-from learning.pass_tree import LABELS, reliability
+from learning.pass_tree import LABELS
 from robotsoccer.experiments.layer2 import RELIABILITY_BINS, Layer2Section, confidence_of, in_bin
 from robotsoccer.experiments.paper import TABLE_2, TABLE_2_BINS
 from robotsoccer.experiments.plots import _pyplot, _save
-from robotsoccer.stats import wilson_interval
+from robotsoccer.stats import reliability, wilson_interval
 
 _LABEL_COLOURS = {"SUCCESS": "tab:green", "FAILURE": "tab:red", "MISS": "tab:gray"}
 _MODEL_COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:purple")
