@@ -55,7 +55,13 @@ from learning.pass_tree import load_pass_tree
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept import Launch, LaunchPlan, Scaling, _cached_plan
 from robotsoccer.options import choice, flag
-from robotsoccer.skills.intercept import Behaviour, DefenderMind, check_behaviour, make_policy
+from robotsoccer.skills.intercept import (
+    Behaviour,
+    DefenderMind,
+    check_behaviour,
+    file_key,
+    make_policy,
+)
 from robotsoccer.skills.passing import (
     Chooser,
     PasserMind,
@@ -96,13 +102,7 @@ def load_evaluator(
     path: str | os.PathLike[str], *, boost: bool = False
 ) -> tuple[PassEvaluator, dict[str, Any]]:
     """The evaluator in `path` and its provenance (cached per process while it is unchanged)."""
-    resolved = Path(path).resolve()
-    try:
-        stat = resolved.stat()
-        key = (str(resolved), stat.st_mtime_ns, stat.st_size)
-    except OSError:
-        key = (str(resolved), -1, -1)
-    return _model_file(key, boost)
+    return _model_file(file_key(path), boost)
 
 
 class PassDrill:
@@ -372,6 +372,7 @@ class _PassJudge:
         self.launched_tick: int | None = None
         self.end_tick = 0
         self.pass_length_m: float | None = None
+        self.chosen: PlayerRef | None = None  # the receiver, from the pass on
         self.order = [p for p in PLAYERS if p != PASSER]
         # A player cannot reach the ball sooner than their gap allows at this closing speed
         # (both at full speed, with room for a push), so the judge looks at each player only
@@ -396,7 +397,7 @@ class _PassJudge:
         if arena.score() != self.score:  # a referee that restarts at once hides the crossing
             return Verdict("MISS", "the ball went into a goal")
         x, y, _, vx, vy = arena.ball_state()
-        chosen = PlayerRef(LEFT, passer.chosen) if passer.chosen is not None else None
+        chosen = self.chosen
         next_look = self.next_look
         for ref in self.order:
             if tick < next_look[ref]:
@@ -418,7 +419,8 @@ class _PassJudge:
         self.launched_tick = arena.tick
         p = arena.player_state(PASSER)
         if passer.chosen is not None:
-            r = arena.player_state(PlayerRef(LEFT, passer.chosen))
+            self.chosen = PlayerRef(LEFT, passer.chosen)
+            r = arena.player_state(self.chosen)
             self.pass_length_m = math.hypot(r.x - p.x, r.y - p.y)
         if self.coach_launch:
             ball = arena.ball_state()

@@ -234,7 +234,7 @@ _NETS: dict[tuple[str, int, int], TurnAngleFunction] = {}
 _TABLES: dict[tuple[str, int, int], LookupTable] = {}
 
 
-def _file_key(path: str | os.PathLike[str]) -> tuple[str, int, int]:
+def file_key(path: str | os.PathLike[str]) -> tuple[str, int, int]:
     """Cache key of a model file: its resolved path, modification time and size."""
     resolved = Path(path).resolve()
     try:
@@ -252,7 +252,7 @@ def load_net_function(path: str | os.PathLike[str]) -> TurnAngleFunction:
     Raises:
         learning.features.ModelFileError: The file is missing, corrupt or not a net.
     """
-    key = _file_key(path)
+    key = file_key(path)
     function = _NETS.get(key)
     if function is None:
         function = _NETS[key] = load_turn_function(path)
@@ -265,7 +265,7 @@ def load_lookup_table(path: str | os.PathLike[str]) -> LookupTable:
     Raises:
         learning.features.ModelFileError: The file is missing, corrupt or not a table.
     """
-    key = _file_key(path)
+    key = file_key(path)
     table = _TABLES.get(key)
     if table is None:
         table = _TABLES[key] = LookupTable.load(path)
@@ -281,7 +281,7 @@ def model_origin(path: str | os.PathLike[str]) -> tuple[str, str] | None:
     Raises:
         learning.features.ModelFileError: The file is unreadable.
     """
-    key = _file_key(path)
+    key = file_key(path)
     if key not in _ORIGINS:
         if Path(path).suffix == ".npz":
             provenance = read_net_file(path).provenance
