@@ -37,12 +37,11 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from field_models.arena import Arena
 from field_models.protocol import Mind, Percept, PlayerRef
 from field_models.registry import FIELD_MODELS, field_facts
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept import DEFENDER, TRIGGER_UNITS, InterceptDrill
-from robotsoccer.runs.runner import TrialSpec, build_trial
+from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.intercept import TA_CLIP_RAD
 
 MAX_DISTANCE_UNITS = 60.0
@@ -131,76 +130,52 @@ class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
 
 
 class _Episode:
-    """One trial of the drill, stepped by hand around the defender's decision."""
+    """One trial of the drill, run by the runner's loop with a pause at the defender's decision."""
 
     def __init__(self, spec: TrialSpec, trial: int) -> None:
         rngs, drill, arena = build_trial(spec, trial)
         assert isinstance(drill, InterceptDrill)
         drill.setup(arena, rngs)
-        self.minds: dict[PlayerRef, Mind] = drill.minds(arena, rngs)
-        self.drill, self.arena = drill, arena
+        minds: dict[PlayerRef, Mind] = drill.minds(arena, rngs)
         mind = drill.defender_mind
         assert mind is not None
         self.turn = _AgentTurn()
         mind.policy = self.turn
         self.defender = mind
+        self.arena = arena
+        self.loop = TrialLoop(arena, drill, minds)
         self.unit_m = arena.facts.unit_m
         self.trigger_m = TRIGGER_UNITS * self.unit_m
-        self.max_ticks = round(drill.max_time_s / arena.facts.dt_s)
-        self.thinking = dict(self.minds)
-        arena.listen(frozenset(self.thinking))
-        self.pending: list[Percept] = []
-        self.tick_open = False
         self.previous_bd: float | None = None
         self.features = np.zeros(3, dtype=np.float32)
-        self.verdict: Verdict | None = None
 
     def run_to_decision(self) -> bool:
         """Step until the defender's first percept within the trigger; False: the trial ended."""
-        return self._run(stop_at_decision=True)
+        return self.loop.run(pause=self._is_decision) is None
 
     def finish(self, ta_rad: float) -> Verdict:
         """Let the defender act with TA = `ta_rad` and run the trial to its verdict."""
         self.turn.ta_rad = ta_rad
-        self._run(stop_at_decision=False)
-        assert self.verdict is not None
-        return self.verdict
+        verdict = self.loop.run()
+        assert verdict is not None
+        return verdict
 
     def observation(self) -> np.ndarray:
         """(BD [units], BA [rad], previous BD [units]) at the decision."""
         return self.features.copy()
 
-    def _run(self, *, stop_at_decision: bool) -> bool:
-        """The runner's loop (:func:`robotsoccer.runs.runner.play`), able to pause.
-
-        Step, let each mind act on its percept, then ask the coach; with `stop_at_decision`,
-        return True just before the defender's decision.
-        """
-        arena, drill = self.arena, self.drill
-        while self.verdict is None:
-            if not self.tick_open:
-                if arena.tick >= self.max_ticks:
-                    self.verdict = drill.timeout(arena)
-                    break
-                self.pending = list(arena.step())
-                self.tick_open = True
-            while self.pending:
-                percept = self.pending[0]
-                if stop_at_decision and self._is_decision(percept):
-                    return True
-                self.pending.pop(0)
-                self._act(arena, percept)
-            self.tick_open = False
-            self.verdict = drill.judge(arena)
-        return False
-
     def _is_decision(self, percept: Percept) -> bool:
-        """The defender's first percept with the ball within the trigger distance."""
-        if percept.player != DEFENDER or self.defender.triggered or percept.ball is None:
+        """The defender's first percept with the ball within the trigger distance.
+
+        Asked of every percept before the decision, so it also keeps the previous sighting's BD
+        (the defender's own rule, :class:`~robotsoccer.skills.intercept.DefenderMind`).
+        """
+        if percept.player != DEFENDER or percept.ball is None:
             return False
         bd = percept.ball.distance_m
         previous = bd if self.previous_bd is None else self.previous_bd
         if bd > self.trigger_m:
+            self.previous_bd = bd
             return False
         u = self.unit_m
         self.features = np.array(
@@ -208,14 +183,3 @@ class _Episode:
              min(previous / u, MAX_DISTANCE_UNITS)], dtype=np.float32,
         )  # fmt: skip
         return True
-
-    def _act(self, arena: Arena, percept: Percept) -> None:
-        mind = self.thinking.get(percept.player)
-        if percept.player == DEFENDER and percept.ball is not None:
-            self.previous_bd = percept.ball.distance_m
-        if mind is None:
-            return
-        arena.submit(percept.player, mind.act(percept))
-        if getattr(mind, "done", False):  # as the runner: a mind that is done stops listening
-            del self.thinking[percept.player]
-            arena.listen(frozenset(self.thinking))

@@ -141,28 +141,69 @@ def play(
     decisions: DecisionLog | None = None,
 ) -> Verdict:
     """Step `arena` until `drill` gives a verdict or its time runs out."""
-    max_ticks = round(drill.max_time_s / arena.facts.dt_s)
-    thinking = dict(minds)
-    arena.listen(frozenset(thinking))
-    while arena.tick < max_ticks:
-        percepts = arena.step()
-        for percept in percepts:
-            mind = thinking.get(percept.player)
-            if mind is None:
-                continue
-            actions = mind.act(percept)
-            if decisions is not None:
-                decisions(percept, actions)
-            arena.submit(percept.player, actions)
-            if getattr(mind, "done", False):
-                del thinking[percept.player]
-                arena.listen(frozenset(thinking))
-        if observer is not None:
-            observer(arena, percepts)
-        verdict = drill.judge(arena)
-        if verdict is not None:
-            return verdict
-    return drill.timeout(arena)
+    verdict = TrialLoop(arena, drill, minds, observer, decisions).run()
+    assert verdict is not None
+    return verdict
+
+
+class TrialLoop:
+    """One trial's loop: step the arena, let each mind act on its percept, ask the coach.
+
+    :func:`play` runs it to the end. :meth:`run` can also stop just before a percept, so an
+    environment (:mod:`robotsoccer.envs`) can take a decision from outside and then go on.
+    """
+
+    def __init__(
+        self,
+        arena: Arena,
+        drill: Drill,
+        minds: dict[PlayerRef, Mind],
+        observer: Observer | None = None,
+        decisions: DecisionLog | None = None,
+    ) -> None:
+        self.arena, self.drill = arena, drill
+        self.observer, self.decisions = observer, decisions
+        self.max_ticks = round(drill.max_time_s / arena.facts.dt_s)
+        self.thinking = dict(minds)
+        arena.listen(frozenset(self.thinking))
+        self.verdict: Verdict | None = None
+        self._percepts: list[Percept] = []
+        self._next = 0  # the next percept of this tick to hand to its mind
+        self._tick_open = False
+
+    def run(self, pause: Callable[[Percept], bool] | None = None) -> Verdict | None:
+        """Run to the verdict; with `pause`, return None before the first percept it accepts.
+
+        That percept is handed to its mind by the next call.
+        """
+        arena, drill, thinking = self.arena, self.drill, self.thinking
+        while self.verdict is None:
+            if not self._tick_open:
+                if arena.tick >= self.max_ticks:
+                    self.verdict = drill.timeout(arena)
+                    break
+                self._percepts, self._next, self._tick_open = arena.step(), 0, True
+            percepts = self._percepts
+            while self._next < len(percepts):
+                percept = percepts[self._next]
+                if pause is not None and pause(percept):
+                    return None
+                self._next += 1
+                mind = thinking.get(percept.player)
+                if mind is None:
+                    continue
+                actions = mind.act(percept)
+                if self.decisions is not None:
+                    self.decisions(percept, actions)
+                arena.submit(percept.player, actions)
+                if getattr(mind, "done", False):
+                    del thinking[percept.player]
+                    arena.listen(frozenset(thinking))
+            self._tick_open = False
+            if self.observer is not None:
+                self.observer(arena, percepts)
+            self.verdict = drill.judge(arena)
+        return self.verdict
 
 
 def field_options(spec: TrialSpec, drill: Drill) -> FieldOptions:
