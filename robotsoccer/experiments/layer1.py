@@ -420,10 +420,14 @@ def build_lookup(net_path: Path, dataset: InterceptionDataset, path: Path) -> Pa
     return table.save(path)
 
 
-def net_for_figures(plan: Layer1Plan, nets: dict[int, Path]) -> int:
-    """The net size used for Figure 8, Table 1, 4° wide and latency: the paper's 750 or fewer."""
-    fitting = [n for n in nets if n <= plan.net_examples]
-    return max(fitting) if fitting else min(nets)
+def net_for_figures(plan: Layer1Plan, nets: Iterable[int]) -> int:
+    """The net size used for Figure 8, Table 1, 4° wide and latency: the paper's 750 or fewer.
+
+    `nets` are the trained sizes (a mapping from size to file will do).
+    """
+    sizes = list(nets)
+    fitting = [n for n in sizes if n <= plan.net_examples]
+    return max(fitting) if fitting else min(sizes)
 
 
 # ----------------------------------------------------------------------------- the experiments
@@ -589,19 +593,11 @@ def run_model(
     )
     section.notes = scaling_notes(field_model, preset)
 
-    log(f"[{field_model}] collect: random TA until {plan.collect_saves} saves")
-    dataset, collected, timing = collect(
-        base_spec(field_model, preset, seeds.collection, plan.ta_mode),
-        plan,
-        results_dir,
-        out / "datasets" / field_model / "train.npz",
-        workers,
-        created_by,
-        progress,
+    dataset, collected, timing = collect_into(
+        field_model, preset, plan, out, seeds, workers, log, created_by, progress
     )
     section.checks["random"] = collected
     section.stages.append(timing)
-    log(f"  {collected.saves} saves of {collected.n} trials ({timing.wall_s:.1f} s)")
 
     log(f"[{field_model}] train")
     start = time.perf_counter()
@@ -885,18 +881,34 @@ def train_main_net(
     The same collection and training as :func:`run_model` (same seeds, same files), so a later
     ``reproduce`` into the same folder resumes them. Returns the net's file.
     """
-    log(f"[{field_model}] layer 1 for layer 2: random TA until {plan.collect_saves} saves")
+    dataset, _, _ = collect_into(
+        field_model, preset, plan, out, seeds, workers, log, "robotsoccer learn pass", progress
+    )
+    main = net_for_figures(plan, training_sizes(plan, len(dataset)))
+    return train_series(dataset, [main], plan.epochs, out / "models" / field_model, log)[main]
+
+
+def collect_into(
+    field_model: str,
+    preset: str,
+    plan: Layer1Plan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    created_by: str,
+    progress: bool = False,
+) -> tuple[InterceptionDataset, Counts, StageTiming]:
+    """:func:`collect` for one field model into the run folder's usual places, logged."""
+    log(f"[{field_model}] collect: random TA until {plan.collect_saves} saves")
     dataset, collected, timing = collect(
         base_spec(field_model, preset, seeds.collection, plan.ta_mode),
         plan,
         out / "results" / field_model,
         out / "datasets" / field_model / "train.npz",
         workers,
-        "robotsoccer learn pass",
+        created_by,
         progress,
     )
     log(f"  {collected.saves} saves of {collected.n} trials ({timing.wall_s:.1f} s)")
-    sizes = training_sizes(plan, len(dataset))
-    fitting = [n for n in sizes if n <= plan.net_examples] or [min(sizes)]
-    main = max(fitting)
-    return train_series(dataset, [main], plan.epochs, out / "models" / field_model, log)[main]
+    return dataset, collected, timing
