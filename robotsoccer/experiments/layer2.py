@@ -42,7 +42,7 @@ from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
 from learning.pass_tree import LABELS, PassTree, fit_pass_tree, save_pass_tree
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
-from robotsoccer.experiments.report import StageTiming, percent_cell
+from robotsoccer.experiments.report import StageTiming, paired_difference, percent_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import reliability
 
@@ -389,12 +389,13 @@ def differences_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
             "reports, on average, when it chose (tree run)."
         )
     both, own = section.results.get("tree", []), section.results.get("tree_passer_only", [])
-    if both and len(both) == len(own):
-        low, mid, high = paired_success_difference(both, own)
+    gain = paired_difference(both, own, "SUCCESS")
+    if gain is not None:
+        mid, low, high, _ = gain
         out.append(
             f"- **What the receivers' reports add**: the tree on both halves minus a tree "
             f"({section.passer_only_nodes} nodes) on the passer's half only, trial by trial on "
-            f"the same placements: {100 * mid:+.1f} [{100 * low:+.1f}, {100 * high:+.1f}] "
+            f"the same placements: {mid:+.1f} [{low:+.1f}, {high:+.1f}] "
             "points of success (95% paired interval)."
         )
     still = section.results.get("tree_no_defenders", [])
@@ -409,18 +410,6 @@ def differences_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
             f"everyone is a MISS ({percent_cell(counts['MISS'], len(still))})."
         )
     return out
-
-
-def paired_success_difference(
-    a: Sequence[TrialResult], b: Sequence[TrialResult]
-) -> tuple[float, float, float]:
-    """(low, mean, high) of success(a) - success(b) over paired trials, normal 95% interval."""
-    d = np.array(
-        [(x.label == "SUCCESS") - (y.label == "SUCCESS") for x, y in zip(a, b, strict=True)]
-    )
-    mean = float(d.mean())
-    half = 1.959963984540054 * float(d.std(ddof=1)) / math.sqrt(len(d)) if len(d) > 1 else math.inf
-    return mean - half, mean, mean + half
 
 
 def layer2_markdown(
