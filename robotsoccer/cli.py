@@ -543,10 +543,7 @@ def _run_layer1(
     plan = plan_for(args.quick)
     workers = args.workers or default_workers()
     start = time.perf_counter()
-
-    def log(line: str) -> None:
-        print(f"[{time.perf_counter() - start:6.1f} s] {line}", flush=True)
-
+    log = _clock_log()
     try:
         report, sections = run_layer1(
             models,

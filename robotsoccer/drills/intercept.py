@@ -292,7 +292,7 @@ def _matched_launch(
 
 
 @functools.lru_cache(maxsize=64)
-def _cached_plan(
+def cached_launch_plan(
     facts: FieldFacts, kick_power: float, launch: Launch, scaling: Scaling
 ) -> LaunchPlan:
     """The plan of a field, once per process (facts are frozen, hence hashable)."""
@@ -376,7 +376,7 @@ class InterceptDrill:
 
     def plan_for(self, facts: FieldFacts) -> LaunchPlan:
         """This drill's launch plan on a field (cached per field)."""
-        return _cached_plan(facts, self.kick_power, self.launch, self.scaling)
+        return cached_launch_plan(facts, self.kick_power, self.launch, self.scaling)
 
     def _check_origin(self, facts: FieldFacts) -> None:
         """Refuse a model file trained on another field (unless this is a transfer run)."""

@@ -53,7 +53,7 @@ from learning.pass_boost import load_pass_boost
 from learning.pass_features import PASS_SCHEMA
 from learning.pass_tree import load_pass_tree
 from robotsoccer.drills.base import Verdict
-from robotsoccer.drills.intercept import Launch, LaunchPlan, Scaling, _cached_plan
+from robotsoccer.drills.intercept import Launch, LaunchPlan, Scaling, cached_launch_plan
 from robotsoccer.options import choice, flag
 from robotsoccer.skills.intercept import (
     Behaviour,
@@ -168,7 +168,7 @@ class PassDrill:
 
     def plan(self, facts: FieldFacts) -> LaunchPlan:
         """Layer 1's plan on this field: launch, trigger distance, turn tolerance."""
-        return _cached_plan(facts, 100.0, Launch.AUTO, Scaling.AUTO)
+        return cached_launch_plan(facts, 100.0, Launch.AUTO, Scaling.AUTO)
 
     def field_settings(self, facts: FieldFacts) -> dict[str, float]:
         """Layer 1's ball-noise period where it differs from the field's own."""
