@@ -1,60 +1,276 @@
-"""One seed per trial, many named generators (DESIGN.md §4).
+"""One seed per trial, many named streams of random numbers (DESIGN.md §4).
 
-An experiment seed spawns one :class:`numpy.random.SeedSequence` per trial. Each trial splits its
-sequence into independent, *named* generators, so adding a new consumer never shifts the numbers
-an existing one draws. Nothing in the project uses module-level `random` or `np.random.*`.
+Every trial of an experiment owns independent, *named* streams (:data:`STREAMS`), so adding a
+new consumer never shifts the numbers an existing one draws. Nothing in the project uses
+module-level `random` or `np.random.*`.
 
-The names are declared in :data:`STREAMS`; asking for any other name is an error, so a misspelt
-stream fails loudly instead of silently drawing from a fresh, unrelated generator.
+**Counter-based streams.** A stream is a 64-bit key and a position; its draw number ``n`` is
+``mix(key + (n + 1)·γ)``, the SplitMix64 generator (Steele, Lea & Flood, OOPSLA 2014; the one
+behind Java's ``SplittableRandom``), whose output passes BigCrush. Because draw ``n`` is a
+function of the key and ``n`` alone, the streams of thousands of trials can be drawn as one
+array operation (:class:`StreamBatch`) and give exactly the numbers each trial's own
+:class:`Stream` gives: the batched Soccer Server drill (:mod:`robotsoccer.drills.intercept_batch`)
+relies on it. The key hashes (experiment seed, trial index, CRC of the stream name) with the
+same mixer, so it is stable across processes, machines and runs; two streams could only
+overlap if their keys differed by a multiple of γ below 2^64 / (draws per stream), which for
+random 64-bit keys and streams far shorter than 2^40 draws is negligible.
+
+Setting up a trial's streams costs a few microseconds (a numpy ``SeedSequence`` and
+``Generator`` per stream cost about 45 µs each), which matters when a drill trial lasts 200 µs.
+
+A misspelt stream name is an error, not a fresh unrelated stream.
 """
 
 from __future__ import annotations
 
+import math
 import zlib
+from collections.abc import Sequence
+from typing import TypeAlias, overload
 
 import numpy as np
+import numpy.typing as npt
 
 STREAMS = ("placement", "movement", "camera", "link", "sensing", "policy")
 """The named random streams every trial owns: the coach's placement, the field's movement noise,
 the robots' camera and link, the Soccer Server's sensing, the minds' own choices."""
 
+_GAMMA = np.uint64(0x9E3779B97F4A7C15)
+_M1 = np.uint64(0xBF58476D1CE4E5B9)
+_M2 = np.uint64(0x94D049BB133111EB)
+_S30, _S27, _S31, _S11 = np.uint64(30), np.uint64(27), np.uint64(31), np.uint64(11)
+_TO_UNIT = 1.0 / 9007199254740992.0  # 2**-53: the top 53 bits as a double in [0, 1)
+_MASK64 = (1 << 64) - 1
 
-def trial_sequence(experiment_seed: int, trial_index: int) -> np.random.SeedSequence:
-    """The seed sequence of trial `trial_index` of an experiment: independent of worker count."""
-    return np.random.SeedSequence(entropy=experiment_seed, spawn_key=(trial_index,))
+
+def _mix(z: npt.NDArray[np.uint64]) -> npt.NDArray[np.uint64]:
+    """SplitMix64's output function (Stafford's variant 13), wrapping uint64 arithmetic."""
+    z = (z ^ (z >> _S30)) * _M1
+    z = (z ^ (z >> _S27)) * _M2
+    return z ^ (z >> _S31)
 
 
-def named_generator(seq: np.random.SeedSequence, name: str) -> np.random.Generator:
-    """A generator for stream `name` of a trial; the same name always gives the same stream.
+def _mix_int(value: int) -> int:
+    """:func:`_mix` of one Python int (mod 2**64), in plain integers (no array overhead)."""
+    z = value & _MASK64
+    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & _MASK64
+    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & _MASK64
+    return z ^ (z >> 31)
 
-    The stream is keyed by a CRC of its name (not Python's salted `hash`), so it is stable
-    across processes and runs.
+
+def _combine(h: int, value: int) -> int:
+    """Hash `value` into the running key `h`."""
+    return _mix_int(h ^ _mix_int(value + 0x9E3779B97F4A7C15))
+
+
+def stream_key(experiment_seed: int, trial_index: int, name: str) -> int:
+    """The 64-bit key of stream `name` of trial `trial_index` of an experiment.
+
+    Raises:
+        KeyError: `name` is not a declared stream.
     """
-    key = (*seq.spawn_key, zlib.crc32(name.encode()))
-    return np.random.default_rng(np.random.SeedSequence(entropy=seq.entropy, spawn_key=key))
+    if name not in STREAMS:
+        raise KeyError(f"unknown random stream {name!r} (declared: {', '.join(STREAMS)})")
+    h = _combine(_mix_int(0x5EED), experiment_seed)
+    h = _combine(h, trial_index)
+    return _combine(h, zlib.crc32(name.encode()))
+
+
+def stream_keys(
+    experiment_seed: int, trial_indices: Sequence[int] | npt.NDArray[np.int64], name: str
+) -> npt.NDArray[np.uint64]:
+    """The keys of stream `name` of many trials (as :func:`stream_key`, one array pass)."""
+    if name not in STREAMS:
+        raise KeyError(f"unknown random stream {name!r} (declared: {', '.join(STREAMS)})")
+    seed_h = _combine(_mix_int(0x5EED), experiment_seed)
+    trials = np.asarray(trial_indices, dtype=np.int64).astype(np.uint64)
+    with np.errstate(over="ignore"):
+        h = _mix(np.uint64(seed_h) ^ _mix(trials + _GAMMA))
+        tag = np.uint64(_mix_int(zlib.crc32(name.encode()) + 0x9E3779B97F4A7C15))
+        return _mix(h ^ tag)
+
+
+def uniforms(
+    keys: npt.NDArray[np.uint64], positions: npt.NDArray[np.int64] | int, count: int
+) -> npt.NDArray[np.float64]:
+    """Draws ``positions .. positions + count - 1`` of the streams `keys`: shape (K, count).
+
+    Doubles in [0, 1) with 53 random bits, the draws a :class:`Stream` gives.
+    """
+    pos = np.asarray(positions, dtype=np.int64).reshape(-1, 1).astype(np.uint64)
+    steps = np.arange(1, count + 1, dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        z = keys.reshape(-1, 1) + (pos + steps) * _GAMMA
+        return (_mix(z) >> _S11).astype(np.float64) * _TO_UNIT
+
+
+class Stream:
+    """One named random stream of one trial: a key and a position (module docstring).
+
+    It has the part of numpy's ``Generator`` interface the project uses: :meth:`random`,
+    :meth:`uniform`, :meth:`standard_normal`, :meth:`normal`, :meth:`integers`.
+    """
+
+    __slots__ = ("_key", "key", "position")
+
+    def __init__(self, key: int) -> None:
+        self.key = key & _MASK64
+        self._key = np.array([self.key], dtype=np.uint64)
+        self.position = 0
+
+    def _take(self, count: int) -> npt.NDArray[np.float64]:
+        drawn = uniforms(self._key, self.position, count)[0]
+        self.position += count
+        return drawn
+
+    def _one(self) -> float:
+        """The next draw, in plain integers (what :func:`uniforms` gives, bit for bit)."""
+        self.position += 1
+        return (_mix_int(self.key + self.position * 0x9E3779B97F4A7C15) >> 11) * _TO_UNIT
+
+    @overload
+    def random(self, size: None = None, *, out: None = None) -> float: ...
+
+    @overload
+    def random(
+        self, size: int | tuple[int, ...], *, out: None = None
+    ) -> npt.NDArray[np.float64]: ...
+
+    @overload
+    def random(
+        self, size: None = None, *, out: npt.NDArray[np.float64]
+    ) -> npt.NDArray[np.float64]: ...
+
+    def random(
+        self,
+        size: int | tuple[int, ...] | None = None,
+        *,
+        out: npt.NDArray[np.float64] | None = None,
+    ) -> float | npt.NDArray[np.float64]:
+        """Uniform doubles in [0, 1): one float, an array of `size`, or filling `out`."""
+        if out is not None:
+            out[...] = self._take(out.size).reshape(out.shape)
+            return out
+        if size is None:
+            return self._one()
+        shape = (size,) if isinstance(size, int) else tuple(size)
+        return self._take(math.prod(shape)).reshape(shape)
+
+    @overload
+    def uniform(self, low: float = 0.0, high: float = 1.0, size: None = None) -> float: ...
+
+    @overload
+    def uniform(
+        self, low: float, high: float, size: int | tuple[int, ...]
+    ) -> npt.NDArray[np.float64]: ...
+
+    def uniform(
+        self, low: float = 0.0, high: float = 1.0, size: int | tuple[int, ...] | None = None
+    ) -> float | npt.NDArray[np.float64]:
+        """Uniform in [low, high): ``low + (high - low)·u`` (numpy's formula)."""
+        if size is None:
+            return low + (high - low) * self._one()
+        return low + (high - low) * self.random(size)
+
+    @overload
+    def standard_normal(self, size: None = None) -> float: ...
+
+    @overload
+    def standard_normal(self, size: int) -> npt.NDArray[np.float64]: ...
+
+    def standard_normal(self, size: int | None = None) -> float | npt.NDArray[np.float64]:
+        """Standard normal draws by the Box–Muller transform (two uniforms per pair)."""
+        n = 1 if size is None else int(size)
+        pairs = (n + 1) // 2
+        u = self._take(2 * pairs).reshape(pairs, 2)
+        radius = np.sqrt(-2.0 * np.log1p(-u[:, 0]))  # 1 - u in (0, 1]: log is finite
+        angle = (2.0 * math.pi) * u[:, 1]
+        z = np.stack((radius * np.cos(angle), radius * np.sin(angle)), axis=1).reshape(-1)[:n]
+        return float(z[0]) if size is None else z
+
+    def normal(
+        self, loc: float = 0.0, scale: float = 1.0, size: int | None = None
+    ) -> float | npt.NDArray[np.float64]:
+        """Normal draws: ``loc + scale·z``."""
+        return loc + scale * self.standard_normal(size)
+
+    def integers(self, low: int, high: int | None = None) -> int:
+        """One integer in [low, high) (or [0, low) with one argument)."""
+        if high is None:
+            low, high = 0, low
+        if high <= low:
+            raise ValueError(f"integers: empty range [{low}, {high})")
+        return low + min(high - low - 1, int(self._one() * (high - low)))
+
+
+class StreamBatch:
+    """The same named stream of many trials, drawn as arrays (:func:`uniforms`).
+
+    Row k gives exactly the numbers trial k's :class:`Stream` of that name gives, as long as
+    both are asked for the same counts in the same order.
+
+    Attributes:
+        keys: One key per trial (K,).
+        positions: Draws taken so far per trial (K,).
+    """
+
+    def __init__(self, keys: npt.NDArray[np.uint64]) -> None:
+        self.keys = np.asarray(keys, dtype=np.uint64)
+        self.positions = np.zeros(len(self.keys), dtype=np.int64)
+
+    @classmethod
+    def for_trials(
+        cls, experiment_seed: int, trial_indices: Sequence[int] | npt.NDArray[np.int64], name: str
+    ) -> StreamBatch:
+        """Stream `name` of the given trials of an experiment."""
+        return cls(stream_keys(experiment_seed, trial_indices, name))
+
+    def take(
+        self, count: int, rows: npt.NDArray[np.intp] | None = None
+    ) -> npt.NDArray[np.float64]:
+        """The next `count` draws of every trial (or of `rows` only): (K or len(rows), count)."""
+        if rows is None:
+            drawn = uniforms(self.keys, self.positions, count)
+            self.positions += count
+            return drawn
+        drawn = uniforms(self.keys[rows], self.positions[rows], count)
+        self.positions[rows] += count
+        return drawn
+
+    def subset(self, rows: npt.NDArray[np.intp]) -> StreamBatch:
+        """The streams of `rows`, at their present positions (for compacting a batch)."""
+        kept = StreamBatch(self.keys[rows])
+        kept.positions = self.positions[rows].copy()
+        return kept
 
 
 class TrialRngs:
-    """The named generators of one trial, created on first use."""
+    """The named streams of one trial, created on first use."""
 
-    def __init__(self, seq: np.random.SeedSequence) -> None:
-        self._seq = seq
-        self._cache: dict[str, np.random.Generator] = {}
+    __slots__ = ("_cache", "experiment_seed", "trial_index")
+
+    def __init__(self, experiment_seed: int, trial_index: int) -> None:
+        self.experiment_seed = experiment_seed
+        self.trial_index = trial_index
+        self._cache: dict[str, Stream] = {}
 
     @classmethod
     def for_trial(cls, experiment_seed: int, trial_index: int) -> TrialRngs:
-        """The generators of trial `trial_index` of the experiment seeded `experiment_seed`."""
-        return cls(trial_sequence(experiment_seed, trial_index))
+        """The streams of trial `trial_index` of the experiment seeded `experiment_seed`."""
+        return cls(experiment_seed, trial_index)
 
-    def __getitem__(self, name: str) -> np.random.Generator:
-        """The generator of stream `name` (one of :data:`STREAMS`).
+    def __getitem__(self, name: str) -> Stream:
+        """The stream `name` (one of :data:`STREAMS`).
 
         Raises:
             KeyError: `name` is not a declared stream.
         """
-        generator = self._cache.get(name)
-        if generator is None:
-            if name not in STREAMS:
-                raise KeyError(f"unknown random stream {name!r} (declared: {', '.join(STREAMS)})")
-            generator = self._cache[name] = named_generator(self._seq, name)
-        return generator
+        stream = self._cache.get(name)
+        if stream is None:
+            key = stream_key(self.experiment_seed, self.trial_index, name)
+            stream = self._cache[name] = Stream(key)
+        return stream
+
+
+Rng: TypeAlias = Stream | np.random.Generator
+"""A random stream: a trial's :class:`Stream`, or a numpy ``Generator`` (tests, benchmarks)."""

@@ -29,10 +29,9 @@ from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import numpy as np
-
 from field_models.protocol import PlayerRef, wrap_angle
 from field_models.robot_physics.config import CameraConfig
+from field_models.seeding import Rng
 
 
 @dataclass(frozen=True, slots=True)
@@ -89,7 +88,7 @@ class OverheadCamera:
         *,
         period_ticks: int,
         latency_ticks: int,
-        rng: np.random.Generator,
+        rng: Rng,
     ) -> None:
         if period_ticks < 1:
             raise ValueError(f"period_ticks must be >= 1, got {period_ticks}")

@@ -29,10 +29,9 @@ from collections import deque
 from dataclasses import dataclass
 from enum import IntEnum
 
-import numpy as np
-
 from field_models.protocol import PlayerRef
 from field_models.robot_physics.config import LinkConfig
+from field_models.seeding import Rng
 
 
 class Primitive(IntEnum):
@@ -106,7 +105,7 @@ class Link:
         *,
         packet_period_ticks: int,
         latency_ticks: int,
-        rng: np.random.Generator,
+        rng: Rng,
     ) -> None:
         if packet_period_ticks < 1:
             raise ValueError(f"packet_period_ticks must be >= 1, got {packet_period_ticks}")

@@ -28,12 +28,12 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-import numpy as np
 import pymunk
 from pymunk._chipmunk import lib as _cp
 
 from field_models.protocol import BodyState, PlayerRef, Truth, wrap_angle
 from field_models.robot_physics.config import GRAVITY_MPS2, RobotPhysicsPreset
+from field_models.seeding import Rng
 
 # The hot loop calls Chipmunk through pymunk's cffi layer, skipping pymunk's Python property
 # wrappers, which cost several times more per call (shared notes/tooling.md §2.4). Only reads,
@@ -91,7 +91,7 @@ class RobotWorld:
         self,
         preset: RobotPhysicsPreset,
         refs: Sequence[PlayerRef],
-        noise_rng: np.random.Generator | None = None,
+        noise_rng: Rng | None = None,
     ) -> None:
         self.preset = preset
         self.refs = tuple(refs)

@@ -86,6 +86,7 @@ from field_models.protocol import (
     end_line_crossing,
     wrap_angle,
 )
+from field_models.seeding import Rng
 from field_models.soccer_server.params import DynamicsParams, ServerPreset
 
 BLOCK_CYCLES = 32
@@ -159,7 +160,7 @@ def row_layout(n_players: int) -> RowLayout:
     return RowLayout(move_a, move_b, turn, kick_a, kick_b, order, width=edges[-1])
 
 
-def draw_rows(rng: np.random.Generator, n_players: int, cycles: int) -> np.ndarray:
+def draw_rows(rng: Rng, n_players: int, cycles: int) -> np.ndarray:
     """The raw uniforms of `cycles` consecutive cycles of one trial, shape (cycles, width)."""
     return rng.random((cycles, row_layout(n_players).width))
 
@@ -271,7 +272,7 @@ class SoccerServerModel:
     """
 
     def __init__(
-        self, preset: ServerPreset, players: tuple[PlayerRef, ...], rng: np.random.Generator
+        self, preset: ServerPreset, players: tuple[PlayerRef, ...], rng: Rng
     ) -> None:
         p = preset.dynamics
         self.preset = preset

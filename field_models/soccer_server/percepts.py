@@ -29,9 +29,8 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-import numpy as np
-
 from field_models.protocol import Heard, Percept, PlayerRef, SeenBall, SeenLandmark, SeenPlayer
+from field_models.seeding import Rng
 from field_models.soccer_server.sensing import HearInfo, LandmarkMode, SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SensingParams
 
@@ -118,7 +117,7 @@ def percept_from_state(
     players: tuple[PlayerRef, ...],
     time: int,
     params: SensingParams,
-    rng: np.random.Generator,
+    rng: Rng,
     *,
     tick: int,
     heard: tuple[Heard, ...] = (),

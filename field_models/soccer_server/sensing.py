@@ -55,9 +55,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal, NamedTuple
 
-import numpy as np
-
 from field_models.protocol import PlayerRef, wrap_angle
+from field_models.seeding import Rng
 from field_models.soccer_server.landmarks import (
     LINES,
     PITCH_HALF_LENGTH_M,
@@ -295,7 +294,7 @@ def observe(
     players: tuple[PlayerRef, ...],
     time: int,
     params: SensingParams,
-    rng: np.random.Generator,
+    rng: Rng,
     *,
     landmarks: LandmarkMode = "all",
 ) -> SeeInfo:
@@ -424,7 +423,7 @@ def _see_flags(
     ovx: float,
     ovy: float,
     oth: float,
-    rng: np.random.Generator,
+    rng: Rng,
 ) -> list[SeenObject]:
     """Flags and goals: in the cone with quantised distance, or felt when close (``sendHighFlag``).
 
@@ -485,7 +484,7 @@ def _see_flags_exact(
     ovx: float,
     ovy: float,
     oth: float,
-    rng: np.random.Generator,
+    rng: Rng,
 ) -> list[SeenObject]:
     """:func:`_see_flags` in perfect perception: exact values, changes whenever reported."""
     out: list[SeenObject] = []

@@ -44,11 +44,9 @@ import os
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
-from field_models.seeding import TrialRngs
+from field_models.seeding import Rng, TrialRngs
 from learning.pass_boost import load_pass_boost
 from learning.pass_features import PASS_SCHEMA
 from learning.pass_tree import load_pass_tree
@@ -244,7 +242,7 @@ class PassDrill:
     @staticmethod
     def _place(
         arena: Arena,
-        rng: np.random.Generator,
+        rng: Rng,
         ref: PlayerRef,
         xs: tuple[float, float],
         ys: tuple[float, float],

@@ -70,9 +70,8 @@ from enum import StrEnum
 from pathlib import Path
 from typing import Protocol
 
-import numpy as np
-
 from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Turn, wrap_angle
+from field_models.seeding import Rng
 from learning.analytic import MOTION_MULTIPLIER, analytic_turn_angle_xy
 from learning.interception_file import TurnAngleFunction, load_turn_function, read_net_file
 from learning.lookup import LookupTable
@@ -150,7 +149,7 @@ class RandomPolicy:
     """TA uniform in [-half_range, half_range] from a generator (the training behaviour)."""
 
     def __init__(
-        self, rng: np.random.Generator, half_range_rad: float = RANDOM_TA_HALF_RANGE_RAD
+        self, rng: Rng, half_range_rad: float = RANDOM_TA_HALF_RANGE_RAD
     ) -> None:
         self.rng = rng
         self.half_range_rad = half_range_rad
@@ -298,7 +297,7 @@ _ORIGINS: dict[tuple[str, int, int], tuple[str, str] | None] = {}
 
 
 def make_policy(
-    behaviour: Behaviour | str, rng: np.random.Generator, model: str = ""
+    behaviour: Behaviour | str, rng: Rng, model: str = ""
 ) -> TurnPolicy | None:
     """The TA rule of a behaviour; None for ``still`` (which never moves).
 

@@ -56,6 +56,7 @@ import numpy as np
 
 from field_models.arena import BallLaw
 from field_models.protocol import Action, Kick, Percept, Say, SeenPlayer, Turn, wrap_angle
+from field_models.seeding import Rng
 from learning.pass_features import (
     decode_view,
     encode_view,
@@ -245,7 +246,7 @@ class PasserMind:
         self,
         receivers: Sequence[int],
         chooser: Chooser | str,
-        rng: np.random.Generator,
+        rng: Rng,
         *,
         unit_m: float,
         sensor_period_s: float,

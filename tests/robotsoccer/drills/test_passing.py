@@ -68,11 +68,15 @@ def test_placement_follows_figure_9() -> None:
     assert gaps[~np.eye(len(refs), dtype=bool)].min() >= 3.0
 
 
-def test_on_rcssserver_19_the_reports_are_too_long_and_the_receiver_half_is_unknown() -> None:
+def test_on_rcssserver_19_most_reports_are_too_long_and_the_receiver_half_is_unknown() -> None:
+    # 10 characters carry a report of at most one seen player (codec: "v" + 4 + 5 per player).
     s = TrialSpec(drill="pass", field_model="soccer_server", preset="rcssserver_19")
-    r = run_trial(s, 0)
-    assert len(r.data) == HEAD + len(ATTRIBUTE_NAMES)
-    assert np.all(np.isnan(np.array(r.data[HEAD + HALF :])))
+    unknown = 0
+    for index in range(6):
+        r = run_trial(s, index)
+        assert len(r.data) == HEAD + len(ATTRIBUTE_NAMES)
+        unknown += bool(np.all(np.isnan(np.array(r.data[HEAD + HALF :]))))
+    assert unknown >= 4
 
 
 def test_results_are_identical_whatever_the_worker_count(tmp_path: Path) -> None:
