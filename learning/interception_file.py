@@ -9,7 +9,10 @@ holds everything a control loop needs and imports nothing heavier than numpy:
   weights are finite, and raises :class:`~learning.features.ModelFileError` naming the file;
 * the folding of the distance scale, the standardisation and the sigmoid's halves into one
   coefficient set per hidden unit (:func:`fold_net`), and the closure over those plain floats
-  (:func:`turn_function`): 4 ``math.tanh`` and a dozen multiply-adds per call;
+  (:func:`turn_function`): 4 ``tanh`` and a dozen multiply-adds per call, and its batch form
+  (:func:`batch_turn_function`), the same operations in the same order on arrays, so that a
+  trial gives the same bits alone or in a batch (numpy's ``tanh`` in both: ``math.tanh``
+  differs from it in the last bit for about one argument in five);
 * :func:`load_turn_function`: path in, ``f(BD [m], BA [rad], previous BD [m]) -> TA [rad]`` out.
 
 :class:`learning.interception.InterceptionModel` saves, loads and evaluates through these same
@@ -215,8 +218,11 @@ def fold_net(
 
 
 def turn_function(units: tuple[Unit, ...], offset: float) -> TurnAngleFunction:
-    """The plain-Python net ``f(BD [m], BA [rad], previous BD [m]) -> TA [rad]`` of folded units."""
-    tanh = math.tanh  # a closure variable: faster than a global lookup per call
+    """The plain-Python net ``f(BD [m], BA [rad], previous BD [m]) -> TA [rad]`` of folded units.
+
+    Bit for bit the per-element result of :func:`batch_turn_function`.
+    """
+    tanh = np.tanh  # a closure variable: faster than a global lookup per call
 
     def turn_angle_rad(
         ball_distance_m: float, ball_angle_rad: float, previous_ball_distance_m: float
@@ -226,9 +232,33 @@ def turn_function(units: tuple[Unit, ...], offset: float) -> TurnAngleFunction:
             out += k * tanh(
                 c0 * ball_distance_m + c1 * ball_angle_rad + c2 * previous_ball_distance_m + b
             )
-        return out
+        return float(out)
 
     return turn_angle_rad
+
+
+BatchTurnFunction = Callable[[Array, Array, Array], Array]
+"""(BD [m], BA [rad], previous BD [m]) arrays -> TA [rad] array."""
+
+
+def batch_turn_function(units: tuple[Unit, ...], offset: float) -> BatchTurnFunction:
+    """The net of :func:`turn_function` over arrays: the same operations, unit by unit.
+
+    Written unit by unit rather than as a BLAS product because a product's summation order may
+    change with the batch size, and a trial must give the same bits alone or in any batch.
+    """
+
+    def turn_angles_rad(
+        ball_distance_m: Array, ball_angle_rad: Array, previous_ball_distance_m: Array
+    ) -> Array:
+        out = np.full(np.shape(ball_distance_m), offset)
+        for k, c0, c1, c2, b in units:
+            out += k * np.tanh(
+                c0 * ball_distance_m + c1 * ball_angle_rad + c2 * previous_ball_distance_m + b
+            )
+        return out
+
+    return turn_angles_rad
 
 
 def net_turn_function(net: NetFile) -> TurnAngleFunction:
@@ -237,6 +267,19 @@ def net_turn_function(net: NetFile) -> TurnAngleFunction:
         net.weights, net.input_mean, net.input_scale, net.schema.distance_scale_m
     )
     return turn_function(units, offset)
+
+
+def load_batch_turn_function(path: str | os.PathLike[str]) -> BatchTurnFunction:
+    """Read a net file and return its batch form (:func:`batch_turn_function`).
+
+    Raises:
+        ModelFileError: As :func:`read_net_file`.
+    """
+    net = read_net_file(path)
+    units, offset = fold_net(
+        net.weights, net.input_mean, net.input_scale, net.schema.distance_scale_m
+    )
+    return batch_turn_function(units, offset)
 
 
 def load_turn_function(path: str | os.PathLike[str]) -> TurnAngleFunction:

@@ -135,10 +135,21 @@ class LookupTable:
         return values[i - 1] + t * (values[i] - values[i - 1])
 
     def predict(self, ball_angle_rad: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        """TA [rad] for an array of BA [rad] (the batch form of calling the table)."""
+        """TA [rad] for an array of BA [rad]: the batch form of calling the table.
+
+        The same operations as :meth:`__call__` element by element (not ``np.interp``, whose
+        formula differs in the last bit), so a trial gives the same TA alone or in a batch.
+        """
         ba = np.asarray(ball_angle_rad, dtype=np.float64)
-        out: npt.NDArray[np.float64] = np.interp(ba, self.ball_angle_rad, self.turn_angle_rad)
-        return out
+        grid = np.asarray(self.ball_angle_rad)
+        values = np.asarray(self.turn_angle_rad)
+        i = np.searchsorted(grid, ba, side="right")  # bisect_right
+        j = np.clip(i, 1, len(grid) - 1)
+        a0, a1, v0, v1 = grid[j - 1], grid[j], values[j - 1], values[j]
+        with np.errstate(invalid="ignore"):
+            inner = v0 + (ba - a0) / (a1 - a0) * (v1 - v0)
+        out = np.where(i == 0, values[0], np.where(i == len(grid), values[-1], inner))
+        return np.where(np.isnan(ba), np.nan, out)
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write the table as JSON to `path` (floats round-trip exactly).

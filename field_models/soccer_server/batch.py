@@ -1,7 +1,9 @@
 """Many independent Soccer Server trials stepped at once as numpy arrays.
 
 :class:`BatchSoccerServer` holds K trials of the same preset and the same players, each with
-its own generator, as arrays of shape (K, N+1) (row 0 the ball, rows 1..N the players). A step
+its own random stream (a numpy generator per trial, or the trials' counter-based "movement"
+streams as one :class:`~field_models.seeding.StreamBatch`, drawn as one array), as arrays of
+shape (K, N+1) (row 0 the ball, rows 1..N the players). A step
 does for all trials what :meth:`SoccerServerModel.step
 <field_models.soccer_server.dynamics.SoccerServerModel.step>` does for one, with the same
 operations in the same order on the same random numbers, so trial k equals a single model
@@ -26,6 +28,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from field_models.protocol import BodyState, PlayerRef, end_line_crossing, wrap_angle
+from field_models.seeding import Rng, StreamBatch
 from field_models.soccer_server.dynamics import (
     AFTER_GOAL_MODES,
     BEFORE_KICK_OFF,
@@ -80,7 +83,7 @@ class BatchSoccerServer:
         self,
         preset: ServerPreset,
         players: tuple[PlayerRef, ...],
-        rngs: Sequence[np.random.Generator],
+        rngs: Sequence[Rng] | StreamBatch,
     ) -> None:
         p = preset.dynamics
         if p.swept_ball_collisions:
@@ -88,8 +91,9 @@ class BatchSoccerServer:
         self.preset = preset
         self.params = p
         self.players = tuple(players)
-        self.rngs = list(rngs)
-        self.k = len(self.rngs)
+        self.streams = rngs if isinstance(rngs, StreamBatch) else None
+        self.rngs = [] if isinstance(rngs, StreamBatch) else list(rngs)
+        self.k = len(rngs.keys) if isinstance(rngs, StreamBatch) else len(self.rngs)
         n = len(self.players) + 1
         self._n = n
         shape = (self.k, n)
@@ -134,6 +138,28 @@ class BatchSoccerServer:
         self._noise: tuple[np.ndarray, ...] = ()
 
     # ------------------------------------------------------------------ look-ups
+
+    def keep(self, trials: np.ndarray) -> None:
+        """Go on with the trials `trials` only (indices, in the order given), dropping the rest.
+
+        A batch whose trials end at different times compacts itself with this, so finished
+        trials cost nothing. Trial numbering restarts at 0 in the order of `trials`.
+        """
+        rows = np.asarray(trials, dtype=np.intp)
+        for name in ("x", "y", "vx", "vy", "heading", "_ax", "_ay", "mode", "score_left",
+                     "score_right", "_after_goal", "_kind", "_arg1", "_arg2"):  # fmt: skip
+            setattr(self, name, getattr(self, name)[rows])
+        self._noise = tuple(block[rows] for block in self._noise)
+        self._rows = self._rows[rows]
+        if self.streams is not None:
+            self.streams = self.streams.subset(rows)
+        else:
+            self.rngs = [self.rngs[r] for r in rows.tolist()]
+        new_index = {old: new for new, old in enumerate(rows.tolist())}
+        self._announce = {
+            new_index[t]: said for t, said in self._announce.items() if t in new_index
+        }
+        self.k = len(rows)
 
     def row(self, ref: PlayerRef) -> int:
         """Row (1..N) of player `ref`."""
@@ -298,9 +324,12 @@ class BatchSoccerServer:
     def _refill(self) -> None:
         """Draw every trial's next rows and give each object its update slot's noise."""
         lay = self._layout
-        u = self._rows
-        for rng, rows in zip(self.rngs, u, strict=True):
-            rng.random(out=rows)  # the same numbers as the single model's block draws
+        if self.streams is not None:
+            u = self.streams.take(self._rows[0].size).reshape(self._rows.shape)
+        else:
+            u = self._rows
+            for rng, rows in zip(self.rngs, u, strict=True):
+                rng.random(out=rows)  # the same numbers as the single model's block draws
         slot = _ranks(u[..., lay.order])  # slot[..., i]: when object i is updated
         model = self.params.noise_model
         move_a = np.take_along_axis(u[..., lay.move_a], slot, axis=-1)

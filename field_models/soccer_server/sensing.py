@@ -393,6 +393,20 @@ def _quant(c: _Consts, d: float, step: float) -> float:
     return qd
 
 
+def quantised_distance_for_index(params: SensingParams, m: int, step: float) -> float:
+    """The distance a see prints for log index `m` (``round(ln(d + EPS) / step)``), memoised.
+
+    The one rule behind :func:`_quant`, for callers that compute the index over arrays
+    (:mod:`field_models.soccer_server.batch_sensing`).
+    """
+    c = _consts(params)
+    table = c.table_l if step == c.q_l else c.table
+    qd = table.get(m)
+    if qd is None:
+        qd = table[m] = _from_log_index(c, m, step)
+    return qd
+
+
 def _from_log_index(c: _Consts, m: int, step: float) -> float:
     """``Q(exp(m · step), resolution)`` as the double the message prints."""
     k = round(math.exp(m * step) / c.res)

@@ -121,6 +121,23 @@ BACKWARD_SHARE = 0.5
 """A SAVE needs the ball to move back along û by at least this share of its speed (30° behind
 sideways); a smaller backward component is a deflection (module docstring)."""
 
+# The coach's reasons (module docstring), shared with the batched drill.
+INTO_GOAL = "ball into the goal between the posts"
+OVER_OWN_LINE = "ball over the shooter's goal line"
+OVER_LINE_WIDE = "ball crossed the goal line wide of the posts"
+AT_SIDE_LINE = "ball reached a side line"
+AT_END_LINE_WIDE = "ball reached the end line wide of the posts"
+DEFLECTED_STOPPED = "deflected by the defender, stopped short of the goal"
+MOVING_BACK = "ball moving back toward the shooter"
+PAST_INTO_GOAL = "ball past the defender, heading between the posts"
+PAST_WIDE = "ball past the defender, heading wide"
+STOPPED_SHORT = "ball stopped short"
+
+
+def deflected_then(reason: str) -> str:
+    """The reason of a SAVE whose deflected ball then did something that is not a goal."""
+    return f"deflected by the defender; then {reason}"
+
 
 class Launch(StrEnum):
     """Who sets the ball moving (module docstring)."""
@@ -369,14 +386,22 @@ class InterceptDrill:
         """This drill's launch plan on `arena`'s field (cached per field)."""
         facts = arena.facts
         if facts is not self._plan_facts:  # one look-up per trial, not one per call
-            self._check_origin(facts)
-            self._plan, self._plan_facts = self.plan_for(facts), facts
+            self._plan, self._plan_facts = self.checked_plan(facts), facts
         assert self._plan is not None
         return self._plan
 
     def plan_for(self, facts: FieldFacts) -> LaunchPlan:
         """This drill's launch plan on a field (cached per field)."""
         return cached_launch_plan(facts, self.kick_power, self.launch, self.scaling)
+
+    def checked_plan(self, facts: FieldFacts) -> LaunchPlan:
+        """The plan on a field, after refusing a model file trained elsewhere (not a transfer).
+
+        Raises:
+            ValueError: The model file was trained on another field and ``transfer`` is off.
+        """
+        self._check_origin(facts)
+        return self.plan_for(facts)
 
     def _check_origin(self, facts: FieldFacts) -> None:
         """Refuse a model file trained on another field (unless this is a transfer run)."""
@@ -479,8 +504,8 @@ class InterceptDrill:
         if state is not None:
             state.finish(arena)
             if state.deflected:
-                return Verdict("SAVE", "deflected by the defender, stopped short of the goal")
-        return Verdict("MISS", "ball stopped short")
+                return Verdict("SAVE", DEFLECTED_STOPPED)
+        return Verdict("MISS", STOPPED_SHORT)
 
     def data(self) -> tuple[float, ...]:
         """The defender's example (BD, BA, previous BD, TA), or () without a decision."""
@@ -560,23 +585,23 @@ class _Judge:
         crossing = self.goals.step(arena, x, y)
         if crossing:
             if crossing is Crossing.RIGHT_GOAL:
-                return Verdict("GOAL", "ball into the goal between the posts")
+                return Verdict("GOAL", INTO_GOAL)
             if crossing is Crossing.LEFT_GOAL:
-                return self._not_in("ball over the shooter's goal line")
-            return self._not_in("ball crossed the goal line wide of the posts")
+                return self._not_in(OVER_OWN_LINE)
+            return self._not_in(OVER_LINE_WIDE)
         edge = self.radius + self.margin
         if abs(y) >= self.half_width - edge:
-            return self._not_in("ball reached a side line")
+            return self._not_in(AT_SIDE_LINE)
         if x >= self.half_length - edge and abs(y) >= self.post:
-            return self._not_in("ball reached the end line wide of the posts")
+            return self._not_in(AT_END_LINE_WIDE)
         if self.deflected and vx * vx + vy * vy < self.eps * self.eps:
-            return Verdict("SAVE", "deflected by the defender, stopped short of the goal")
+            return Verdict("SAVE", DEFLECTED_STOPPED)
         along = vx * self.ux + vy * self.uy
         if along > self.eps:
             self.approaching = True
         elif self.approaching and along < -self.eps:
             if along < -BACKWARD_SHARE * math.hypot(vx, vy):
-                return Verdict("SAVE", "ball moving back toward the shooter")
+                return Verdict("SAVE", MOVING_BACK)
             self.deflected = True
         if (x - self.x0) * self.ux + (y - self.y0) * self.uy > self.past:
             return self._past(x, y, vx, vy)
@@ -585,7 +610,7 @@ class _Judge:
     def _not_in(self, reason: str) -> Verdict:
         """A ball that did not go in: a SAVE once the defender deflected it, else a MISS."""
         if self.deflected:
-            return Verdict("SAVE", f"deflected by the defender; then {reason}")
+            return Verdict("SAVE", deflected_then(reason))
         return Verdict("MISS", reason)
 
     def _past(self, x: float, y: float, vx: float, vy: float) -> Verdict:
@@ -593,6 +618,6 @@ class _Judge:
         if vx > 0.0:
             cross = y + (self.half_length - x) * vy / vx
             if abs(cross) < self.post:
-                return Verdict("GOAL", "ball past the defender, heading between the posts")
-        return self._not_in("ball past the defender, heading wide")
+                return Verdict("GOAL", PAST_INTO_GOAL)
+        return self._not_in(PAST_WIDE)
 
