@@ -18,6 +18,7 @@
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 import multiprocessing
 import os
@@ -31,6 +32,7 @@ from typing import Any, TextIO
 
 from field_models.registry import preload_modules
 from robotsoccer.drills import make_drill
+from robotsoccer.drills.intercept_batch import DEFAULT_BATCH, batch_reason, run_intercept_batch
 from robotsoccer.runs.provenance import code_version, file_digest
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 
@@ -72,8 +74,39 @@ def _ignore_interrupts() -> None:
 
 
 def run_chunk(spec: TrialSpec, indices: Sequence[int]) -> list[TrialResult]:
-    """Run the trials `indices` of `spec` (the unit of work a worker receives)."""
-    return [run_trial(spec, i) for i in indices]
+    """Run the trials `indices` of `spec` (the unit of work a worker receives).
+
+    Trials the batched engine can run (:func:`batched`) run as arrays
+    (:func:`~robotsoccer.drills.intercept_batch.run_intercept_batch`), with exactly the
+    one-trial path's results; recorded trials and all others run one at a time.
+    """
+    if not batched(spec):
+        return [run_trial(spec, i) for i in indices]
+    recorded = [i for i in indices if spec.record_dir is not None and i < spec.record_trials]
+    plain = [i for i in indices if not (spec.record_dir is not None and i < spec.record_trials)]
+    results = {r.index: r for r in run_intercept_batch(spec, plain)}
+    results.update((i, run_trial(spec, i)) for i in recorded)
+    return [results[i] for i in indices]
+
+
+@functools.lru_cache(maxsize=64)
+def batched(spec: TrialSpec) -> bool:
+    """Whether `spec`'s trials run through the batched engine.
+
+    The Soccer Server intercept drill does (:func:`~robotsoccer.drills.intercept_batch.
+    batch_reason` says what does not).
+    """
+    return batch_reason(spec) is None
+
+
+def default_chunk_size(spec: TrialSpec, remaining: int, workers: int) -> int:
+    """Trials per unit of work: a few chunks per worker.
+
+    At most one batch for batched specs (a large chunk is what makes a batch pay), else 50.
+    """
+    limit = DEFAULT_BATCH if batched(spec) else 50
+    parts = (2 if batched(spec) else 4) * workers
+    return max(1, min(limit, remaining // parts or 1))
 
 
 def chunked(indices: Iterable[int], size: int) -> Iterator[list[int]]:
@@ -257,6 +290,7 @@ def run_trials(
     chunk_size: int | None = None,
     keep: bool = True,
     on_result: Callable[[TrialResult], None] | None = None,
+    backend: str = "process",
 ) -> list[TrialResult]:
     """Run trials 0..n_trials-1 of `spec` and return their results sorted by index.
 
@@ -274,11 +308,22 @@ def run_trials(
         chunk_size: Trials per unit of work (default: small enough to balance the workers).
         keep: Return the results (False: return [] and let `on_result` see them).
         on_result: Called with every result, the resumed ones first.
+        backend: ``"process"``: a process pool on this machine; ``"ray"``: Ray tasks, on a
+            local Ray instance or the cluster ``RAY_ADDRESS`` names
+            (:mod:`robotsoccer.runs.ray_backend`). The results are the same either way.
 
     Raises:
         KeyboardInterrupt: after flushing every finished trial to `results_path`.
         ResumeError: `resume` onto a table another run made, or a damaged table.
+        ValueError: An unknown `backend`, or ``"ray"`` without Ray installed (before anything
+            is written).
     """
+    if backend not in ("process", "ray"):
+        raise ValueError(f"unknown backend {backend!r}: choose 'process' or 'ray'")
+    if backend == "ray":
+        from robotsoccer.runs.ray_backend import require_ray
+
+        require_ray()
     workers = workers or default_workers()
     finished = bytearray(n_trials)  # one byte a trial: which indices are done
     kept: dict[int, TrialResult] = {}
@@ -301,12 +346,12 @@ def run_trials(
         _write_manifest(results_path, spec)
     remaining = n_trials - resumed
     todo = (i for i in range(n_trials) if not finished[i])
-    size = chunk_size or max(1, min(50, remaining // (4 * workers) or 1))
+    size = chunk_size or default_chunk_size(spec, remaining, workers)
     bar = Progress(n_trials, enabled=progress)
     bar.advance(resumed)
     sink = _open_sink(results_path, keep_rows=resume and results_path is not None)
     try:
-        for chunk in _execute(spec, chunked(todo, size), workers):
+        for chunk in _execute(spec, chunked(todo, size), workers, backend):
             for result in chunk:
                 record(result)
                 if sink is not None:
@@ -338,9 +383,14 @@ def _open_sink(path: Path | None, keep_rows: bool) -> TextIO | None:
 
 
 def _execute(
-    spec: TrialSpec, chunks: Iterable[list[int]], workers: int
+    spec: TrialSpec, chunks: Iterable[list[int]], workers: int, backend: str = "process"
 ) -> Iterator[list[TrialResult]]:
     """Yield finished chunks as they complete (any order)."""
+    if backend == "ray":  # Ray is imported only here, when asked for
+        from robotsoccer.runs.ray_backend import execute_ray
+
+        yield from execute_ray(spec, chunks, workers)
+        return
     if workers <= 1:
         for chunk in chunks:
             yield run_chunk(spec, chunk)

@@ -10,6 +10,7 @@ import pytest
 
 from learning.lookup import LookupTable
 from robotsoccer.drills.intercept_batch import batch_reason, run_intercept_batch
+from robotsoccer.runs.pool import batched, run_chunk, run_trials
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 from tests.robotsoccer.skills.test_intercept import net_file
 
@@ -107,3 +108,18 @@ def test_a_model_from_another_field_is_refused_without_transfer(tmp_path: Path) 
     )
     with pytest.raises(ValueError, match="transfer=true"):
         run_intercept_batch(s, [0])
+
+
+def test_the_pool_runs_the_batch_with_the_one_trial_results_whatever_the_workers(
+    tmp_path: Path,
+) -> None:
+    s = spec(behaviour="random")
+    assert batched(s) and not batched(TrialSpec(drill="intercept", field_model="robot_physics"))
+    one = [run_trial(s, i) for i in range(30)]
+    assert run_trials(s, 30, workers=1, progress=False) == one
+    table = tmp_path / "r.csv"
+    two = run_trials(s, 30, workers=2, chunk_size=7, progress=False, results_path=table)
+    assert two == one
+    recorded = dataclasses.replace(s, record_dir=str(tmp_path / "rec"), record_trials=2)
+    assert [r.label for r in run_chunk(recorded, [0, 1, 2])] == [r.label for r in one[:3]]
+    assert len(list((tmp_path / "rec").glob("*.rrd"))) == 2  # recorded on the one-trial path
