@@ -99,9 +99,22 @@ def uniforms(
     """
     pos = np.asarray(positions, dtype=np.int64).reshape(-1, 1).astype(np.uint64)
     steps = np.arange(1, count + 1, dtype=np.uint64)
+    z = pos + steps  # (K, count): the draw numbers, then mixed in place (no temporaries)
     with np.errstate(over="ignore"):
-        z = keys.reshape(-1, 1) + (pos + steps) * _GAMMA
-        return (_mix(z) >> _S11).astype(np.float64) * _TO_UNIT
+        z *= _GAMMA
+        z += keys.reshape(-1, 1)
+        tmp = z >> _S30
+        z ^= tmp
+        z *= _M1
+        np.right_shift(z, _S27, out=tmp)
+        z ^= tmp
+        z *= _M2
+        np.right_shift(z, _S31, out=tmp)
+        z ^= tmp
+        z >>= _S11
+    out = z.astype(np.float64)
+    out *= _TO_UNIT
+    return out
 
 
 class Stream:

@@ -51,8 +51,9 @@ from field_models.soccer_server.dynamics import (
 )
 from field_models.soccer_server.params import ServerPreset
 
-BATCH_BLOCK_CYCLES = 64
-"""Cycles of random numbers drawn at once per trial (any value gives the same numbers)."""
+BATCH_BLOCK_CYCLES = 8
+"""Cycles of random numbers drawn at once per trial (any value gives the same numbers; a
+short block draws little past a trial's end: a drill trial lasts 10-40 cycles)."""
 
 _CODE = {mode: code for code, mode in enumerate(PLAY_MODES)}
 _BKO, _PLAY_ON = _CODE[BEFORE_KICK_OFF], _CODE[PLAY_ON]
@@ -467,6 +468,13 @@ class BatchSoccerServer:
         radius = self._rand * np.sqrt(ux * ux + uy * uy)
         ux = ux + radius * self._noise[0][:, r]
         uy = uy + radius * self._noise[1][:, r]
+        if moving.all():  # the usual case: no trial holds its players
+            self.x += ux
+            self.y += uy
+            self.vx, self.vy = self._decay * ux, self._decay * uy
+            ax.fill(0.0)
+            ay.fill(0.0)
+            return
         keep = moving[:, None]
         self.x = np.where(keep, self.x + ux, self.x)
         self.y = np.where(keep, self.y + uy, self.y)
@@ -536,11 +544,11 @@ class BatchSoccerServer:
         after = moving & ((mode == _GOAL_L) | (mode == _GOAL_R))
         self._after_goal[after] += 1
         ready = after & (self._after_goal >= self.params.after_goal_wait_cycles)
-        for trial in np.flatnonzero(ready).tolist():
-            self._kick_off(trial, messages)
+        if ready.any():
+            self._kick_off(np.flatnonzero(ready), messages)
         side = self._goal_side(bx0, by0, moving & ~after)
-        for trial in np.flatnonzero(side).tolist():
-            self._score(trial, int(side[trial]), messages)
+        if side.any():
+            self._score(side, messages)
         kick_off = moving & ~after & (side == 0) & ((mode == _KICK_OFF_L) | (mode == _KICK_OFF_R))
         if kick_off.any():
             self._keep_halves(kick_off, np.where(mode == _KICK_OFF_L, 1, -1))
@@ -563,31 +571,35 @@ class BatchSoccerServer:
                 side[trial] = int(crossing)
         return side
 
-    def _score(self, trial: int, side: int, messages: dict[int, list[str]]) -> None:
-        said = messages.setdefault(trial, [])
-        if side > 0:
-            self.score_left[trial] += 1 if self._has_left else 0
-            said.append(f"goal_l_{self.score_left[trial]}")
-            self.mode[trial] = _GOAL_L
-        else:
-            self.score_right[trial] += 1 if self._has_right else 0
-            said.append(f"goal_r_{self.score_right[trial]}")
-            self.mode[trial] = _GOAL_R
+    def _score(self, side: np.ndarray, messages: dict[int, list[str]]) -> None:
+        """The goals of this cycle: side[k] +1 (the left team scored), -1 (the right), 0."""
+        scored = np.flatnonzero(side)
+        left = side[scored] > 0
+        self.score_left[scored[left]] += 1 if self._has_left else 0
+        self.score_right[scored[~left]] += 1 if self._has_right else 0
+        for trial, by_left in zip(scored.tolist(), left.tolist(), strict=True):
+            count = self.score_left[trial] if by_left else self.score_right[trial]
+            messages.setdefault(trial, []).append(f"goal_{'l' if by_left else 'r'}_{count}")
+        self.mode[scored] = np.where(left, _GOAL_L, _GOAL_R)
         for arr in (self.vx, self.vy, self._ax, self._ay):
-            arr[trial, 0] = 0.0
-        self._after_goal[trial] = 0
+            arr[scored, 0] = 0.0
+        self._after_goal[scored] = 0
         if self.params.after_goal_wait_cycles == 0:
-            self._kick_off(trial, messages)
+            self._kick_off(scored, messages)
 
-    def _kick_off(self, trial: int, messages: dict[int, list[str]]) -> None:
-        kicker = -1 if self.mode[trial] == _GOAL_L else 1
-        self.mode[trial] = _KICK_OFF_R if kicker < 0 else _KICK_OFF_L
-        messages.setdefault(trial, []).append(PLAY_MODES[int(self.mode[trial])])
+    def _kick_off(self, trials: np.ndarray, messages: dict[int, list[str]]) -> None:
+        """Kick-offs after goals in `trials` (indices): ball to the centre, players placed."""
+        kicker = np.where(self.mode[trials] == _GOAL_L, -1, 1)
+        self.mode[trials] = np.where(kicker < 0, _KICK_OFF_R, _KICK_OFF_L)
+        for trial in trials.tolist():
+            messages.setdefault(trial, []).append(PLAY_MODES[int(self.mode[trial])])
         for arr in (self.x, self.y, self.vx, self.vy, self._ax, self._ay):
-            arr[trial, 0] = 0.0
-        one = np.zeros(self.k, dtype=bool)
-        one[trial] = True
-        self._keep_halves(one, np.full(self.k, kicker))
+            arr[trials, 0] = 0.0
+        chosen = np.zeros(self.k, dtype=bool)
+        chosen[trials] = True
+        kickers = np.zeros(self.k, dtype=int)
+        kickers[trials] = kicker
+        self._keep_halves(chosen, kickers)
 
     def _keep_halves(self, trials: np.ndarray, kicker: np.ndarray) -> None:
         """Players into their own half; the team not kicking off out of the centre circle."""

@@ -447,32 +447,40 @@ class _InterceptBatch:
 
     def _finish(self, ended: Mask, codes: npt.NDArray[np.int_]) -> None:
         """Write the results of the trials `ended` (TrialResult, as run_trial builds it)."""
-        if not ended.any():
+        rows = np.flatnonzero(ended)
+        if not rows.size:
             return
-        s, j = self.server, self.j
+        s, j, plan = self.server, self.j, self.setting.plan
         ticks = s.cycle
         time_s = ticks * self.setting.dt_s
-        plan = self.setting.plan
-        for row in np.flatnonzero(ended).tolist():
-            label, reason = _VERDICTS[int(codes[row])]
-            example = self.example[row]
-            data = () if np.isnan(example[0]) else tuple(float(v) for v in example)
+        d = _DEFENDER_ROW
+        columns = zip(
+            self.rows[rows].tolist(),
+            codes[rows].tolist(),
+            self.example[rows].tolist(),
+            j["trig_t"][rows].tolist(),
+            j["trig_x"][rows].tolist(),
+            j["trig_y"][rows].tolist(),
+            s.x[rows, d].tolist(),
+            s.y[rows, d].tolist(),
+            strict=True,
+        )
+        trials, out = self.trials, self.out
+        for index, code, example, t0, x0, y0, x1, y1 in columns:
+            label, reason = _VERDICTS[code]
+            data = () if example[0] != example[0] else tuple(example)  # NaN: no decision
             measures: tuple[tuple[str, float], ...] = ()
-            t0 = float(j["trig_t"][row])
-            if not math.isnan(t0):
-                x0, y0 = float(j["trig_x"][row]), float(j["trig_y"][row])
-                x1, y1 = float(s.x[row, _DEFENDER_ROW]), float(s.y[row, _DEFENDER_ROW])
+            if t0 == t0:  # the defender triggered
                 seconds = time_s - t0
                 measures = (
                     ("defender_travel_units", math.hypot(x1 - x0, y1 - y0) / plan.unit_m),
                     ("trigger_to_end_s", seconds),
                     ("updates_after_trigger", seconds / plan.sensor_period_s),
                 )
-            index = int(self.rows[row])
-            self.out[index] = TrialResult(
-                int(self.trials[index]), label, reason, ticks, time_s, data, measures
+            out[index] = TrialResult(
+                int(trials[index]), label, reason, ticks, time_s, data, measures
             )
-        self.alive &= ~ended
+        self.alive[rows] = False
 
     def _compact(self) -> None:
         """Drop the finished trials' rows from every array (module docstring)."""
