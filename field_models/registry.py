@@ -13,9 +13,10 @@ from functools import lru_cache
 from typing import Any, Protocol, cast
 
 from field_models.arena import Arena, FieldFacts, FieldOptions
+from field_models.batch_arena import BatchArena
 from field_models.presets import PRESET_DIR
 from field_models.protocol import PlayerRef
-from field_models.seeding import TrialRngs
+from field_models.seeding import StreamBatch, TrialRngs
 
 _ENTRIES = {
     "robot_physics": "field_models.robot_physics.model",
@@ -153,6 +154,44 @@ def make_arena(
     loaded = module.load(name, options)
     facts = field_facts(model, name, options)  # cached by name: no hashing of whole presets
     return module.build(loaded, facts, players, rngs, keep_events=keep_events, trace=trace)
+
+
+def batch_reason(
+    model: str, preset: str | None, options: FieldOptions = DEFAULT_OPTIONS
+) -> str | None:
+    """Why `model` with `preset` and `options` has no batch arena (None: it has one).
+
+    Raises:
+        ValueError: An unknown model or an option the model cannot apply.
+        field_models.presets.PresetError: A missing or wrong preset.
+    """
+    module = entry(model)
+    reason = getattr(module, "batch_reason", None)
+    if reason is None:
+        return f"the {model} model has no batch form"
+    found: str | None = reason(module.load(preset or module.DEFAULT_PRESET, options))
+    return found
+
+
+def make_batch_arena(
+    model: str,
+    preset: str | None,
+    players: tuple[PlayerRef, ...],
+    movement: StreamBatch,
+    options: FieldOptions = DEFAULT_OPTIONS,
+) -> BatchArena:
+    """K trials of `model` stepped together, one per row of the trials' "movement" streams.
+
+    Raises:
+        ValueError: The model or preset has no batch form (:func:`batch_reason`).
+    """
+    why = batch_reason(model, preset, options)
+    if why is not None:
+        raise ValueError(why)
+    module = entry(model)
+    loaded = module.load(preset or module.DEFAULT_PRESET, options)
+    built: BatchArena = cast(Any, module).build_batch(loaded, players, movement)  # optional
+    return built
 
 
 def paper_field_facts() -> FieldFacts:

@@ -10,8 +10,9 @@ from functools import lru_cache
 from typing import Any
 
 from field_models.arena import Arena, BallLaw, FieldFacts, FieldOptions, KickFacts
+from field_models.batch_arena import BatchArena
 from field_models.protocol import PlayerRef
-from field_models.seeding import TrialRngs
+from field_models.seeding import StreamBatch, TrialRngs
 from field_models.soccer_server.params import ServerPreset, load_server_preset
 
 NAME = "soccer_server"
@@ -102,3 +103,19 @@ def benchmarks(quick: bool = False) -> dict[str, Any]:
     from field_models.soccer_server.bench import benchmarks as measure
 
     return measure(quick)
+
+
+def batch_reason(preset: ServerPreset) -> str | None:
+    """Why this preset has no batch arena (None: it has one)."""
+    from field_models.soccer_server.batch_arena import batch_reason as reason
+
+    return reason(preset)
+
+
+def build_batch(
+    preset: ServerPreset, players: tuple[PlayerRef, ...], movement: StreamBatch
+) -> BatchArena:
+    """K trials stepped together (:mod:`field_models.soccer_server.batch_arena`)."""
+    from field_models.soccer_server.batch_arena import SoccerServerBatchArena
+
+    return SoccerServerBatchArena(preset, players, movement)

@@ -2,8 +2,8 @@
 
 :func:`run_intercept_batch` runs trials of :class:`~robotsoccer.drills.intercept.InterceptDrill`
 on the Soccer Server model together: the dynamics
-(:class:`~field_models.soccer_server.batch.BatchSoccerServer`, directed dash included), the see
-timer, the view cone and quantisation (:mod:`field_models.soccer_server.batch_sensing`), the
+(:func:`field_models.registry.make_batch_arena`: on the Soccer Server its batch dynamics,
+directed dash included, see timer, view cone and quantisation), the
 coach's placement and labels, the shooter and every defender behaviour (still, straight,
 random, net, lookup, analytic; TA held or chosen at every see). Each trial gives exactly the
 :class:`~robotsoccer.runs.runner.TrialResult` of the one-trial path
@@ -22,10 +22,12 @@ other rare events call the one-trial code on the few trials they concern. The de
 watch/trigger/dash cycle, the shooter, the placement and the coach's labels are written here
 again as array code, kept equal to the one-trial classes by the equality test.
 
-**Scope.** The drill's own options, any Soccer Server preset without swept ball collisions,
-and the field options (ball noise, perfect perception). Not here, so :func:`batch_reason` sends
-such trials to the one-trial path: the defender's clearing kick (``defender_kick``, it reads
-landmarks), the robot field, and recorded trials (:mod:`robotsoccer.runs.pool` decides).
+**Scope.** The drill's own options on any field model with a batch arena
+(:class:`field_models.batch_arena.BatchArena`: today the Soccer Server, any preset without swept
+ball collisions), with the field options (ball noise, perfect perception). Not here, so
+:func:`batch_reason` sends such trials to the one-trial path: the defender's clearing kick
+(``defender_kick``, it reads landmarks), the robot field, and recorded trials
+(:mod:`robotsoccer.runs.pool` decides).
 
 Trials that end leave the arrays (the batch compacts itself), so a batch costs what its
 longest trials cost, not its size times the longest.
@@ -40,14 +42,11 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from field_models.batch_arena import BatchArena
 from field_models.protocol import Crossing, Pitch, end_line_crossing, wrap_angle
-from field_models.registry import entry, field_facts
+from field_models.registry import batch_reason as field_batch_reason
+from field_models.registry import field_facts, make_batch_arena
 from field_models.seeding import StreamBatch
-from field_models.soccer_server.arena import see_schedule
-from field_models.soccer_server.batch import BatchSoccerServer
-from field_models.soccer_server.batch_sensing import see_object
-from field_models.soccer_server.params import ServerPreset
-from field_models.soccer_server.sensing import SeeTimer
 from learning.interception_file import BatchTurnFunction, load_batch_turn_function
 from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept import (
@@ -117,22 +116,11 @@ def batch_reason(spec: TrialSpec) -> str | None:
     """
     if spec.drill != "intercept":
         return f"the batch engine runs the intercept drill, not {spec.drill!r}"
-    if spec.field_model != "soccer_server":
-        return f"the batch engine runs on the Soccer Server model, not {spec.field_model!r}"
     drill = make_drill(spec.drill, dict(spec.drill_options))
     assert isinstance(drill, InterceptDrill)
     if drill.defender_kick:
         return "the defender's clearing kick reads landmarks, which the batch does not see"
-    if _preset(spec, drill).dynamics.swept_ball_collisions:
-        return "the batch dynamics do not support swept ball collisions"
-    return None
-
-
-def _preset(spec: TrialSpec, drill: InterceptDrill) -> ServerPreset:
-    loaded: ServerPreset = entry(spec.field_model).load(
-        spec.preset_name, field_options(spec, drill)
-    )
-    return loaded
+    return field_batch_reason(spec.field_model, spec.preset, field_options(spec, drill))
 
 
 def run_intercept_batch(
@@ -161,7 +149,6 @@ class _Setting:
 
     drill: InterceptDrill
     plan: LaunchPlan
-    preset: ServerPreset
     pitch: Pitch
     dt_s: float
     max_ticks: int
@@ -174,13 +161,12 @@ class _InterceptBatch:
     def __init__(self, spec: TrialSpec, trials: npt.NDArray[np.int64]) -> None:
         drill = make_drill(spec.drill, dict(spec.drill_options))
         assert isinstance(drill, InterceptDrill)
-        preset = _preset(spec, drill)
-        facts = field_facts(spec.field_model, spec.preset, field_options(spec, drill))
+        options = field_options(spec, drill)
+        facts = field_facts(spec.field_model, spec.preset, options)
         plan = drill.checked_plan(facts)
         self.setting = _Setting(
             drill=drill,
             plan=plan,
-            preset=preset,
             pitch=facts.pitch,
             dt_s=facts.dt_s,
             max_ticks=round(drill.max_time_s / facts.dt_s),
@@ -188,8 +174,9 @@ class _InterceptBatch:
         )
         self.trials = trials
         k = len(trials)
-        self.server = BatchSoccerServer(
-            preset, (SHOOTER, DEFENDER), StreamBatch.for_trials(spec.seed, trials, "movement")
+        movement = StreamBatch.for_trials(spec.seed, trials, "movement")
+        self.server: BatchArena = make_batch_arena(
+            spec.field_model, spec.preset, (SHOOTER, DEFENDER), movement, options
         )
         self.policy = StreamBatch.for_trials(spec.seed, trials, "policy")
         self.out: dict[int, TrialResult] = {}
@@ -270,17 +257,13 @@ class _InterceptBatch:
     def run(self) -> list[TrialResult]:
         """Step every trial to its verdict (TrialLoop.run, for all trials at once)."""
         setting = self.setting
-        sensing = setting.preset.sensing
-        schedule = see_schedule(sensing)
-        timer = SeeTimer(sensing)
         while self.alive.any():
             if self.server.cycle >= setting.max_ticks:
                 self._time_out()
                 break
             self._send_commands()
             self.server.step()
-            cycle = self.server.cycle
-            if schedule[cycle] if cycle < len(schedule) else timer.due(cycle):
+            if self.server.sees_now():
                 self._shooter_sees()
                 self._defender_sees()
             self._judge()
@@ -309,13 +292,7 @@ class _InterceptBatch:
         waits = self.shooter_waits
         if not waits.any():
             return
-        s = self.server
-        r, d = _SHOOTER_ROW, _DEFENDER_ROW
-        shown, _, angle = see_object(
-            self.setting.preset.sensing,
-            (s.x[:, r], s.y[:, r], s.heading[:, r]),
-            (s.x[:, d], s.y[:, d]),
-        )
+        shown, _, angle = self.server.see(_SHOOTER_ROW, _DEFENDER_ROW)
         aim = np.where(shown, angle, 0.0) + self.setting.drill.aim_offset_rad
         self.kick_dir = np.where(waits, aim, self.kick_dir)
         self.kick_due |= waits
@@ -326,12 +303,7 @@ class _InterceptBatch:
         choose = self.setting.choose
         if choose is None:  # still: never acts
             return
-        s, d = self.server, _DEFENDER_ROW
-        ball, bd, ba = see_object(
-            self.setting.preset.sensing,
-            (s.x[:, d], s.y[:, d], s.heading[:, d]),
-            (s.x[:, 0], s.y[:, 0]),
-        )
+        ball, bd, ba = self.server.see(_DEFENDER_ROW, 0)
         kinds = np.zeros((len(ba), 2), dtype=np.int8)
         args = np.zeros((len(ba), 2))
         kinds[~ball & self.triggered, 0] = _DASH  # ball not seen: dash once triggered
@@ -376,7 +348,7 @@ class _InterceptBatch:
             j["trig_t"] = np.where(newly, s.cycle * self.setting.dt_s, j["trig_t"])
             j["trig_x"] = np.where(newly, s.x[:, _DEFENDER_ROW], j["trig_x"])
             j["trig_y"] = np.where(newly, s.y[:, _DEFENDER_ROW], j["trig_y"])
-        k = 1.0 / s.params.dt_s  # BodyState's m/cycle -> m/s
+        k = 1.0 / self.setting.dt_s  # BodyState's m/tick -> m/s
         x, y, vx, vy = s.x[:, 0], s.y[:, 0], s.vx[:, 0] * k, s.vy[:, 0] * k
         verdict = np.full(len(x), -1)
         open_ = self.alive.copy()

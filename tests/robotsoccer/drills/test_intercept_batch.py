@@ -95,7 +95,7 @@ def test_what_the_batch_cannot_run_is_named() -> None:
     assert batch_reason(spec()) is None
     assert "kick" in (batch_reason(spec(defender_kick=True)) or "")
     robots = TrialSpec(drill="intercept", field_model="robot_physics")
-    assert "Soccer Server" in (batch_reason(robots) or "")
+    assert "robot_physics model has no batch form" in (batch_reason(robots) or "")
     assert "intercept" in (batch_reason(TrialSpec(drill="pass", field_model="soccer_server")) or "")
     with pytest.raises(ValueError, match="kick"):
         run_intercept_batch(spec(defender_kick=True), [0])
