@@ -37,6 +37,7 @@ from robotsoccer import __version__
 from robotsoccer.drills import DRILLS, make_drill
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers, run_trials
+from robotsoccer.runs.ray_backend import require_ray
 from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial
 from robotsoccer.stats import wilson_interval
 
@@ -163,7 +164,7 @@ def build_parser() -> argparse.ArgumentParser:
     _field_options(demo)
     _drill_options(demo)
     demo.add_argument("--trials", type=_positive_int, default=200, help="how many trials")
-    _run_options(demo)
+    _run_options(demo, backend=True)
     demo.add_argument("--record", action="store_true", help="write rerun recordings")
     demo.add_argument(
         "--record-trials", type=_positive_int, default=3, help="record this many first trials"
@@ -241,8 +242,15 @@ def _drill_options(p: argparse.ArgumentParser) -> None:
     )
 
 
-def _run_options(p: argparse.ArgumentParser) -> None:
+def _run_options(p: argparse.ArgumentParser, *, backend: bool = False) -> None:
     p.add_argument("--workers", type=_positive_int, default=None, help="processes (all cores)")
+    if backend:
+        p.add_argument(
+            "--backend",
+            default="process",
+            choices=("process", "ray"),
+            help="where trials run: a process pool here, or Ray (a cluster if RAY_ADDRESS is set)",
+        )
     p.add_argument("--out", type=Path, default=None, help="run folder (under runs/)")
     p.add_argument("--resume", action="store_true", help="continue the run in --out")
     p.add_argument("--overwrite", action="store_true", help="replace the run in --out")
@@ -330,6 +338,8 @@ def cmd_demo(args: argparse.Namespace) -> int:
         record_trials=args.record_trials if args.record else 0,
     )
     check_spec(spec)
+    if args.backend == "ray":
+        require_ray()  # without Ray: one line, before the run folder is touched
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     workers = args.workers or default_workers()
     results_path = out / "results.csv"
@@ -345,6 +355,7 @@ def cmd_demo(args: argparse.Namespace) -> int:
             progress=not args.quiet,
             keep=False,
             on_result=tally.add,
+            backend=args.backend,
         )
     except KeyboardInterrupt:
         kept = f"; finished trials are kept in {results_path}" if results_path.exists() else ""

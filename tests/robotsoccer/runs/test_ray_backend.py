@@ -1,0 +1,118 @@
+"""The Ray backend: the same results and the same table as the process pool, Ray or not."""
+
+from __future__ import annotations
+
+import sys
+
+import pytest
+
+from robotsoccer.drills import DRILLS
+from robotsoccer.runs.pool import manifest_path, read_results, run_trials
+from robotsoccer.runs.ray_backend import IN_FLIGHT_PER_CPU, MISSING_RAY, execute_ray
+from robotsoccer.runs.runner import TrialResult, TrialSpec
+
+INTERCEPT = TrialSpec(drill="intercept", field_model="soccer_server", seed=3)
+SHOOTOUT = TrialSpec(drill="shootout", field_model="robot_physics", seed=3)
+
+
+def test_without_ray_the_ray_backend_fails_in_one_line_before_writing(
+    tmp_path, monkeypatch
+) -> None:
+    monkeypatch.setitem(sys.modules, "ray", None)  # `import ray` now fails
+    path = tmp_path / "results.csv"
+    with pytest.raises(ValueError, match="needs Ray") as caught:
+        run_trials(INTERCEPT, 4, workers=2, results_path=path, progress=False, backend="ray")
+    assert str(caught.value) == MISSING_RAY == "backend 'ray' needs Ray: pip install '.[ray]'"
+    assert not path.exists() and not manifest_path(path).exists()
+
+
+def test_an_unknown_backend_is_refused() -> None:
+    with pytest.raises(ValueError, match="unknown backend 'dask'"):
+        run_trials(INTERCEPT, 2, workers=1, progress=False, backend="dask")
+
+
+@pytest.fixture(scope="module")
+def ray_instance():
+    ray = pytest.importorskip("ray")
+    ray.init(
+        address="local",
+        num_cpus=2,
+        include_dashboard=False,
+        log_to_driver=False,
+        logging_level="WARNING",
+    )
+    yield ray
+    ray.shutdown()
+
+
+def rows(path) -> list[bytes]:
+    """The table's data rows, byte for byte, by trial index (chunks land as they finish)."""
+    header, *data = path.read_bytes().splitlines(keepends=True)
+    assert header == (TrialResult.CSV_HEADER + "\n").encode()
+    return sorted(data, key=lambda row: int(row.split(b",", 1)[0]))
+
+
+@pytest.mark.parametrize(
+    ("spec", "n"), [(INTERCEPT, 20), (SHOOTOUT, 6)], ids=["intercept", "shootout"]
+)
+def test_ray_gives_the_results_and_table_of_the_process_pool(
+    ray_instance, tmp_path, spec: TrialSpec, n: int
+) -> None:
+    one = run_trials(spec, n, workers=1, progress=False)
+    pool = run_trials(spec, n, workers=2, results_path=tmp_path / "pool.csv", progress=False)
+    ray = run_trials(
+        spec, n, workers=2, results_path=tmp_path / "ray.csv", progress=False, backend="ray"
+    )
+    assert [r.index for r in ray] == list(range(n))
+    assert ray == one == pool
+    assert rows(tmp_path / "ray.csv") == rows(tmp_path / "pool.csv")
+    assert (tmp_path / "ray.json").read_bytes() == (tmp_path / "pool.json").read_bytes()
+    single = run_trials(  # one chunk: the whole table byte for byte, row order included
+        spec,
+        n,
+        workers=2,
+        results_path=tmp_path / "ray1.csv",
+        progress=False,
+        chunk_size=n,
+        backend="ray",
+    )
+    run_trials(spec, n, workers=1, results_path=tmp_path / "one.csv", progress=False)
+    assert single == one
+    assert (tmp_path / "ray1.csv").read_bytes() == (tmp_path / "one.csv").read_bytes()
+
+
+def test_a_process_pool_table_is_resumed_on_ray(ray_instance, tmp_path) -> None:
+    path = tmp_path / "results.csv"
+    run_trials(INTERCEPT, 8, workers=2, results_path=path, progress=False)
+    resumed = run_trials(
+        INTERCEPT, 16, workers=2, results_path=path, resume=True, progress=False, backend="ray"
+    )
+    assert resumed == run_trials(INTERCEPT, 16, workers=1, progress=False)
+    assert read_results(path) == {r.index: r for r in resumed}
+
+
+def test_stopping_early_cancels_the_tasks_still_out(ray_instance, monkeypatch) -> None:
+    cancelled: list[object] = []
+    real_cancel = ray_instance.cancel
+
+    def cancel(ref, **kwargs):
+        cancelled.append(ref)
+        return real_cancel(ref, **kwargs)
+
+    monkeypatch.setattr(ray_instance, "cancel", cancel)
+    chunks = execute_ray(INTERCEPT, ([i] for i in range(40)), workers=2)
+    assert len(next(chunks)) == 1
+    chunks.close()  # what a Ctrl-C in run_trials does: the finally cancels the rest
+    assert len(cancelled) == IN_FLIGHT_PER_CPU * 2 - 1  # the chunks still out, not all 40
+    monkeypatch.undo()
+    again = run_trials(INTERCEPT, 4, workers=2, progress=False, backend="ray")
+    assert again == run_trials(INTERCEPT, 4, workers=1, progress=False)
+
+
+def test_an_error_inside_a_task_is_raised_as_itself(ray_instance, monkeypatch) -> None:
+    """A drill this process knows and the Ray workers do not: the tasks raise."""
+    monkeypatch.setitem(DRILLS, "boom", DRILLS["shootout"])
+    spec = TrialSpec(drill="boom", field_model="robot_physics")
+    with pytest.raises(ValueError, match="unknown drill 'boom'") as caught:
+        run_trials(spec, 8, workers=2, progress=False, chunk_size=1, backend="ray")
+    assert type(caught.value) is ValueError  # not Ray's wrapper, whose first line is its pid
