@@ -77,15 +77,21 @@ def stream_key(experiment_seed: int, trial_index: int, name: str) -> int:
 
 
 def stream_keys(
-    experiment_seed: int, trial_indices: Sequence[int] | npt.NDArray[np.int64], name: str
+    experiment_seed: int | npt.NDArray[np.int64],
+    trial_indices: Sequence[int] | npt.NDArray[np.int64],
+    name: str,
 ) -> npt.NDArray[np.uint64]:
-    """The keys of stream `name` of many trials (as :func:`stream_key`, one array pass)."""
+    """The keys of stream `name` of many trials (as :func:`stream_key`, one array pass).
+
+    `experiment_seed` is one seed for all, or one per trial.
+    """
     if name not in STREAMS:
         raise KeyError(f"unknown random stream {name!r} (declared: {', '.join(STREAMS)})")
-    seed_h = _combine(_mix_int(0x5EED), experiment_seed)
     trials = np.asarray(trial_indices, dtype=np.int64).astype(np.uint64)
+    seeds = np.asarray(experiment_seed, dtype=np.int64).astype(np.uint64)
     with np.errstate(over="ignore"):
-        h = _mix(np.uint64(seed_h) ^ _mix(trials + _GAMMA))
+        seed_h = _mix(np.uint64(_mix_int(0x5EED)) ^ _mix(seeds + _GAMMA))
+        h = _mix(seed_h ^ _mix(trials + _GAMMA))
         tag = np.uint64(_mix_int(zlib.crc32(name.encode()) + 0x9E3779B97F4A7C15))
         return _mix(h ^ tag)
 
@@ -233,9 +239,12 @@ class StreamBatch:
 
     @classmethod
     def for_trials(
-        cls, experiment_seed: int, trial_indices: Sequence[int] | npt.NDArray[np.int64], name: str
+        cls,
+        experiment_seed: int | npt.NDArray[np.int64],
+        trial_indices: Sequence[int] | npt.NDArray[np.int64],
+        name: str,
     ) -> StreamBatch:
-        """Stream `name` of the given trials of an experiment."""
+        """Stream `name` of the given trials of an experiment (or one seed per trial)."""
         return cls(stream_keys(experiment_seed, trial_indices, name))
 
     def take(

@@ -143,6 +143,35 @@ def run_intercept_batch(
     return results
 
 
+def decisions_batch(
+    spec: TrialSpec, seeds: npt.NDArray[np.int64], trials: npt.NDArray[np.int64]
+) -> Array:
+    """Each trial run up to its defender's decision: (BD [m], BA [rad], previous BD [m]) there.
+
+    Trial k is trial ``trials[k]`` of experiment seed ``seeds[k]``; a row of NaN: the trial
+    ended before the defender decided. What the one-trial environment
+    (:class:`~robotsoccer.envs.intercept.InterceptEnv`) observes at its reset.
+    """
+    batch = _InterceptBatch(spec, trials, seeds)
+    batch.stop_at_decision = True
+    batch.run()
+    return batch.decisions
+
+
+def play_batch(
+    spec: TrialSpec,
+    seeds: npt.NDArray[np.int64],
+    trials: npt.NDArray[np.int64],
+    turn_angles: Array,
+) -> list[TrialResult]:
+    """Each trial played with its defender's TA given (``turn_angles[k]`` [rad]), to its verdict.
+
+    The behaviour's own rule is not asked; everything before the decision is as in
+    :func:`decisions_batch`, so this is the rest of the trial that one observed.
+    """
+    return _InterceptBatch(spec, trials, seeds, turn_angles).run()
+
+
 @dataclass(frozen=True)
 class _Setting:
     """What every trial of the batch shares."""
@@ -158,7 +187,22 @@ class _Setting:
 class _InterceptBatch:
     """One batch of trials from placement to their verdicts (module docstring)."""
 
-    def __init__(self, spec: TrialSpec, trials: npt.NDArray[np.int64]) -> None:
+    def __init__(
+        self,
+        spec: TrialSpec,
+        trials: npt.NDArray[np.int64],
+        seeds: npt.NDArray[np.int64] | None = None,
+        turn_angles: Array | None = None,
+    ) -> None:
+        """Place every trial.
+
+        Args:
+            spec: What to run.
+            trials: The trial indices.
+            seeds: One experiment seed per trial (default: ``spec.seed`` for all).
+            turn_angles: An external TA per trial, used instead of the behaviour's rule
+                (:class:`DecisionBatch`); None: the behaviour decides.
+        """
         drill = make_drill(spec.drill, dict(spec.drill_options))
         assert isinstance(drill, InterceptDrill)
         options = field_options(spec, drill)
@@ -170,19 +214,23 @@ class _InterceptBatch:
             pitch=facts.pitch,
             dt_s=facts.dt_s,
             max_ticks=round(drill.max_time_s / facts.dt_s),
-            choose=_chooser(drill),
+            choose=_chooser(drill) if turn_angles is None else _given_ta,
         )
         self.trials = trials
         k = len(trials)
-        movement = StreamBatch.for_trials(spec.seed, trials, "movement")
+        self.turn_angles = np.zeros(k) if turn_angles is None else np.asarray(turn_angles)
+        self.stop_at_decision = False
+        self.decisions = np.full((k, 3), np.nan)  # (BD, BA, previous BD) at the trigger
+        seed = spec.seed if seeds is None else seeds
+        movement = StreamBatch.for_trials(seed, trials, "movement")
         self.server: BatchArena = make_batch_arena(
             spec.field_model, spec.preset, (SHOOTER, DEFENDER), movement, options
         )
-        self.policy = StreamBatch.for_trials(spec.seed, trials, "policy")
+        self.policy = StreamBatch.for_trials(seed, trials, "policy")
         self.out: dict[int, TrialResult] = {}
         self.rows = np.arange(k)  # each array row's position in `trials`
         self.alive = np.ones(k, dtype=bool)  # rows whose trial has no verdict yet
-        self._place(StreamBatch.for_trials(spec.seed, trials, "placement"))
+        self._place(StreamBatch.for_trials(seed, trials, "placement"))
         self._init_minds(k)
 
     # ------------------------------------------------------------------ set-up
@@ -269,7 +317,7 @@ class _InterceptBatch:
             self._judge()
             if self.alive.sum() < COMPACT_SHARE * len(self.alive):
                 self._compact()
-        return [self.out[i] for i in range(len(self.trials))]
+        return [self.out[i] for i in range(len(self.trials)) if i in self.out]
 
     def _send_commands(self) -> None:
         """Each player's next queued body command (the arena's plans, one per cycle)."""
@@ -317,6 +365,12 @@ class _InterceptBatch:
         far = ball & ~before & (bd > self.setting.plan.trigger_distance_m)
         new = ball & ~before & ~far
         again = ball & before & (self.setting.drill.ta_mode is TaMode.EVERY_SEE)
+        if self.stop_at_decision and new.any():  # decisions_batch: note it, leave the trial
+            hit = new & self.alive
+            self.decisions[self.rows[hit]] = np.stack((bd, ba, previous_bd), axis=1)[hit]
+            self.alive &= ~hit
+            self.triggered |= new  # a left trial still steps until compaction: no second note
+            new = np.zeros_like(new)
         if new.any() or again.any():
             ta = choose(self, new | again)
             clip = TA_CLIP_RAD
@@ -468,7 +522,7 @@ class _InterceptBatch:
 _PER_TRIAL = (
     "rows", "alive", "shooter_waits", "kick_due", "kick_dir", "queue_kind", "queue_arg",
     "queue_next", "triggered", "ta", "prev_bd", "prev_x", "prev_y", "heading", "pending_turn",
-    "example", "approaching", "deflected",
+    "example", "approaching", "deflected", "turn_angles",
 )  # fmt: skip
 """The per-trial state arrays of :class:`_InterceptBatch` (compacted together)."""
 
@@ -508,6 +562,11 @@ def _chooser(drill: InterceptDrill) -> Chooser | None:
         table = load_lookup_table(drill.model)
         return lambda batch, rows: table.predict(batch.inputs[1])
     return _analytic_ta
+
+
+def _given_ta(batch: _InterceptBatch, rows: Mask) -> Array:
+    """The TA given from outside for each trial (an environment's actions)."""
+    return batch.turn_angles
 
 
 def _random_ta(batch: _InterceptBatch, rows: Mask) -> Array:

@@ -1,0 +1,178 @@
+"""Many interception episodes at once: a Gymnasium vector environment over the batched drill.
+
+:class:`InterceptVectorEnv` is ``num_envs`` copies of :class:`~robotsoccer.envs.intercept.
+InterceptEnv` stepped together by the batched drill engine
+(:mod:`robotsoccer.drills.intercept_batch`) instead of one trial at a time. Each sub-environment
+poses the paper's layer-1 decision (§5): the observation is (BD [units], BA [rad], previous BD
+[units]) at the defender's trigger, the action is TA [rad], and the episode ends at the coach's
+verdict with reward 1 for a SAVE.
+
+**Exactly the single environment.** Sub-environment i after ``reset(seed=s)`` plays the episode
+stream of ``InterceptEnv`` reset with seed ``s + i`` (Gymnasium's convention for vector seeds):
+the same trials, the same observations, the same outcome for the same actions (a test checks
+it). A list of seeds gives each sub-environment its own.
+
+**Autoreset.** Every episode is one decision (a contextual bandit), so each step ends every
+sub-environment. The mode is Gymnasium's ``SAME_STEP``: ``step`` returns the verdicts' rewards
+and, as observations, the next episodes' first observations; the finished episodes' own
+observations are in ``infos["final_obs"]`` (and ``infos["_final_obs"]``), as Gymnasium's vector
+environments put them.
+
+**How.** A step runs two batches: the trials played to their verdicts with the given TAs
+(:func:`~robotsoccer.drills.intercept_batch.play_batch`), then the next trials up to their
+decisions (:func:`~robotsoccer.drills.intercept_batch.decisions_batch`), skipping trials in
+which the defender never decides, as the single environment does. Replaying the part of a trial
+before its decision costs about half a trial; it keeps the batch in lockstep, which is what makes
+it fast.
+
+Only field models with a batch arena (today the Soccer Server) are supported; on the robot
+table ``gymnasium.make_vec("robotsoccer/Intercept-v0", ...)`` gives a ``SyncVectorEnv`` over
+``InterceptEnv`` (:func:`make_intercept_vector_env`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import numpy.typing as npt
+from gymnasium.vector import AutoresetMode
+from gymnasium.vector.utils import batch_space
+
+from robotsoccer.drills.intercept_batch import batch_reason, decisions_batch, play_batch
+from robotsoccer.envs.intercept import MAX_DISTANCE_UNITS, SKIP_LIMIT, InterceptEnv
+from robotsoccer.skills.intercept import TA_CLIP_RAD
+
+
+class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray]):
+    """``num_envs`` interception decisions stepped as one batch (module docstring).
+
+    Args:
+        num_envs: Sub-environments.
+        field_model: A field model with a batch arena (``soccer_server``).
+        preset: Its preset; None: the model's default.
+        ball_noise: Ball-motion noise; None: the preset's.
+        drill_options: Further options of the interception drill (as ``InterceptEnv``).
+
+    Raises:
+        ValueError: The field or the drill options cannot run batched.
+    """
+
+    metadata: dict[str, Any] = {  # noqa: RUF012 (Gymnasium's class attribute)
+        "render_modes": [],
+        "autoreset_mode": AutoresetMode.SAME_STEP,
+    }
+
+    def __init__(
+        self,
+        num_envs: int,
+        field_model: str = "soccer_server",
+        preset: str | None = None,
+        ball_noise: float | None = None,
+        drill_options: dict[str, Any] | None = None,
+    ) -> None:
+        if num_envs < 1:
+            raise ValueError(f"num_envs must be >= 1, got {num_envs}")
+        single = InterceptEnv(field_model, preset, ball_noise, drill_options)
+        why = batch_reason(single.spec_)
+        if why is not None:
+            raise ValueError(f"no batched interception here: {why}")
+        self.spec_ = single.spec_
+        self.unit_m = single.unit_m
+        self.num_envs = num_envs
+        self.single_observation_space = single.observation_space
+        self.single_action_space = single.action_space
+        self.observation_space = batch_space(self.single_observation_space, num_envs)
+        self.action_space = batch_space(self.single_action_space, num_envs)
+        self._seeds = np.zeros(num_envs, dtype=np.int64)
+        self._trials = np.zeros(num_envs, dtype=np.int64)  # the trial each sub-env is at
+        self._obs = np.zeros((num_envs, 3), dtype=np.float32)
+        self._ready = False
+
+    def reset(
+        self, *, seed: int | Sequence[int] | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Start every sub-environment's episode stream (module docstring) at its first decision.
+
+        `seed`: one int (sub-environment i gets ``seed + i``), one per sub-environment, or None
+        (seeds drawn from the vector environment's own generator, itself seeded from the OS).
+        """
+        if seed is None:
+            if not hasattr(self, "_np_random") or self._np_random is None:
+                self._np_random, _ = gym.utils.seeding.np_random(None)
+            seeds = self._np_random.integers(2**31 - 1, size=self.num_envs)
+        elif isinstance(seed, int | np.integer):
+            seeds = int(seed) + np.arange(self.num_envs)
+            self._np_random, _ = gym.utils.seeding.np_random(int(seed))
+        else:
+            if len(seed) != self.num_envs:
+                raise ValueError(f"expected {self.num_envs} seeds, got {len(seed)}")
+            seeds = np.asarray(seed, dtype=np.int64)
+        self._seeds = np.asarray(seeds, dtype=np.int64)
+        self._trials = np.zeros(self.num_envs, dtype=np.int64)
+        self._next_decisions(np.ones(self.num_envs, dtype=bool))
+        self._ready = True
+        return self._obs.copy(), {"trial": self._trials.copy(), "seed": self._seeds.copy()}
+
+    def step(
+        self, actions: npt.ArrayLike
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
+        """Play every episode to its verdict with TA = `actions`; start the next ones."""
+        if not self._ready:
+            raise RuntimeError("step() before reset()")
+        ta = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, -1)[:, 0]
+        ta = np.clip(ta, -TA_CLIP_RAD, TA_CLIP_RAD)
+        results = play_batch(self.spec_, self._seeds, self._trials, ta)
+        labels = np.array([r.label for r in results])
+        rewards = (labels == "SAVE").astype(np.float64)
+        infos: dict[str, Any] = {
+            "label": labels,
+            "reason": np.array([r.reason for r in results]),
+            "ticks": np.array([r.ticks for r in results]),
+            "trial": self._trials.copy(),
+            "final_obs": self._obs.copy(),
+            "_final_obs": np.ones(self.num_envs, dtype=bool),
+        }
+        self._trials += 1
+        self._next_decisions(np.ones(self.num_envs, dtype=bool))
+        done = np.ones(self.num_envs, dtype=bool)
+        return self._obs.copy(), rewards, done, np.zeros(self.num_envs, dtype=bool), infos
+
+    def _next_decisions(self, pending: npt.NDArray[np.bool_]) -> None:
+        """From each pending sub-env's present trial on, find the first with a decision."""
+        for _ in range(SKIP_LIMIT):
+            rows = np.flatnonzero(pending)
+            if not rows.size:
+                return
+            found = decisions_batch(self.spec_, self._seeds[rows], self._trials[rows])
+            decided = ~np.isnan(found[:, 0])
+            u = self.unit_m
+            bd, ba, previous = found[decided].T
+            self._obs[rows[decided]] = np.stack(
+                (np.minimum(bd / u, MAX_DISTANCE_UNITS), ba,
+                 np.minimum(previous / u, MAX_DISTANCE_UNITS)), axis=1,
+            )  # fmt: skip
+            self._trials[rows[~decided]] += 1
+            pending[rows[decided]] = False
+        raise RuntimeError(f"no decision in {SKIP_LIMIT} trials in a row: check the drill options")
+
+
+def make_intercept_vector_env(
+    num_envs: int = 1, **kwargs: Any
+) -> gym.vector.VectorEnv[Any, Any, Any]:
+    """``gymnasium.make_vec``'s entry point (``vector_entry_point``) for ``Intercept-v0``.
+
+    The batched :class:`InterceptVectorEnv` where the field has a batch arena; elsewhere (the
+    robot table) a ``SyncVectorEnv`` over ``InterceptEnv`` with its ``SAME_STEP`` autoreset,
+    so both behave alike.
+    """
+    single = InterceptEnv(**kwargs)
+    if batch_reason(single.spec_) is None:
+        return InterceptVectorEnv(num_envs, **kwargs)
+    return gym.vector.SyncVectorEnv(
+        [lambda: InterceptEnv(**kwargs) for _ in range(num_envs)],
+        autoreset_mode=AutoresetMode.SAME_STEP,
+    )
+
