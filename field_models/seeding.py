@@ -259,6 +259,31 @@ class StreamBatch:
         self.positions[rows] += count
         return drawn
 
+    def peek(
+        self, offsets: npt.NDArray[np.int64], rows: npt.NDArray[np.intp] | None = None
+    ) -> npt.NDArray[np.float64]:
+        """Draws at ``positions + offsets`` of every trial (or of `rows`), without advancing.
+
+        `offsets` has shape (m,) (the same for every trial) or (len(rows), m). Counter-based
+        streams allow it: a caller can compute only the draws it will use, then
+        :meth:`advance` past the block.
+        """
+        keys = self.keys if rows is None else self.keys[rows]
+        base = self.positions if rows is None else self.positions[rows]
+        pos = (base.reshape(-1, 1) + np.asarray(offsets, dtype=np.int64)).astype(np.uint64)
+        with np.errstate(over="ignore"):
+            z = pos + np.uint64(1)
+            z *= _GAMMA
+            z += keys.reshape(-1, 1)
+            z = _mix(z) >> _S11
+        out = z.astype(np.float64)
+        out *= _TO_UNIT
+        return out
+
+    def advance(self, count: int) -> None:
+        """Move every trial's stream `count` draws on (past a block :meth:`peek` read)."""
+        self.positions += count
+
     def subset(self, rows: npt.NDArray[np.intp]) -> StreamBatch:
         """The streams of `rows`, at their present positions (for compacting a batch)."""
         kept = StreamBatch(self.keys[rows])

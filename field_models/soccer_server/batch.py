@@ -124,6 +124,8 @@ class BatchSoccerServer:
         self._smax = np.array(
             [p.ball_speed_max_m_per_cycle] + [p.player_speed_max_m_per_cycle] * (n - 1)
         )
+        self._amax2 = self._amax * self._amax
+        self._smax2 = self._smax * self._smax
         sizes = [p.ball_size_m] + [p.player_size_m] * (n - 1)
         self._pairs = [(0, b) for b in range(1, n)]
         self._pairs += [(a, b) for a in range(1, n) for b in range(a + 1, n)]
@@ -134,9 +136,11 @@ class BatchSoccerServer:
         self._has_right = bool((self._side == -1).any())
         self._pitch = p.pitch()
         self._layout = row_layout(n - 1)
-        self._rows = np.empty((self.k, BATCH_BLOCK_CYCLES, self._layout.width))
+        block = (BATCH_BLOCK_CYCLES, self._layout.width) if self.streams is None else (0, 0)
+        self._rows = np.empty((self.k, *block))  # the generators' block (streams: unused)
         self._block_row = BATCH_BLOCK_CYCLES
         self._noise: tuple[np.ndarray, ...] = ()
+        self._block_start = np.zeros(self.k, dtype=np.int64)
 
     # ------------------------------------------------------------------ look-ups
 
@@ -154,6 +158,7 @@ class BatchSoccerServer:
         self._rows = self._rows[rows]
         if self.streams is not None:
             self.streams = self.streams.subset(rows)
+            self._block_start = self._block_start[rows]
         else:
             self.rngs = [self.rngs[r] for r in rows.tolist()]
         new_index = {old: new for new, old in enumerate(rows.tolist())}
@@ -233,7 +238,7 @@ class BatchSoccerServer:
         m = self._mask(mask)
         dt = self.params.dt_s
         heading = np.broadcast_to(np.asarray(heading_rad, dtype=float), (self.k,))
-        wrapped = np.array([wrap_angle(h) for h in heading.tolist()])
+        wrapped = wrap_angle(np.array(heading))  # the array form: the same bits as per float
         self.x[:, i] = np.where(m, x, self.x[:, i])
         self.y[:, i] = np.where(m, y, self.y[:, i])
         self.heading[:, i] = np.where(m, wrapped, self.heading[:, i])
@@ -323,28 +328,82 @@ class BatchSoccerServer:
         return [(trial, text) for trial in sorted(messages) for text in messages[trial]]
 
     def _refill(self) -> None:
-        """Draw every trial's next rows and give each object its update slot's noise."""
+        """Draw every trial's next rows and give each object its update slot's noise.
+
+        With counter-based streams only the columns every cycle uses (update order, movement
+        noise) are computed here; a turn's or a kick's draws are computed when one happens
+        (:meth:`_uniforms_at`), at their place in the row: the same numbers, a third less work.
+        """
         lay = self._layout
-        if self.streams is not None:
-            u = self.streams.take(self._rows[0].size).reshape(self._rows.shape)
+        streams = self.streams
+        if streams is not None:
+            self._block_start = streams.positions.copy()
+            needed = self._needed_offsets()
+            u = streams.peek(needed.ravel()).reshape(self.k, BATCH_BLOCK_CYCLES, -1)
+            streams.advance(BATCH_BLOCK_CYCLES * lay.width)
+            n = self._n
+            order, a, b = u[..., 2 * n :], u[..., :n], u[..., n : 2 * n]
         else:
             u = self._rows
             for rng, rows in zip(self.rngs, u, strict=True):
                 rng.random(out=rows)  # the same numbers as the single model's block draws
-        slot = _ranks(u[..., lay.order])  # slot[..., i]: when object i is updated
-        model = self.params.noise_model
-        move_a = np.take_along_axis(u[..., lay.move_a], slot, axis=-1)
-        move_b = np.take_along_axis(u[..., lay.move_b], slot, axis=-1)
-        move_x, move_y = unit_noise(move_a, move_b, model)
-        # Kick noise is shaped when a kick happens (kicks are few).
-        self._noise = (
-            move_x,
-            move_y,
-            turn_factor(u[..., lay.turn], self.params.player_rand),
-            u[..., lay.kick_a].copy(),
-            u[..., lay.kick_b].copy(),
-        )
+            order, a, b = u[..., lay.order], u[..., lay.move_a], u[..., lay.move_b]
+        slot = _ranks(order)  # slot[..., i]: when object i is updated
+        move_a = np.take_along_axis(a, slot, axis=-1)
+        move_b = np.take_along_axis(b, slot, axis=-1)
+        move_x, move_y = unit_noise(move_a, move_b, self.params.noise_model)
+        if streams is not None:
+            self._noise = (move_x, move_y)
+        else:  # kick noise is shaped when a kick happens (kicks are few)
+            self._noise = (
+                move_x,
+                move_y,
+                turn_factor(u[..., lay.turn], self.params.player_rand),
+                u[..., lay.kick_a].copy(),
+                u[..., lay.kick_b].copy(),
+            )
         self._block_row = 0
+
+    def _needed_offsets(self) -> np.ndarray:
+        """Offsets in a block of the columns every cycle uses: move_a, move_b, then order."""
+        lay = self._layout
+        cols = np.r_[
+            np.arange(lay.move_a.start, lay.move_a.stop),
+            np.arange(lay.move_b.start, lay.move_b.stop),
+            np.arange(lay.order.start, lay.order.stop),
+        ]
+        rows = np.arange(BATCH_BLOCK_CYCLES)[:, None] * lay.width
+        offsets: np.ndarray = rows + cols
+        return offsets
+
+    def _uniforms_at(self, r: int, column: int, trials: np.ndarray) -> np.ndarray:
+        """The draw of cycle `r` of the block, column `column`, for `trials` (indices)."""
+        assert self.streams is not None
+        offset = self._block_start[trials] - self.streams.positions[trials]
+        offset += r * self._layout.width + column
+        drawn: np.ndarray = self.streams.peek(offset.reshape(-1, 1), trials)[:, 0]
+        return drawn
+
+    def _turn_noise(self, r: int, i: int, m: np.ndarray) -> np.ndarray:
+        """``1 + ξ`` of player row `i`'s turn at block cycle `r` (where `m`; 1 elsewhere)."""
+        if self.streams is None:
+            noise: np.ndarray = self._noise[2][:, r, i - 1]
+            return noise
+        factor = np.ones(self.k)
+        trials = np.flatnonzero(m)
+        u = self._uniforms_at(r, self._layout.turn.start + i - 1, trials)
+        factor[trials] = turn_factor(u, self.params.player_rand)
+        return factor
+
+    def _kick_uniforms(self, r: int, i: int, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The two kick-noise draws of player row `i` at block cycle `r` in trials `idx`."""
+        if self.streams is None:
+            return self._noise[3][idx, r, i - 1], self._noise[4][idx, r, i - 1]
+        lay = self._layout
+        return (
+            self._uniforms_at(r, lay.kick_a.start + i - 1, idx),
+            self._uniforms_at(r, lay.kick_b.start + i - 1, idx),
+        )
 
     def _run_commands(self, r: int, messages: dict[int, list[str]]) -> None:
         kicked = np.zeros(self.k, dtype=bool)
@@ -353,7 +412,7 @@ class BatchSoccerServer:
             if (kind == DASH).any():
                 self._do_dash(i, kind == DASH)
             if (kind == TURN).any():
-                self._do_turn(i, kind == TURN, self._noise[2][:, r, i - 1])
+                self._do_turn(i, kind == TURN, self._turn_noise(r, i, kind == TURN))
             if (kind == KICK).any():
                 kicked |= self._do_kick(i, kind == KICK, r)
         self._kind[:] = NO_COMMAND
@@ -425,9 +484,7 @@ class BatchSoccerServer:
         if p.kick_rand:
             bvx, bvy = self.vx[idx, 0], self.vy[idx, 0]
             radius = self._kick_noise_radius(power, gap, dir_diff, np.sqrt(bvx * bvx + bvy * bvy))
-            nx, ny = unit_noise(
-                self._noise[3][idx, r, i - 1], self._noise[4][idx, r, i - 1], p.noise_model
-            )
+            nx, ny = unit_noise(*self._kick_uniforms(r, i, idx), p.noise_model)
             ax = ax + radius * nx
             ay = ay + radius * ny
         self._ax[idx, 0] = self._ax[idx, 0] + ax
@@ -455,16 +512,20 @@ class BatchSoccerServer:
         vx, vy, ax, ay = self.vx, self.vy, self._ax, self._ay
         pushed = (ax != 0.0) | (ay != 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
+            # The clamps are rare: their square roots are taken only when one bites.
             a2 = ax * ax + ay * ay
-            f = self._amax / np.sqrt(a2)
-            over = a2 > self._amax * self._amax
-            cax, cay = np.where(over, ax * f, ax), np.where(over, ay * f, ay)
-            ux, uy = vx + cax, vy + cay
+            over = a2 > self._amax2
+            if over.any():
+                f = self._amax / np.sqrt(a2)
+                ax, ay = np.where(over, ax * f, ax), np.where(over, ay * f, ay)
+            ux, uy = vx + ax, vy + ay
             v2 = ux * ux + uy * uy
-            f = self._smax / np.sqrt(v2)
-            over = v2 > self._smax * self._smax
-            ux, uy = np.where(over, ux * f, ux), np.where(over, uy * f, uy)
+            over = v2 > self._smax2
+            if over.any():
+                f = self._smax / np.sqrt(v2)
+                ux, uy = np.where(over, ux * f, ux), np.where(over, uy * f, uy)
         ux, uy = np.where(pushed, ux, vx), np.where(pushed, uy, vy)
+        ax, ay = self._ax, self._ay
         radius = self._rand * np.sqrt(ux * ux + uy * uy)
         ux = ux + radius * self._noise[0][:, r]
         uy = uy + radius * self._noise[1][:, r]

@@ -410,11 +410,13 @@ class _InterceptBatch:
         def decide(where: Mask, code: npt.NDArray[np.int_] | int) -> None:
             nonlocal open_
             hit = where & open_
-            verdict[hit] = np.broadcast_to(code, verdict.shape)[hit]
-            open_ = open_ & ~hit
+            if hit.any():  # most rules fire in no trial at a given tick
+                verdict[hit] = np.broadcast_to(code, verdict.shape)[hit]
+                open_ = open_ & ~hit
 
         def not_in(where: Mask, reason: str) -> None:
-            decide(where, _NOT_IN[reason] + self.deflected.astype(int))
+            if where.any():
+                decide(where, _NOT_IN[reason] + self.deflected.astype(int))
 
         self._goal_line(x, y, decide, not_in)
         edge = pitch.ball_radius_m + 0.01 * pitch.half_length_m
@@ -455,6 +457,8 @@ class _InterceptBatch:
         scored = scored_left | (s.score_right != self.scores[1])
         line = 0.5 * pitch.length_m + pitch.ball_radius_m
         out = ~scored & ~((-line <= x) & (x <= line))
+        if not (scored.any() or out.any()):
+            return
         crossing = np.zeros(len(x), dtype=int)
         crossing[scored] = np.where(scored_left, int(Crossing.RIGHT_GOAL), int(Crossing.LEFT_GOAL))[
             scored

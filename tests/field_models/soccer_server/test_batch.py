@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
+from field_models.seeding import Stream, StreamBatch, TrialRngs
 from field_models.soccer_server.batch import BatchSoccerServer
 from field_models.soccer_server.dynamics import PLAY_MODES, SoccerServerModel
 from field_models.soccer_server.params import load_server_preset
@@ -84,11 +85,23 @@ def count_kickable(singles: list[SoccerServerModel], kind: np.ndarray) -> int:
     return count
 
 
+def streams(seed: int) -> tuple[list[Stream], StreamBatch]:
+    """The trials' counter-based "movement" streams, one by one and as one batch."""
+    one = [TrialRngs.for_trial(seed, k)["movement"] for k in range(K)]
+    return one, StreamBatch.for_trials(seed, np.arange(K), "movement")
+
+
+@pytest.mark.parametrize("source", ["generators", "streams"])
 @pytest.mark.parametrize("name", ["rcssserver_19", "soccer_server_1996"])
-def test_batch_equals_single_models_seed_for_seed(name: str) -> None:
+def test_batch_equals_single_models_seed_for_seed(name: str, source: str) -> None:
     preset = load_server_preset(name)
-    singles = [SoccerServerModel(preset, PLAYERS, rng) for rng in rngs(5)]
-    batch = BatchSoccerServer(preset, PLAYERS, rngs(5))
+    if source == "streams":  # turn and kick draws are computed only when they happen
+        one, many = streams(5)
+        singles = [SoccerServerModel(preset, PLAYERS, s) for s in one]
+        batch = BatchSoccerServer(preset, PLAYERS, many)
+    else:
+        singles = [SoccerServerModel(preset, PLAYERS, rng) for rng in rngs(5)]
+        batch = BatchSoccerServer(preset, PLAYERS, rngs(5))
     g = np.random.default_rng(77)
     place_all(singles, batch, g)
     heard_single: list[list[tuple[int, str]]] = [[] for _ in range(K)]
