@@ -50,6 +50,18 @@ def _mix(z: npt.NDArray[np.uint64]) -> npt.NDArray[np.uint64]:
     return z ^ (z >> _S31)
 
 
+def _mix_in_place(z: npt.NDArray[np.uint64]) -> None:
+    """:func:`_mix` overwriting `z` (one temporary instead of six)."""
+    tmp = z >> _S30
+    z ^= tmp
+    z *= _M1
+    np.right_shift(z, _S27, out=tmp)
+    z ^= tmp
+    z *= _M2
+    np.right_shift(z, _S31, out=tmp)
+    z ^= tmp
+
+
 def _mix_int(value: int) -> int:
     """:func:`_mix` of one Python int (mod 2**64), in plain integers (no array overhead)."""
     z = value & _MASK64
@@ -109,14 +121,7 @@ def uniforms(
     with np.errstate(over="ignore"):
         z *= _GAMMA
         z += keys.reshape(-1, 1)
-        tmp = z >> _S30
-        z ^= tmp
-        z *= _M1
-        np.right_shift(z, _S27, out=tmp)
-        z ^= tmp
-        z *= _M2
-        np.right_shift(z, _S31, out=tmp)
-        z ^= tmp
+        _mix_in_place(z)
         z >>= _S11
     out = z.astype(np.float64)
     out *= _TO_UNIT
@@ -275,7 +280,8 @@ class StreamBatch:
             z = pos + np.uint64(1)
             z *= _GAMMA
             z += keys.reshape(-1, 1)
-            z = _mix(z) >> _S11
+            _mix_in_place(z)
+            z >>= _S11
         out = z.astype(np.float64)
         out *= _TO_UNIT
         return out

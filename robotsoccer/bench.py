@@ -10,7 +10,11 @@ figure's target beside it (:func:`target_cell`).
 * ``demo.trials_per_s.K_worker(s)`` — the shootout demo drill through the process pool.
 * ``intercept.trials_per_s.<field model>`` — the layer-1 interception drill (straight defender,
   ball noise 0.05) through the pool with 2 workers, pool start included; enough trials that
-  start-up is a small share.
+  start-up is a small share. On the Soccer Server the pool runs them through the batched engine,
+  so this is what a user's run gets (results sent back to the parent, counted and sorted).
+* ``intercept.*batch*``, ``envs.*`` — the batched interception engine on all cores, against
+  batch size, its memory per trial, and the Gymnasium vector environment
+  (:mod:`robotsoccer.bench_batch`).
 * ``pass.trials_per_s.<field model>`` — the layer-2 pass drill (random receiver, straight
   interceptors, 12 players) through the pool with 2 workers, sized the same way.
 * ``training.net_1000_saves_s`` — wall seconds to train the paper's 3-4-1 net for 3000 epochs
@@ -108,6 +112,7 @@ def iter_benchmarks(
         say(f"intercept drill: {model}")
         measure = functools.partial(intercept_trials_per_s, model, _intercept_trials(model, quick))
         yield f"intercept.trials_per_s.{model}", round(median_of(repeats, measure))
+    yield from _batch_figures(quick, repeats, say)
     for model in FIELD_MODELS:
         say(f"pass drill: {model}")
         n = _sized(functools.partial(pass_trials_per_s, model), quick)
@@ -119,6 +124,28 @@ def iter_benchmarks(
     yield "machine.cpu_count", default_workers()
     yield "machine.repeats", repeats
     yield "machine.statistic", "median"
+
+
+def _batch_figures(quick: bool, repeats: int, say: Progress) -> Iterator[tuple[str, Any]]:
+    """The batched engine's figures (:mod:`robotsoccer.bench_batch`)."""
+    from robotsoccer import bench_batch as bb
+
+    trials = 16_384 if quick else 131_072
+    workers = default_workers()
+    say(f"intercept drill: batched engine, {workers} processes")
+    measure = functools.partial(bb.batch_trials_per_s, trials, workers)
+    yield "intercept.trials_per_s.soccer_server_batch", round(median_of(repeats, measure))
+    for size in bb.BATCH_SIZES:
+        say(f"intercept drill: batch of {size}, one core")
+        one = functools.partial(bb.batch_trials_per_s_one_core, max(trials // 8, size), size)
+        yield f"intercept.batch_trials_per_s.{size}", round(median_of(repeats, one))
+    say("intercept drill: memory per batched trial")
+    yield "intercept.batch_bytes_per_trial", round(bb.batch_bytes_per_trial())
+    for envs in (64, 1024):
+        say(f"vector environment: {envs} sub-environments")
+        steps = max(2, (2_048 if quick else 16_384) // envs)
+        step = functools.partial(bb.vector_env_steps_per_s, envs, steps)
+        yield f"envs.intercept_vector_steps_per_s.{envs}_envs", round(median_of(repeats, step))
 
 
 def nest(rows: Iterable[tuple[str, Any]]) -> dict[str, Any]:

@@ -52,6 +52,7 @@ BENCH_TARGETS = {
     "soccer_server.object_cycles_per_s.batch": (">=", 2_000_000.0),
     "intercept.trials_per_s.soccer_server": (">=", 3_000.0),
     "intercept.trials_per_s.robot_physics": (">=", 100.0),
+    "intercept.trials_per_s.soccer_server_batch": (">=", 90_000.0),
     "pass.trials_per_s.soccer_server": (">=", 300.0),
     "pass.trials_per_s.robot_physics": (">=", 40.0),
     "training.net_1000_saves_s": ("<=", 5.0),

@@ -665,18 +665,18 @@ class BatchSoccerServer:
     def _keep_halves(self, trials: np.ndarray, kicker: np.ndarray) -> None:
         """Players into their own half; the team not kicking off out of the centre circle."""
         p = self.params
+        rows = np.flatnonzero(trials)  # a few trials: work on their rows only
         side = self._side[1:]
-        x, y = self.x[:, 1:], self.y[:, 1:]
-        sel = trials[:, None]
-        x = np.where(sel & (side * x > 0.0), -side * p.player_size_m, x)
+        x, y = self.x[rows, 1:], self.y[rows, 1:]
+        x = np.where(side * x > 0.0, -side * p.player_size_m, x)
         radius = p.center_circle_radius_m + p.player_size_m
         r = np.sqrt(x * x + y * y)
-        inside = sel & (side != 0) & (side != kicker[:, None]) & ~(r > radius)
+        inside = (side != 0) & (side != kicker[rows, None]) & ~(r > radius)
         with np.errstate(divide="ignore", invalid="ignore"):
             nx = np.where(r == 0.0, radius, x * (radius / r))
             ny = np.where(r == 0.0, 0.0, y * (radius / r))
-        self.x[:, 1:] = np.where(inside, nx, x)
-        self.y[:, 1:] = np.where(inside, ny, y)
+        self.x[rows, 1:] = np.where(inside, nx, x)
+        self.y[rows, 1:] = np.where(inside, ny, y)
 
 
 def _ranks(keys: np.ndarray) -> np.ndarray:
