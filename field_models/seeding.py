@@ -41,6 +41,8 @@ _M2 = np.uint64(0x94D049BB133111EB)
 _S30, _S27, _S31, _S11 = np.uint64(30), np.uint64(27), np.uint64(31), np.uint64(11)
 _TO_UNIT = 1.0 / 9007199254740992.0  # 2**-53: the top 53 bits as a double in [0, 1)
 _MASK64 = (1 << 64) - 1
+STREAM_BLOCK = 128
+"""Draws a :class:`Stream` computes at once (any value gives the same numbers)."""
 
 
 def _mix(z: npt.NDArray[np.uint64]) -> npt.NDArray[np.uint64]:
@@ -135,22 +137,44 @@ class Stream:
     :meth:`uniform`, :meth:`standard_normal`, :meth:`normal`, :meth:`integers`.
     """
 
-    __slots__ = ("_key", "key", "position")
+    __slots__ = ("_buffer", "_key", "_list", "_start", "key", "position")
 
     def __init__(self, key: int) -> None:
         self.key = key & _MASK64
         self._key = np.array([self.key], dtype=np.uint64)
         self.position = 0
+        self._start = 0  # the buffer holds draws _start .. _start + len - 1
+        self._buffer = np.empty(0)
+        self._list: list[float] = []
+
+    def _cover(self, count: int) -> int:
+        """Make the buffer hold the next `count` draws; their index in it.
+
+        Draws are computed a block ahead (a draw depends only on its position, so the numbers
+        are the same): small draws then cost a slice, not a dozen numpy calls.
+        """
+        i = self.position - self._start
+        if i < 0 or i + count > len(self._list):
+            self._buffer = uniforms(self._key, self.position, max(STREAM_BLOCK, count))[0]
+            self._list = self._buffer.tolist()
+            self._start, i = self.position, 0
+        return i
 
     def _take(self, count: int) -> npt.NDArray[np.float64]:
-        drawn = uniforms(self._key, self.position, count)[0]
+        i = self._cover(count)
         self.position += count
-        return drawn
+        return self._buffer[i : i + count].copy()
+
+    def _take_list(self, count: int) -> list[float]:
+        i = self._cover(count)
+        self.position += count
+        return self._list[i : i + count]
 
     def _one(self) -> float:
-        """The next draw, in plain integers (what :func:`uniforms` gives, bit for bit)."""
+        """The next draw."""
+        i = self._cover(1)
         self.position += 1
-        return (_mix_int(self.key + self.position * 0x9E3779B97F4A7C15) >> 11) * _TO_UNIT
+        return self._list[i]
 
     @overload
     def random(self, size: None = None, *, out: None = None) -> float: ...
@@ -206,11 +230,14 @@ class Stream:
         """Standard normal draws by the Box–Muller transform (two uniforms per pair)."""
         n = 1 if size is None else int(size)
         pairs = (n + 1) // 2
-        u = self._take(2 * pairs).reshape(pairs, 2)
-        radius = np.sqrt(-2.0 * np.log1p(-u[:, 0]))  # 1 - u in (0, 1]: log is finite
-        angle = (2.0 * math.pi) * u[:, 1]
-        z = np.stack((radius * np.cos(angle), radius * np.sin(angle)), axis=1).reshape(-1)[:n]
-        return float(z[0]) if size is None else z
+        u = self._take_list(2 * pairs)
+        z: list[float] = []
+        log1p, sqrt, cos, sin, tau = math.log1p, math.sqrt, math.cos, math.sin, math.tau
+        for j in range(pairs):
+            radius = sqrt(-2.0 * log1p(-u[2 * j]))  # 1 - u in (0, 1]: the log is finite
+            angle = tau * u[2 * j + 1]
+            z += (radius * cos(angle), radius * sin(angle))
+        return z[0] if size is None else np.array(z[:n])
 
     def normal(
         self, loc: float = 0.0, scale: float = 1.0, size: int | None = None
