@@ -36,7 +36,7 @@ from field_models.registry import FIELD_MODELS, default_preset
 from robotsoccer import __version__
 from robotsoccer.drills import DRILLS, make_drill
 from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.pool import default_workers, run_trials
+from robotsoccer.runs.pool import default_workers, run_trials, using_backend
 from robotsoccer.runs.ray_backend import require_ray
 from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial
 from robotsoccer.stats import wilson_interval
@@ -265,7 +265,7 @@ def _experiment_options(p: argparse.ArgumentParser) -> None:
         "and 500 test trials per condition",
     )
     p.add_argument("--seed", type=_index, default=0, help="experiment seed")
-    _run_options(p)
+    _run_options(p, backend=True)
 
 
 # ----------------------------------------------------------------------------- main
@@ -278,7 +278,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.command is None:
         parser.print_help()
         return EXIT_USAGE
-    run: Callable[[argparse.Namespace], int] = COMMANDS[args.command]
+    command: Callable[[argparse.Namespace], int] = COMMANDS[args.command]
+
+    def run(args: argparse.Namespace) -> int:
+        backend = getattr(args, "backend", "process")
+        if backend == "ray":
+            require_ray()  # without Ray: one line, before any run folder is touched
+        with using_backend(backend):
+            return command(args)
+
     if args.debug:
         return run(args)
     try:

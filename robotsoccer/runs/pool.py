@@ -17,6 +17,8 @@
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import dataclasses
 import functools
 import json
@@ -279,6 +281,22 @@ def _differences(old: dict[str, Any], new: dict[str, Any]) -> list[str]:
     return found
 
 
+_BACKEND: contextvars.ContextVar[str] = contextvars.ContextVar("backend", default="process")
+
+
+@contextlib.contextmanager
+def using_backend(backend: str) -> Iterator[None]:
+    """Run every :func:`run_trials` inside the block on `backend` unless it names its own.
+
+    The CLI sets it once per command, so the experiments' many runs need no parameter for it.
+    """
+    token = _BACKEND.set(backend)
+    try:
+        yield
+    finally:
+        _BACKEND.reset(token)
+
+
 def run_trials(
     spec: TrialSpec,
     n_trials: int,
@@ -290,7 +308,7 @@ def run_trials(
     chunk_size: int | None = None,
     keep: bool = True,
     on_result: Callable[[TrialResult], None] | None = None,
-    backend: str = "process",
+    backend: str | None = None,
 ) -> list[TrialResult]:
     """Run trials 0..n_trials-1 of `spec` and return their results sorted by index.
 
@@ -311,6 +329,7 @@ def run_trials(
         backend: ``"process"``: a process pool on this machine; ``"ray"``: Ray tasks, on a
             local Ray instance or the cluster ``RAY_ADDRESS`` names
             (:mod:`robotsoccer.runs.ray_backend`). The results are the same either way.
+            None: the one :func:`using_backend` set (default ``"process"``).
 
     Raises:
         KeyboardInterrupt: after flushing every finished trial to `results_path`.
@@ -318,6 +337,7 @@ def run_trials(
         ValueError: An unknown `backend`, or ``"ray"`` without Ray installed (before anything
             is written).
     """
+    backend = backend or _BACKEND.get()
     if backend not in ("process", "ray"):
         raise ValueError(f"unknown backend {backend!r}: choose 'process' or 'ray'")
     if backend == "ray":

@@ -7,7 +7,7 @@ import sys
 import pytest
 
 from robotsoccer.drills import DRILLS
-from robotsoccer.runs.pool import manifest_path, read_results, run_trials
+from robotsoccer.runs.pool import manifest_path, read_results, run_trials, using_backend
 from robotsoccer.runs.ray_backend import IN_FLIGHT_PER_CPU, MISSING_RAY, execute_ray
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 
@@ -116,3 +116,23 @@ def test_an_error_inside_a_task_is_raised_as_itself(ray_instance, monkeypatch) -
     with pytest.raises(ValueError, match="unknown drill 'boom'") as caught:
         run_trials(spec, 8, workers=2, progress=False, chunk_size=1, backend="ray")
     assert type(caught.value) is ValueError  # not Ray's wrapper, whose first line is its pid
+
+
+def test_using_backend_sends_every_run_inside_to_ray(ray_instance, monkeypatch) -> None:
+    import robotsoccer.runs.ray_backend as ray_backend
+
+    calls = []
+    real = ray_backend.execute_ray
+
+    def spy(*args, **kwargs):  # type: ignore[no-untyped-def]
+        calls.append(args[2])
+        yield from real(*args, **kwargs)
+
+    monkeypatch.setattr(ray_backend, "execute_ray", spy)
+    spec = TrialSpec(drill="intercept", field_model="soccer_server", seed=4)
+    with using_backend("ray"):
+        on_ray = run_trials(spec, 12, workers=2, progress=False)
+    assert calls == [2]
+    assert on_ray == run_trials(spec, 12, workers=1, progress=False)
+    with using_backend("nowhere"), pytest.raises(ValueError, match="unknown backend"):
+        run_trials(spec, 1, workers=1, progress=False)
