@@ -41,8 +41,10 @@ _M2 = np.uint64(0x94D049BB133111EB)
 _S30, _S27, _S31, _S11 = np.uint64(30), np.uint64(27), np.uint64(31), np.uint64(11)
 _TO_UNIT = 1.0 / 9007199254740992.0  # 2**-53: the top 53 bits as a double in [0, 1)
 _MASK64 = (1 << 64) - 1
-STREAM_BLOCK = 128
-"""Draws a :class:`Stream` computes at once (any value gives the same numbers)."""
+STREAM_BLOCK = 64
+STREAM_BLOCK_MAX = 4096
+"""Draws a :class:`Stream` computes at once: its first block, and the most a block grows to
+(any value gives the same numbers)."""
 
 
 def _mix(z: npt.NDArray[np.uint64]) -> npt.NDArray[np.uint64]:
@@ -155,7 +157,11 @@ class Stream:
         """
         i = self.position - self._start
         if i < 0 or i + count > len(self._list):
-            self._buffer = uniforms(self._key, self.position, max(STREAM_BLOCK, count))[0]
+            # Blocks grow (64, 128, ... 4096): a short stream computes little, a long one
+            # pays numpy's per-call cost rarely.
+            block = min(STREAM_BLOCK_MAX, 2 * len(self._list)) if self._list else STREAM_BLOCK
+            self._buffer = uniforms(self._key, self.position, max(block, count))[0]
+            self._buffer.flags.writeable = False  # views of it are handed out (random(n))
             self._list = self._buffer.tolist()
             self._start, i = self.position, 0
         return i
@@ -171,7 +177,14 @@ class Stream:
         return self._list[i : i + count]
 
     def _one(self) -> float:
-        """The next draw."""
+        """The next draw (the first few in plain integers: a coach's two draws need no block)."""
+        i = self.position - self._start
+        if 0 <= i < len(self._list):
+            self.position += 1
+            return self._list[i]
+        if self.position < STREAM_BLOCK // 4:
+            self.position += 1
+            return (_mix_int(self.key + self.position * 0x9E3779B97F4A7C15) >> 11) * _TO_UNIT
         i = self._cover(1)
         self.position += 1
         return self._list[i]
@@ -195,7 +208,16 @@ class Stream:
         *,
         out: npt.NDArray[np.float64] | None = None,
     ) -> float | npt.NDArray[np.float64]:
-        """Uniform doubles in [0, 1): one float, an array of `size`, or filling `out`."""
+        """Uniform doubles in [0, 1): one float, an array of `size`, or filling `out`.
+
+        An array of an int `size` is read-only (a view of the stream's block); copy it to write.
+        """
+        if type(size) is int:  # the hot call (a see's draws): a read-only view, no copy
+            i = self.position - self._start
+            if i < 0 or i + size > len(self._list):
+                i = self._cover(size)
+            self.position += size
+            return self._buffer[i : i + size]
         if out is not None:
             out[...] = self._take(out.size).reshape(out.shape)
             return out

@@ -134,7 +134,8 @@ def _batch_figures(quick: bool, repeats: int, say: Progress) -> Iterator[tuple[s
     workers = default_workers()
     say(f"intercept drill: batched engine, {workers} processes")
     measure = functools.partial(bb.batch_trials_per_s, trials, workers)
-    yield "intercept.trials_per_s.soccer_server_batch", round(median_of(repeats, measure))
+    key = f"intercept.trials_per_s.{bb.batch_spec().field_model}_batch"
+    yield key, round(median_of(repeats, measure))
     for size in bb.BATCH_SIZES:
         say(f"intercept drill: batch of {size}, one core")
         one = functools.partial(bb.batch_trials_per_s_one_core, max(trials // 8, size), size)

@@ -25,6 +25,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
+from field_models.registry import PAPER_FIELD
 from robotsoccer.drills.intercept_batch import DEFAULT_BATCH, run_intercept_batch
 from robotsoccer.runs.pool import _worker_context
 from robotsoccer.runs.runner import TrialSpec
@@ -35,7 +36,8 @@ BATCH_SIZES = (256, 1024, 4096, 16384)
 
 def batch_spec(seed: int = 1) -> TrialSpec:
     """The benchmarked drill: straight defender, ball noise 0.05, on the paper's server."""
-    spec = TrialSpec(drill="intercept", field_model="soccer_server", seed=seed)
+    model, preset = PAPER_FIELD
+    spec = TrialSpec(drill="intercept", field_model=model, preset=preset, seed=seed)
     return spec.with_options(behaviour="straight").with_field(ball_noise=0.05)
 
 

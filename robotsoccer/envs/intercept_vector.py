@@ -41,6 +41,7 @@ import numpy.typing as npt
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
+from field_models.registry import PAPER_FIELD
 from robotsoccer.drills.intercept_batch import batch_reason, decisions_batch, play_batch
 from robotsoccer.envs.intercept import MAX_DISTANCE_UNITS, SKIP_LIMIT, InterceptEnv
 from robotsoccer.skills.intercept import TA_CLIP_RAD
@@ -51,7 +52,7 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
 
     Args:
         num_envs: Sub-environments.
-        field_model: A field model with a batch arena (``soccer_server``).
+        field_model: A field model with a batch arena (default: the paper's, the Soccer Server).
         preset: Its preset; None: the model's default.
         ball_noise: Ball-motion noise; None: the preset's.
         drill_options: Further options of the interception drill (as ``InterceptEnv``).
@@ -68,7 +69,7 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
     def __init__(
         self,
         num_envs: int,
-        field_model: str = "soccer_server",
+        field_model: str = PAPER_FIELD[0],
         preset: str | None = None,
         ball_noise: float | None = None,
         drill_options: dict[str, Any] | None = None,
