@@ -1,10 +1,13 @@
-"""Standard learning interfaces over the drills: Gymnasium environments.
+"""Standard learning interfaces over the drills: Gymnasium and PettingZoo environments.
 
 * :mod:`robotsoccer.envs.intercept` — the paper's layer-1 decision (TA from BD, BA, previous BD)
   as ``robotsoccer/Intercept-v0`` on any field model;
 * :mod:`robotsoccer.envs.intercept_vector` — many of those decisions stepped as one batch
   (``gymnasium.make_vec("robotsoccer/Intercept-v0", num_envs=...)``, the Soccer Server's batched
-  drill engine).
+  drill engine);
+* :mod:`robotsoccer.envs.passing` — the pass drill's decisions (layer 2's choice of receiver,
+  layer 1's TA for the receiver and the defenders) as a PettingZoo parallel environment,
+  :func:`~robotsoccer.envs.passing.pass_parallel_env`.
 
 Importing this package registers the ids with Gymnasium.
 """
@@ -15,6 +18,7 @@ from gymnasium.envs.registration import register, registry
 
 from robotsoccer.envs.intercept import InterceptEnv
 from robotsoccer.envs.intercept_vector import InterceptVectorEnv
+from robotsoccer.envs.passing import PassParallelEnv, pass_parallel_env
 
 INTERCEPT_ID = "robotsoccer/Intercept-v0"
 """The versioned Gymnasium id of :class:`~robotsoccer.envs.intercept.InterceptEnv`."""
@@ -26,4 +30,10 @@ if INTERCEPT_ID not in registry:
         vector_entry_point="robotsoccer.envs.intercept_vector:make_intercept_vector_env",
     )
 
-__all__ = ["INTERCEPT_ID", "InterceptEnv", "InterceptVectorEnv"]
+__all__ = [
+    "INTERCEPT_ID",
+    "InterceptEnv",
+    "InterceptVectorEnv",
+    "PassParallelEnv",
+    "pass_parallel_env",
+]
