@@ -82,6 +82,7 @@ from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_tri
 from robotsoccer.skills.intercept import TA_CLIP_RAD, DefenderMind
 from robotsoccer.skills.passing import (
     PasserMind,
+    PassOption,
     ReceiverMind,
     WaitingInterceptorMind,
     announced_number,
@@ -108,7 +109,7 @@ Observation: TypeAlias = npt.NDArray[Any] | dict[str, npt.NDArray[Any]]
 """The passer's dict observation, or an interceptor's (BD, BA, previous BD)."""
 ActionValue: TypeAlias = Any
 """A receiver slot (int) for the passer, a TA array of shape (1,) for an interceptor."""
-Option: TypeAlias = tuple[int, float, float, npt.NDArray[np.float64]]
+Option: TypeAlias = PassOption
 """One of the passer's candidates: (number, direction [rad], confidence, 174 attributes)."""
 
 
@@ -338,10 +339,11 @@ class _Watch:
 class _PassEpisode:
     """One trial of the drill, run by the runner's loop with a pause at every agent's decision.
 
-    For want of public hooks it reaches into the drill's passer and the loop: it replaces the
-    passer's ``_pick`` (the chooser), calls its ``_find_receivers`` and ``_option`` to show the
-    agent the candidates the mind is about to weigh, and reads the loop's ``_percepts`` for the
-    rest of a tick (:func:`_open_tick_after`).
+    It sets the passer's outside chooser (:attr:`~robotsoccer.skills.passing.PasserMind.pick`),
+    shows the agent the candidates the mind is about to weigh through its
+    :meth:`~robotsoccer.skills.passing.PasserMind.find_receivers` and
+    :meth:`~robotsoccer.skills.passing.PasserMind.option`, and reads the rest of a tick with
+    :meth:`~robotsoccer.runs.runner.TrialLoop.pending`.
     """
 
     def __init__(self, spec: TrialSpec, trial: int, agents: list[str]) -> None:
@@ -353,7 +355,7 @@ class _PassEpisode:
         assert isinstance(passer, PasserMind)
         # The drill's chooser is the one thing replaced: the mind finds its candidates, builds
         # their attributes, announces and kicks as ever, but the agent picks (§6, Figure 11).
-        passer._pick = self._pick  # type: ignore[method-assign]
+        passer.pick = self._pick
         self.passer = passer
         self.trial, self.seed = trial, spec.seed
         self.arena = arena
@@ -471,12 +473,12 @@ class _PassEpisode:
             if report is not None and report.number in passer.receivers:
                 passer.heard.setdefault(report.number, report)
         own = percept.player.team
-        found: dict[int, int | None] = dict(passer._find_receivers(percept, own))
+        found: dict[int, int | None] = dict(passer.find_receivers(percept, own))
         if not found:  # the mind's blind pass: straight ahead, to the first receiver
             found = {passer.receivers[0]: None}
         x = np.full((len(RECEIVER_SLOTS), ATTRIBUTES), np.nan)
         for number, index in found.items():
-            x[_numbers().index(number)] = passer._option(percept, own, number, index)[3]
+            x[_numbers().index(number)] = passer.option(percept, own, number, index)[3]
         self.mask = np.array([number in found for number in _numbers()], dtype=np.int8)
         known = ~np.isnan(x)
         return {
@@ -559,13 +561,10 @@ def _copy(observation: Observation) -> Observation:
 
 
 def _open_tick_after(loop: TrialLoop, percept: Percept) -> list[Percept]:
-    """The percepts of the loop's open tick after `percept` (paused on), not yet handed out.
-
-    Reads the loop's private list: TrialLoop has no public view of the rest of the tick.
-    """
-    percepts = loop._percepts
-    index = next(i for i, p in enumerate(percepts) if p is percept)
-    return percepts[index + 1 :]
+    """The percepts of the loop's open tick after `percept` (paused on), not yet handed out."""
+    pending = loop.pending()
+    index = next(i for i, p in enumerate(pending) if p is percept)
+    return pending[index + 1 :]
 
 
 def _checked(

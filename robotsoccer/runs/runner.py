@@ -171,6 +171,13 @@ class TrialLoop:
         self._next = 0  # the next percept of this tick to hand to its mind
         self._tick_open = False
 
+    def pending(self) -> list[Percept]:
+        """The open tick's percepts not yet handed to their minds; empty between ticks.
+
+        After a pause the percept paused on comes first.
+        """
+        return self._percepts[self._next :] if self._tick_open else []
+
     def run(self, pause: Callable[[Percept], bool] | None = None) -> Verdict | None:
         """Run to the verdict; with `pause`, return None before the first percept it accepts.
 

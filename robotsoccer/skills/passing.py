@@ -47,7 +47,7 @@ angles in degrees (:mod:`learning.pass_features`). The minds work in metres and 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 from typing import Protocol
@@ -215,6 +215,11 @@ def _or_inf(t: float | None) -> float:
     return math.inf if t is None else t
 
 
+PassOption = tuple[int, float, float, np.ndarray]
+"""One receiver the passer weighs: (number, pass direction [rad], tree confidence, its 174
+attributes); :meth:`PasserMind.option` builds it."""
+
+
 class PasserMind:
     """The passer (module docstring): intention, wait for reports, choose, announce, kick.
 
@@ -240,6 +245,9 @@ class PasserMind:
         decided_tick: The tick of the decision.
         candidates: How many receivers the passer could find in its view.
         reports: How many reports it heard.
+        pick: An outside chooser, (percept, options) -> index into options, used instead of
+            the chooser's rule (a learning environment's agent, :mod:`robotsoccer.envs.passing`);
+            None (default): the rule.
     """
 
     def __init__(
@@ -281,6 +289,7 @@ class PasserMind:
         self.candidates = 0
         self.reports = 0
         self.done = False
+        self.pick: Callable[[Percept, list[PassOption]], int] | None = None
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """Say the intention, gather reports, then decide once and kick."""
@@ -301,14 +310,14 @@ class PasserMind:
 
     def _decide(self, percept: Percept) -> tuple[Action, ...]:
         own = percept.player.team
-        found: dict[int, int | None] = dict(self._find_receivers(percept, own))
+        found: dict[int, int | None] = dict(self.find_receivers(percept, own))
         self.candidates, self.reports = len(found), len(self.heard)
         if not found:  # nobody in view: kick ahead, to the first receiver by number
             found = {self.receivers[0]: None}
-        options: list[tuple[int, float, float, np.ndarray]] = []
+        options: list[PassOption] = []
         for number, index in found.items():
-            options.append(self._option(percept, own, number, index))
-        pick = self._pick(percept, options)
+            options.append(self.option(percept, own, number, index))
+        pick = self._pick(percept, options) if self.pick is None else self.pick(percept, options)
         number, angle, confidence, x = options[pick]
         self.chosen, self.confidence, self.attributes = number, confidence, x
         self.pass_direction_rad, self.decided_tick = angle, percept.tick
@@ -317,7 +326,7 @@ class PasserMind:
             actions.append(Kick(self.kick_power, angle))
         return tuple(actions)
 
-    def _find_receivers(self, percept: Percept, own: str) -> dict[int, int]:
+    def find_receivers(self, percept: Percept, own: str) -> dict[int, int]:
         """Receiver number → index in the percept's players, for the receivers in view."""
         found: dict[int, int] = {}
         seen = percept.players
@@ -339,9 +348,9 @@ class PasserMind:
                 found[number] = best
         return found
 
-    def _option(
+    def option(
         self, percept: Percept, own: str, number: int, index: int | None
-    ) -> tuple[int, float, float, np.ndarray]:
+    ) -> PassOption:
         """(number, direction [rad], tree confidence, attributes) of passing to one receiver."""
         seen = percept.players
         if index is None:
@@ -361,8 +370,8 @@ class PasserMind:
             confidence = self.tree.success_confidence(x)
         return number, target.angle_rad, confidence, x
 
-    def _pick(self, percept: Percept, options: list[tuple[int, float, float, np.ndarray]]) -> int:
-        """The index of the chosen option."""
+    def _pick(self, percept: Percept, options: list[PassOption]) -> int:
+        """The index of the chosen option, by the chooser's rule."""
         if len(options) == 1:
             return 0
         if self.chooser is Chooser.RANDOM:
@@ -374,7 +383,7 @@ class PasserMind:
         return self._pick_analytic(percept, options)
 
     def _pick_analytic(
-        self, percept: Percept, options: list[tuple[int, float, float, np.ndarray]]
+        self, percept: Percept, options: list[PassOption]
     ) -> int:
         assert self.physics is not None
         own = percept.player.team
