@@ -119,10 +119,20 @@ def uniforms(
 
     Doubles in [0, 1) with 53 random bits, the draws a :class:`Stream` gives.
     """
-    pos = np.asarray(positions, dtype=np.int64).reshape(-1, 1).astype(np.uint64)
-    steps = np.arange(1, count + 1, dtype=np.uint64)
-    z = pos + steps  # (K, count): the draw numbers, then mixed in place (no temporaries)
+    pos = np.asarray(positions, dtype=np.int64).reshape(-1, 1)
+    return draws_at(keys, pos + np.arange(count, dtype=np.int64))
+
+
+def draws_at(
+    keys: npt.NDArray[np.uint64], positions: npt.NDArray[np.int64]
+) -> npt.NDArray[np.float64]:
+    """Draw number ``positions[k, j]`` (0-based) of stream ``keys[k]``, shape of `positions`.
+
+    The one place draws are computed: ``mix(key + (n + 1)·γ)``, top 53 bits as a double.
+    """
+    z = positions.astype(np.uint64)  # the draw numbers, then mixed in place (no temporaries)
     with np.errstate(over="ignore"):
+        z += np.uint64(1)
         z *= _GAMMA
         z += keys.reshape(-1, 1)
         _mix_in_place(z)
@@ -324,16 +334,7 @@ class StreamBatch:
         """
         keys = self.keys if rows is None else self.keys[rows]
         base = self.positions if rows is None else self.positions[rows]
-        pos = (base.reshape(-1, 1) + np.asarray(offsets, dtype=np.int64)).astype(np.uint64)
-        with np.errstate(over="ignore"):
-            z = pos + np.uint64(1)
-            z *= _GAMMA
-            z += keys.reshape(-1, 1)
-            _mix_in_place(z)
-            z >>= _S11
-        out = z.astype(np.float64)
-        out *= _TO_UNIT
-        return out
+        return draws_at(keys, base.reshape(-1, 1) + np.asarray(offsets, dtype=np.int64))
 
     def advance(self, count: int) -> None:
         """Move every trial's stream `count` draws on (past a block :meth:`peek` read)."""
