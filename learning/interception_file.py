@@ -261,34 +261,46 @@ def batch_turn_function(units: tuple[Unit, ...], offset: float) -> BatchTurnFunc
     return turn_angles_rad
 
 
-def net_turn_function(net: NetFile) -> TurnAngleFunction:
+def folded(net: NetFile, distance_factor: float = 1.0) -> tuple[tuple[Unit, ...], float]:
+    """The net's folded units, its distance scale multiplied by `distance_factor`.
+
+    A factor other than 1 applies the net on a field of another size (the transfer study): with
+    ``unit_here / unit_trained``, a distance of k drill units here enters the net as k of its
+    training field's units (``learning.features``: the distance scale).
+    """
+    if not (math.isfinite(distance_factor) and distance_factor > 0.0):
+        raise ValueError(f"distance_factor must be a finite number > 0, got {distance_factor!r}")
+    scale = net.schema.distance_scale_m * distance_factor
+    return fold_net(net.weights, net.input_mean, net.input_scale, scale)
+
+
+def net_turn_function(net: NetFile, distance_factor: float = 1.0) -> TurnAngleFunction:
     """The plain-Python turn-angle function of a net read by :func:`read_net_file`."""
-    units, offset = fold_net(
-        net.weights, net.input_mean, net.input_scale, net.schema.distance_scale_m
-    )
-    return turn_function(units, offset)
+    return turn_function(*folded(net, distance_factor))
 
 
-def load_batch_turn_function(path: str | os.PathLike[str]) -> BatchTurnFunction:
+def load_batch_turn_function(
+    path: str | os.PathLike[str], distance_factor: float = 1.0
+) -> BatchTurnFunction:
     """Read a net file and return its batch form (:func:`batch_turn_function`).
 
     Raises:
         ModelFileError: As :func:`read_net_file`.
     """
-    net = read_net_file(path)
-    units, offset = fold_net(
-        net.weights, net.input_mean, net.input_scale, net.schema.distance_scale_m
-    )
-    return batch_turn_function(units, offset)
+    return batch_turn_function(*folded(read_net_file(path), distance_factor))
 
 
-def load_turn_function(path: str | os.PathLike[str]) -> TurnAngleFunction:
+def load_turn_function(
+    path: str | os.PathLike[str], distance_factor: float = 1.0
+) -> TurnAngleFunction:
     """Read a net file and return its plain-Python ``f(BD, BA, previous BD) -> TA`` (no torch).
+
+    `distance_factor`: see :func:`folded` (1: the field it was trained on).
 
     Raises:
         ModelFileError: As :func:`read_net_file`.
     """
-    return net_turn_function(read_net_file(path))
+    return net_turn_function(read_net_file(path), distance_factor)
 
 
 def _is_int(value: object) -> bool:

@@ -99,6 +99,7 @@ from robotsoccer.skills.intercept import (
     check_behaviour,
     make_policy,
     model_origin,
+    transfer_distance_factor,
 )
 
 SHOOTER = PlayerRef(LEFT, 1)
@@ -394,6 +395,16 @@ class InterceptDrill:
         """This drill's launch plan on a field (cached per field)."""
         return cached_launch_plan(facts, self.kick_power, self.launch, self.scaling)
 
+    def distance_factor(self, facts: FieldFacts) -> float:
+        """The net's distance factor on this field (1 on the field it was trained on).
+
+        A transfer run applying a net trained on another field converts distances through
+        :func:`~robotsoccer.skills.intercept.transfer_distance_factor`.
+        """
+        if not (self.transfer and self.model and self.behaviour is Behaviour.NET):
+            return 1.0
+        return transfer_distance_factor(self.model, facts)
+
     def checked_plan(self, facts: FieldFacts) -> LaunchPlan:
         """The plan on a field, after refusing a model file trained elsewhere (not a transfer).
 
@@ -473,7 +484,9 @@ class InterceptDrill:
     def minds(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
         """The defender's behaviour, and the shooter when it launches the ball."""
         plan = self.plan(arena)
-        policy = make_policy(self.behaviour, rngs["policy"], self.model)
+        policy = make_policy(
+            self.behaviour, rngs["policy"], self.model, self.distance_factor(arena.facts)
+        )
         defender = DefenderMind(
             policy,
             plan.trigger_distance_m,

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from field_models.arena import FieldFacts
 from field_models.batch_arena import BatchArena
 from field_models.protocol import Crossing, Pitch, end_line_crossing, wrap_angle
 from field_models.registry import batch_reason as field_batch_reason
@@ -214,7 +215,7 @@ class _InterceptBatch:
             pitch=facts.pitch,
             dt_s=facts.dt_s,
             max_ticks=round(drill.max_time_s / facts.dt_s),
-            choose=_chooser(drill) if turn_angles is None else _given_ta,
+            choose=_chooser(drill, facts) if turn_angles is None else _given_ta,
         )
         self.trials = trials
         k = len(trials)
@@ -544,10 +545,10 @@ def _hypots(a: Array, b: Array) -> Array:
 Chooser = Callable[[_InterceptBatch, Mask], Array]
 """TA [rad] for the rows of a mask (other rows: anything), from the batch's present inputs."""
 
-_NETS: dict[tuple[str, int, int], BatchTurnFunction] = {}
+_NETS: dict[tuple[str, int, int, float], BatchTurnFunction] = {}
 
 
-def _chooser(drill: InterceptDrill) -> Chooser | None:
+def _chooser(drill: InterceptDrill, facts: FieldFacts) -> Chooser | None:
     """The behaviour's TA rule over a batch; None for ``still`` (the defender never acts)."""
     kind = drill.behaviour
     if kind is Behaviour.STILL:
@@ -557,9 +558,10 @@ def _chooser(drill: InterceptDrill) -> Chooser | None:
     if kind is Behaviour.RANDOM:
         return _random_ta
     if kind is Behaviour.NET:
-        key = file_key(drill.model)
+        factor = drill.distance_factor(facts)
+        key = (*file_key(drill.model), factor)
         if key not in _NETS:
-            _NETS[key] = load_batch_turn_function(drill.model)
+            _NETS[key] = load_batch_turn_function(drill.model, factor)
         net = _NETS[key]
         return lambda batch, rows: net(*batch.inputs[:3])
     if kind is Behaviour.LOOKUP:

@@ -59,6 +59,7 @@ from robotsoccer.skills.intercept import (
     check_behaviour,
     file_key,
     make_policy,
+    transfer_distance_factor,
 )
 from robotsoccer.skills.passing import (
     Chooser,
@@ -292,9 +293,13 @@ class PassDrill:
         assert self._judge is not None
         self._judge.passer = passer
 
+        factor = 1.0
+        if self.transfer and self.net and self.interceptor is Behaviour.NET:
+            factor = transfer_distance_factor(self.net, arena.facts)
+
         def interceptor() -> DefenderMind:
             return DefenderMind(
-                make_policy(self.interceptor, policy_rng, self.net),
+                make_policy(self.interceptor, policy_rng, self.net, factor),
                 plan.trigger_distance_m,
                 turn_tolerance_rad=plan.turn_tolerance_rad,
             )

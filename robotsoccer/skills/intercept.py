@@ -70,7 +70,9 @@ from enum import StrEnum
 from pathlib import Path
 from typing import Protocol
 
+from field_models.arena import FieldFacts
 from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Turn, wrap_angle
+from field_models.registry import field_facts
 from field_models.seeding import Rng
 from learning.analytic import MOTION_MULTIPLIER, analytic_turn_angle_xy
 from learning.interception_file import TurnAngleFunction, load_turn_function, read_net_file
@@ -229,7 +231,7 @@ class AnalyticPolicy:
 
 # ----------------------------------------------------------------------------- model files
 
-_NETS: dict[tuple[str, int, int], TurnAngleFunction] = {}
+_NETS: dict[tuple[str, int, int, float], TurnAngleFunction] = {}
 _TABLES: dict[tuple[str, int, int], LookupTable] = {}
 
 
@@ -243,19 +245,46 @@ def file_key(path: str | os.PathLike[str]) -> tuple[str, int, int]:
     return str(resolved), stat.st_mtime_ns, stat.st_size
 
 
-def load_net_function(path: str | os.PathLike[str]) -> TurnAngleFunction:
+def load_net_function(
+    path: str | os.PathLike[str], distance_factor: float = 1.0
+) -> TurnAngleFunction:
     """The plain-Python net of a model file, read once per process (keyed by path and mtime).
 
-    Never imports torch (:mod:`learning.interception_file`).
+    Never imports torch (:mod:`learning.interception_file`). `distance_factor`: 1 on the field
+    it was trained on; :func:`transfer_distance_factor` on another.
 
     Raises:
         learning.features.ModelFileError: The file is missing, corrupt or not a net.
     """
-    key = file_key(path)
+    key = (*file_key(path), distance_factor)
     function = _NETS.get(key)
     if function is None:
-        function = _NETS[key] = load_turn_function(path)
+        function = _NETS[key] = load_turn_function(path, distance_factor)
     return function
+
+
+def transfer_distance_factor(path: str | os.PathLike[str], facts: FieldFacts) -> float:
+    """How a net's distances scale onto the field of `facts`: this unit over its training field's.
+
+    1 on the field it was trained on (or where its provenance names none). On another field a
+    distance of k drill units here enters the net as k units of its own field (the transfer
+    study: distances in drill units through the stored distance scale).
+
+    Raises:
+        learning.features.ModelFileError: The file is unreadable.
+        ValueError: Its training field or preset is not known here.
+    """
+    origin = model_origin(path)
+    if origin is None or Path(path).suffix != ".npz":
+        return 1.0
+    try:
+        trained = field_facts(origin[0], origin[1])
+    except (OSError, ValueError) as exc:  # PresetError is a ValueError
+        raise ValueError(
+            f"model {path} was trained on {origin[0]} `{origin[1]}`, which is not known here: "
+            f"its distances cannot be put in this field's units ({exc})"
+        ) from None
+    return facts.unit_m / trained.unit_m
 
 
 def load_lookup_table(path: str | os.PathLike[str]) -> LookupTable:
@@ -297,7 +326,7 @@ _ORIGINS: dict[tuple[str, int, int], tuple[str, str] | None] = {}
 
 
 def make_policy(
-    behaviour: Behaviour | str, rng: Rng, model: str = ""
+    behaviour: Behaviour | str, rng: Rng, model: str = "", distance_factor: float = 1.0
 ) -> TurnPolicy | None:
     """The TA rule of a behaviour; None for ``still`` (which never moves).
 
@@ -305,6 +334,7 @@ def make_policy(
         behaviour: A :class:`Behaviour` (or its name).
         rng: The trial's ``"policy"`` stream (used by ``random``).
         model: The model file of ``net`` (``.npz``) or ``lookup`` (JSON).
+        distance_factor: The net's distance factor (:func:`transfer_distance_factor`).
 
     Raises:
         ValueError: Unknown behaviour, or a model file missing for ``net``/``lookup``.
@@ -318,7 +348,7 @@ def make_policy(
     if kind is Behaviour.RANDOM:
         return RandomPolicy(rng)
     if kind is Behaviour.NET:
-        return NetPolicy(load_net_function(model))
+        return NetPolicy(load_net_function(model, distance_factor))
     if kind is Behaviour.LOOKUP:
         return LookupPolicy(load_lookup_table(model))
     return AnalyticPolicy()

@@ -33,7 +33,8 @@ def models(tmp_path_factory: pytest.TempPathFactory) -> dict[str, str]:
     folder = tmp_path_factory.mktemp("models")
     grid = [float(a) for a in np.radians(np.arange(-40, 41, 10))]
     table = LookupTable(grid, [-2.0 * a for a in grid]).save(folder / "table.json")
-    return {"net": str(net_file(folder / "net.npz", seed=3)), "lookup": str(table)}
+    net = net_file(folder / "net.npz", seed=3, preset="soccer_server_1996")
+    return {"net": str(net), "lookup": str(table)}
 
 
 @pytest.mark.parametrize("behaviour", ["still", "straight", "random", "net", "lookup", "analytic"])

@@ -72,7 +72,7 @@ class Sequence:
         return 0.1 * len(self.calls)
 
 
-def net_file(path: Path, seed: int = 0, hidden: int = 4) -> Path:
+def net_file(path: Path, seed: int = 0, hidden: int = 4, preset: str = "p") -> Path:
     """A valid interception-net file written without torch (random weights)."""
     rng = np.random.default_rng(seed)
     arrays = {
@@ -98,7 +98,7 @@ def net_file(path: Path, seed: int = 0, hidden: int = 4) -> Path:
         "format_version": MODEL_FORMAT_VERSION,
         "schema": FeatureSchema().to_dict(),
         "hyperparameters": params,
-        "provenance": Provenance("soccer_server", "p", 1, 0.05, "random", 10).to_dict(),
+        "provenance": Provenance("soccer_server", preset, 1, 0.05, "random", 10).to_dict(),
         "n_train": 10,
     }
     return write_npz(path, arrays, meta)
@@ -319,7 +319,7 @@ def test_bad_behaviours_and_files_are_refused(tmp_path: Path) -> None:
 
 
 def test_loading_a_net_for_the_skill_does_not_import_torch(tmp_path: Path) -> None:
-    path = net_file(tmp_path / "net.npz")
+    path = net_file(tmp_path / "net.npz", preset="soccer_server_1996")
     code = (
         "import sys\n"
         "from robotsoccer.runs.runner import TrialSpec, run_trial\n"
@@ -356,3 +356,24 @@ def test_shooter_without_the_defenders_number_aims_at_the_unknown_player() -> No
     assert mind.act(far) == (Kick(80.0, 2.0 * DEG),)
     blind = AimedShooterMind(ME, 80.0, aim_offset_rad=0.1)
     assert blind.act(Percept(SHOOTER, 2, 2, None)) == (Kick(80.0, 0.1),)
+
+
+def test_a_net_from_another_field_sees_distances_in_drill_units(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from field_models.registry import field_facts
+    from robotsoccer.drills.intercept import InterceptDrill
+    from robotsoccer.skills import intercept as skills
+
+    path = str(net_file(tmp_path / "net.npz"))
+    server, robots = field_facts("soccer_server"), field_facts("robot_physics")
+    monkeypatch.setattr(skills, "model_origin", lambda _: ("robot_physics", "small_size_1997"))
+    assert skills.transfer_distance_factor(path, robots) == 1.0
+    factor = skills.transfer_distance_factor(path, server)
+    assert factor == pytest.approx(server.unit_m / robots.unit_m)
+    # k units here enter the net as k units of its field: f(BD) here = f(BD / factor) there
+    here, there = load_net_function(path, factor), load_net_function(path)
+    assert here(14.0, 0.1, 16.0) == pytest.approx(there(14.0 / factor, 0.1, 16.0 / factor))
+    drill = InterceptDrill(behaviour="net", model=path, transfer=True)
+    assert drill.distance_factor(server) == pytest.approx(factor)
+    assert InterceptDrill(behaviour="net", model=path).distance_factor(server) == 1.0
