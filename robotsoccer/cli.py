@@ -1,4 +1,4 @@
-"""The ``robotsoccer`` command line: demo, trace, learn, reproduce, bench, replay.
+"""The ``robotsoccer`` command line: demo, trace, learn, reproduce, transfer, bench, replay.
 
 Every error reaches the user as one line and a non-zero exit status, never a traceback (unless
 ``--debug`` is given): a wrong option, preset or model file exits with 2; a file-system error
@@ -207,6 +207,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     reproduce = command("reproduce", "layers 1 and 2 on both field models: report, plots")
     _experiment_options(reproduce)
+    transfer = command(
+        "transfer", "layer 1's transfer matrix: each field model's net tested on every model"
+    )
+    _experiment_options(transfer)
 
     bench = command("bench", "measure speed, each figure beside its target")
     bench.add_argument("--json", action="store_true", help="print one JSON object at the end")
@@ -606,11 +610,46 @@ def _run_layer1(
     return 0
 
 
+def cmd_transfer(args: argparse.Namespace) -> int:
+    """``transfer``: train each field model's net (or resume it) and test it on every model."""
+    from robotsoccer.experiments.layer1 import plan_for, seeds_for
+    from robotsoccer.experiments.transfer import plot_transfer, run_transfer, transfer_markdown
+
+    name = f"transfer-quick-seed{args.seed}" if args.quick else f"transfer-seed{args.seed}"
+    out = args.out or Path("runs") / name
+    models = [(model, default_preset(model)) for model in PAPER_MODELS]
+    for model, preset in models:
+        check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
+    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
+    plan = plan_for(args.quick)
+    workers = args.workers or default_workers()
+    log = _clock_log()
+    start = time.perf_counter()
+    try:
+        cells = run_transfer(
+            models, plan, out, seeds_for(args.seed), workers, log, sys.stderr.isatty()
+        )
+    except KeyboardInterrupt:
+        return _fail(
+            EXIT_INTERRUPTED,
+            f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
+        )
+    heatmap = plot_transfer(cells, out / "plots" / "transfer.png")
+    report = out / "report.md"
+    title = "# The transfer study, layer 1" + (" — quick plan" if args.quick else "")
+    report.write_text(f"{title}\n\n{transfer_markdown(cells, plan, heatmap)}")
+    print()
+    print(report.read_text())
+    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
+    return 0
+
+
 COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "demo": cmd_demo,
     "trace": cmd_trace,
     "learn": cmd_learn,
     "reproduce": cmd_reproduce,
+    "transfer": cmd_transfer,
     "bench": cmd_bench,
     "replay": cmd_replay,
 }

@@ -72,7 +72,9 @@ class Sequence:
         return 0.1 * len(self.calls)
 
 
-def net_file(path: Path, seed: int = 0, hidden: int = 4, preset: str = "p") -> Path:
+def net_file(
+    path: Path, seed: int = 0, hidden: int = 4, preset: str = "p", field: str = "soccer_server"
+) -> Path:
     """A valid interception-net file written without torch (random weights)."""
     rng = np.random.default_rng(seed)
     arrays = {
@@ -98,7 +100,7 @@ def net_file(path: Path, seed: int = 0, hidden: int = 4, preset: str = "p") -> P
         "format_version": MODEL_FORMAT_VERSION,
         "schema": FeatureSchema().to_dict(),
         "hyperparameters": params,
-        "provenance": Provenance("soccer_server", preset, 1, 0.05, "random", 10).to_dict(),
+        "provenance": Provenance(field, preset, 1, 0.05, "random", 10).to_dict(),
         "n_train": 10,
     }
     return write_npz(path, arrays, meta)
