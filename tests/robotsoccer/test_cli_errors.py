@@ -169,7 +169,7 @@ def test_a_net_from_another_field_is_refused_unless_it_is_a_transfer(tmp_path) -
 def test_the_bare_command_lists_the_commands_and_there_is_a_version() -> None:
     bare = cli()
     assert bare.returncode == 2
-    for command in ("demo", "trace", "learn", "reproduce", "bench", "replay"):
+    for command in ("demo", "trace", "learn", "reproduce", "transfer", "bench", "replay"):
         assert command in bare.stdout
     assert cli("--version").stdout.startswith("robotsoccer ")
     assert "(default: robot_physics)" in cli("trace", "--help").stdout
