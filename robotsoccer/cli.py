@@ -208,7 +208,7 @@ def build_parser() -> argparse.ArgumentParser:
     reproduce = command("reproduce", "layers 1 and 2 on both field models: report, plots")
     _experiment_options(reproduce)
     transfer = command(
-        "transfer", "layer 1's transfer matrix: each field model's net tested on every model"
+        "transfer", "the transfer matrix: each field model's net and pass tree on every model"
     )
     _experiment_options(transfer)
 
@@ -611,9 +611,15 @@ def _run_layer1(
 
 
 def cmd_transfer(args: argparse.Namespace) -> int:
-    """``transfer``: train each field model's net (or resume it) and test it on every model."""
-    from robotsoccer.experiments.layer1 import plan_for, seeds_for
-    from robotsoccer.experiments.transfer import plot_transfer, run_transfer, transfer_markdown
+    """``transfer``: each field model's net and pass tree tested on every field model."""
+    from robotsoccer.experiments.layer1 import plan_for, seeds_for, train_main_net
+    from robotsoccer.experiments.layer2 import layer2_plan
+    from robotsoccer.experiments.transfer import (
+        plot_transfer,
+        run_transfer,
+        run_transfer_layer2,
+        transfer_markdown,
+    )
 
     name = f"transfer-quick-seed{args.seed}" if args.quick else f"transfer-seed{args.seed}"
     out = args.out or Path("runs") / name
@@ -622,22 +628,35 @@ def cmd_transfer(args: argparse.Namespace) -> int:
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     plan = plan_for(args.quick)
+    seeds = seeds_for(args.seed)
     workers = args.workers or default_workers()
     log = _clock_log()
+    progress = sys.stderr.isatty()
     start = time.perf_counter()
     try:
-        cells = run_transfer(
-            models, plan, out, seeds_for(args.seed), workers, log, sys.stderr.isatty()
-        )
+        nets = {
+            model: train_main_net(model, preset, plan, out, seeds, workers, log, progress)
+            for model, preset in models
+        }
+        log("[transfer] layer 1")
+        cells = run_transfer(models, plan, out, seeds, workers, log, progress, nets=nets)
+        log("[transfer] layer 2")
+        plan2 = layer2_plan(args.quick)
+        cells2 = run_transfer_layer2(models, nets, plan2, out, seeds, workers, log, progress)
     except KeyboardInterrupt:
         return _fail(
             EXIT_INTERRUPTED,
             f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
         )
-    heatmap = plot_transfer(cells, out / "plots" / "transfer.png")
+    plots = out / "plots"
+    heatmaps = [
+        plot_transfer(cells, plots / "transfer_layer1.png", "Layer 1 transfer: saves (%)"),
+        plot_transfer(cells2, plots / "transfer_layer2.png", "Layer 2 transfer: passes (%)"),
+    ]
     report = out / "report.md"
-    title = "# The transfer study, layer 1" + (" — quick plan" if args.quick else "")
-    report.write_text(f"{title}\n\n{transfer_markdown(cells, plan, heatmap)}")
+    title = "# The transfer study" + (" — quick plan" if args.quick else "")
+    found = [path for path in heatmaps if path is not None]
+    report.write_text(f"{title}\n\n{transfer_markdown([*cells, *cells2], plan.noise, found)}")
     print()
     print(report.read_text())
     print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")

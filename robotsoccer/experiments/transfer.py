@@ -15,6 +15,10 @@ has the same placement and noise whatever the defender): the differences between
 trial by trial, with 95% intervals (:func:`~robotsoccer.experiments.report.paired_difference`).
 The report gives the matrix as a table (saves with 95% Wilson intervals and n) and a heatmap.
 
+Layer 2 (:func:`run_transfer_layer2`) does the same for the pass tree: each field's tree picks
+the receiver on every field (``transfer=true`` on the other), beside the random and closest
+choosers, while the receivers and defenders intercept with the test field's own net.
+
 This is the first part of the transfer study. The scaling rule by the task's dimensionless
 numbers, the ablations and the gap-closing methods come later.
 """
@@ -35,8 +39,9 @@ from robotsoccer.experiments.layer1 import (
     evaluate,
     train_main_net,
 )
+from robotsoccer.experiments.layer2 import Layer2Plan, collect_passes, pass_spec, train_tree
 from robotsoccer.experiments.report import paired_difference
-from robotsoccer.runs.runner import TrialResult
+from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
 
 Log = Callable[[str], None]
@@ -50,25 +55,30 @@ class Cell:
 
     Attributes:
         tested_on: The field model the trials ran on.
-        defender: ``straight``, ``analytic``, or ``net`` (then `trained_on` says whose).
-        trained_on: The field model the net learned on ("" for a baseline).
+        defender: ``straight``, ``analytic`` or ``net`` (layer 1); the chooser ``tree``,
+            ``random`` or ``closest`` (layer 2); `trained_on` says whose model.
+        trained_on: The field model the model learned on ("" for a baseline).
         results: The trials, sorted by index.
+        success: The label counted as a success.
     """
 
     tested_on: str
     defender: str
     trained_on: str
     results: tuple[TrialResult, ...]
+    success: str = "SAVE"
 
     @property
     def saves(self) -> int:
-        """Trials labelled SAVE."""
-        return sum(r.label == "SAVE" for r in self.results)
+        """Trials labelled with the success label (SAVE; SUCCESS for a pass)."""
+        return sum(r.label == self.success for r in self.results)
 
     @property
     def name(self) -> str:
-        """How the report names the defender."""
-        return f"net trained on {self.trained_on}" if self.defender == "net" else self.defender
+        """How the report names the defender (or the passer's chooser)."""
+        if not self.trained_on:
+            return self.defender
+        return f"{self.defender} trained on {self.trained_on}"
 
 
 def transfer_conditions(
@@ -130,6 +140,70 @@ def run_transfer(
     return cells
 
 
+def run_transfer_layer2(
+    models: Sequence[tuple[str, str]],
+    nets: dict[str, Path],
+    plan: Layer2Plan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    progress: bool = False,
+    trees: dict[str, Path] | None = None,
+) -> list[Cell]:
+    """Layer 2's matrix: each field's pass tree chooses the receiver on every field.
+
+    On a test field the receivers and defenders intercept with that field's own net (`nets`),
+    so only the passer's tree moves between fields; beside it, the random and closest choosers.
+
+    Args:
+        models: (field model, preset) pairs.
+        nets: Each field's layer-1 net.
+        plan: Layer 2's plan (training passes, trials per condition).
+        out: The run folder; trees go where ``reproduce`` puts them.
+        seeds: Collection (training passes) and evaluation seeds.
+        workers: Processes.
+        log: Progress lines.
+        progress: Progress bars.
+        trees: Tree files by field model; None collects passes and trains them (resumable).
+    """
+    if trees is None:
+        trees = {}
+        for model, preset in models:
+            log(f"[{model}] layer 2: collect {plan.collect_trials} passes to a random receiver")
+            base = pass_spec(model, preset, seeds.collection, nets[model])
+            dataset, _, timing = collect_passes(
+                base, plan, out / "results" / model / "layer2",
+                out / "datasets" / model / "passes.npz", workers, progress,
+            )  # fmt: skip
+            trees[model] = out / "models" / model / "pass_tree.json"
+            tree, _ = train_tree(dataset, trees[model], seeds.collection)
+            log(f"  {len(dataset)} passes ({timing.wall_s:.1f} s); tree: {tree.n_nodes} nodes")
+    cells = []
+    for tested, preset in models:
+        base = pass_spec(tested, preset, seeds.evaluation, nets[tested])
+        choosers: list[tuple[str, str, TrialSpec]] = [
+            ("random", "", base.with_options(chooser="random")),
+            ("closest", "", base.with_options(chooser="closest")),
+        ]
+        for trained, tree_path in trees.items():
+            spec = base.with_options(chooser="tree", model=str(tree_path.resolve()))
+            if trained != tested:
+                spec = spec.with_options(transfer=True)
+            choosers.append(("tree", trained, spec))
+        for kind, trained, spec in choosers:
+            name = f"layer2_{kind}" + (f"_{trained}" if trained else "")
+            cond = Condition(name, spec, plan.eval_trials)
+            results, _, seconds = evaluate(
+                cond, out / "results" / "transfer" / tested, workers, progress
+            )
+            cell = Cell(tested, kind, trained, tuple(results), success="SUCCESS")
+            done = f"{cell.saves} passes of {len(results)}"
+            log(f"  [{tested}] {cell.name}: {done} ({seconds:.1f} s)")
+            cells.append(cell)
+    return cells
+
+
 def _percent(cell: Cell) -> str:
     n = len(cell.results)
     low, high = wilson_interval(cell.saves, n)
@@ -137,56 +211,71 @@ def _percent(cell: Cell) -> str:
 
 
 def _paired(a: Cell, b: Cell) -> str:
-    found = paired_difference(list(a.results), list(b.results))
+    found = paired_difference(list(a.results), list(b.results), a.success)
     if found is None:
         return "—"
     diff, low, high, _ = found
     return f"{diff:+.1f} [{low:+.1f}, {high:+.1f}]"
 
 
-def transfer_markdown(cells: Sequence[Cell], plan: Layer1Plan, heatmap: Path | None) -> str:
-    """The study's report section: the matrix, the baselines and the paired gaps."""
-    tested = list(dict.fromkeys(c.tested_on for c in cells))
-    trained = list(dict.fromkeys(c.trained_on for c in cells if c.defender == "net"))
-    at = {(c.tested_on, c.defender, c.trained_on): c for c in cells}
-    n = plan.eval_trials
+def transfer_markdown(cells: Sequence[Cell], noise: float, heatmaps: Sequence[Path] = ()) -> str:
+    """The study's report section: each layer's matrix, its baselines and the paired gaps."""
     lines = [
-        "## Transfer: train on one field model, test on the other (layer 1)",
+        "## Transfer: train on one field model, test on the other",
         "",
-        f"Saves in % of {n} trials per cell with 95% Wilson intervals, ball noise "
-        f"{plan.noise:g}. A net tested on another field reads distances in drill units "
-        "(k units there enter it as k units of its own field). All cells of a column share "
-        "their placements, so the gaps below are paired, trial by trial.",
-        "",
-        "| defender | " + " | ".join(f"tested on {t}" for t in tested) + " |",
-        "|---|" + "---|" * len(tested),
+        "Successes in % with 95% Wilson intervals: saves for layer 1 (ball noise "
+        f"{noise:g}), completed passes for layer 2. A model tested on another field reads "
+        "distances in drill units: a net's k units there enter it as k units of its own field, "
+        "and the pass attributes are in units already. All cells of a column share their "
+        "placements, so the gaps are paired, trial by trial.",
     ]
-    for source in trained:
-        row = [_percent(at[(t, "net", source)]) for t in tested]
-        lines.append(f"| net trained on {source} | " + " | ".join(row) + " |")
-    for behaviour in BASELINES:
-        row = [_percent(at[(t, behaviour, "")]) for t in tested]
-        lines.append(f"| {behaviour} | " + " | ".join(row) + " |")
-    lines += ["", "Paired gaps in points (95% intervals):", ""]
-    for t in tested:
-        native = at.get((t, "net", t))
-        for source in trained:
-            if source == t or native is None:
-                continue
-            moved = at[(t, "net", source)]
-            straight = at[(t, "straight", "")]
-            lines.append(
-                f"- on {t}: the net from {source} minus the native net: "
-                f"{_paired(moved, native)}; minus straight: {_paired(moved, straight)}; the "
-                f"native net minus straight: {_paired(native, straight)}."
-            )
-    if heatmap is not None:
-        lines += ["", f"![Transfer matrix](plots/{heatmap.name})"]
+    for layer, title in ((1, "Layer 1: interception (saves)"), (2, "Layer 2: pass (success)")):
+        mine = [c for c in cells if (c.success == "SAVE") == (layer == 1)]
+        if mine:
+            sizes = sorted({len(c.results) for c in mine})
+            n = ", ".join(str(size) for size in sizes)
+            lines += ["", f"### {title}", "", f"n = {n} trials per cell.", ""]
+            lines += _matrix_lines(mine)
+    lines += [""] + [f"![Transfer matrix](plots/{path.name})" for path in heatmaps]
     return "\n".join(lines) + "\n"
 
 
-def plot_transfer(cells: Sequence[Cell], path: Path) -> Path | None:
-    """A heatmap of saves: rows the defender, columns the field tested on."""
+def _matrix_lines(cells: Sequence[Cell]) -> list[str]:
+    tested = list(dict.fromkeys(c.tested_on for c in cells))
+    learned = list(dict.fromkeys((c.defender, c.trained_on) for c in cells if c.trained_on))
+    baselines = list(dict.fromkeys(c.defender for c in cells if not c.trained_on))
+    at = {(c.tested_on, c.defender, c.trained_on): c for c in cells}
+    lines = [
+        "| | " + " | ".join(f"tested on {t}" for t in tested) + " |",
+        "|---|" + "---|" * len(tested),
+    ]
+    for kind, source in learned:
+        row = [_percent(at[(t, kind, source)]) for t in tested]
+        lines.append(f"| {kind} trained on {source} | " + " | ".join(row) + " |")
+    for kind in baselines:
+        row = [_percent(at[(t, kind, "")]) for t in tested]
+        lines.append(f"| {kind} | " + " | ".join(row) + " |")
+    lines += ["", "Paired gaps in points (95% intervals):", ""]
+    first = baselines[0] if baselines else None
+    for t in tested:
+        for kind, source in learned:
+            native = at.get((t, kind, t))
+            if source == t or native is None:
+                continue
+            moved = at[(t, kind, source)]
+            gaps = [f"minus the native {kind}: {_paired(moved, native)}"]
+            if first is not None:
+                base = at[(t, first, "")]
+                gaps += [
+                    f"minus {first}: {_paired(moved, base)}",
+                    f"the native {kind} minus {first}: {_paired(native, base)}",
+                ]
+            lines.append(f"- on {t}: the {kind} from {source} " + "; ".join(gaps) + ".")
+    return lines
+
+
+def plot_transfer(cells: Sequence[Cell], path: Path, title: str) -> Path | None:
+    """A heatmap of successes: rows the defender (or chooser), columns the field tested on."""
     from robotsoccer.experiments.plots import _pyplot, _save
 
     tested = list(dict.fromkeys(c.tested_on for c in cells))
@@ -204,6 +293,6 @@ def plot_transfer(cells: Sequence[Cell], path: Path) -> Path | None:
         for j, v in enumerate(row):
             if not math.isnan(v):
                 ax.text(j, i, f"{v:.1f}", ha="center", va="center", color="white")
-    fig.colorbar(image, ax=ax, label="saves (%)")
-    ax.set_title("Layer 1 transfer: saves (%)")
+    fig.colorbar(image, ax=ax, label="success (%)")
+    ax.set_title(title)
     return _save(plt, fig, path)

@@ -5,10 +5,16 @@ from __future__ import annotations
 import dataclasses
 from pathlib import Path
 
+import numpy as np
+
+from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
+from learning.pass_tree import fit_pass_tree, save_pass_tree
 from robotsoccer.experiments.layer1 import plan_for, seeds_for
+from robotsoccer.experiments.layer2 import Layer2Plan
 from robotsoccer.experiments.transfer import (
     plot_transfer,
     run_transfer,
+    run_transfer_layer2,
     transfer_conditions,
     transfer_markdown,
 )
@@ -44,11 +50,32 @@ def test_the_matrix_runs_and_reports_paired_cells(tmp_path: Path) -> None:
     for tested, _ in MODELS:  # every cell of a test field ran the same placements
         indices = {tuple(r.index for r in c.results) for c in cells if c.tested_on == tested}
         assert indices == {tuple(range(12))}
-    heatmap = plot_transfer(cells, tmp_path / "plots" / "transfer.png")
+    heatmap = plot_transfer(cells, tmp_path / "plots" / "transfer.png", "saves")
     assert heatmap is not None and heatmap.stat().st_size > 1000
-    text = transfer_markdown(cells, plan, heatmap)
+    text = transfer_markdown(cells, plan.noise, [heatmap])
     assert "| net trained on soccer_server |" in text and "| straight |" in text
-    assert text.count("minus the native net") == 2
+    assert text.count("minus the native net") == 2 and "n = 12 trials per cell" in text
     assert (tmp_path / "results" / "transfer" / "robot_physics").is_dir()
     again = run_transfer(MODELS, plan, tmp_path, seeds_for(0), 1, lines.append, nets=nets(tmp_path))
     assert [c.results for c in again] == [c.results for c in cells]  # resumed from the tables
+
+
+def test_the_layer2_matrix_moves_only_the_passer_tree(tmp_path: Path) -> None:
+    rng = np.random.default_rng(0)
+    x = rng.uniform(0, 30, (60, len(ATTRIBUTE_NAMES)))
+    y = np.where(x[:, 0] < 15, "SUCCESS", "FAILURE")
+    tree = fit_pass_tree(x, y, ATTRIBUTE_NAMES, schema=PASS_SCHEMA)
+    trees = {
+        model: save_pass_tree(tree, tmp_path / f"{model}.json", {"field_model": model, "preset": p})
+        for model, p in MODELS
+    }
+    plan = Layer2Plan("test", collect_trials=0, eval_trials=6)
+    cells = run_transfer_layer2(
+        MODELS, nets(tmp_path), plan, tmp_path, seeds_for(0), 1, lambda _: None, trees=trees
+    )
+    assert len(cells) == 2 * 4 and all(c.success == "SUCCESS" for c in cells)
+    for cell in cells:
+        assert {r.label for r in cell.results} <= {"SUCCESS", "FAILURE", "MISS"}
+    text = transfer_markdown(cells, 0.05)
+    assert "### Layer 2: pass (success)" in text and "| tree trained on robot_physics |" in text
+    assert text.count("minus the native tree") == 2
