@@ -613,7 +613,7 @@ def _run_layer1(
 def cmd_transfer(args: argparse.Namespace) -> int:
     """``transfer``: each field model's net and pass tree tested on every field model."""
     from robotsoccer.experiments.layer1 import plan_for, seeds_for, train_main_net
-    from robotsoccer.experiments.layer2 import layer2_plan
+    from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
     from robotsoccer.experiments.transfer import (
         plot_transfer,
         run_transfer,
@@ -639,10 +639,18 @@ def cmd_transfer(args: argparse.Namespace) -> int:
             for model, preset in models
         }
         log("[transfer] layer 1")
-        cells = run_transfer(models, plan, out, seeds, workers, log, progress, nets=nets)
-        log("[transfer] layer 2")
+        cells = run_transfer(models, nets, plan, out, seeds, workers, log, progress)
         plan2 = layer2_plan(args.quick)
-        cells2 = run_transfer_layer2(models, nets, plan2, out, seeds, workers, log, progress)
+        trees = {
+            model: train_main_tree(
+                model, preset, nets[model], plan2, out, seeds, workers, log, progress
+            ).path
+            for model, preset in models
+        }
+        log("[transfer] layer 2")
+        cells2 = run_transfer_layer2(
+            models, nets, trees, plan2, out, seeds, workers, log, progress
+        )
     except KeyboardInterrupt:
         return _fail(
             EXIT_INTERRUPTED,

@@ -191,6 +191,60 @@ def train_tree(dataset: PassDataset, path: Path, seed: int) -> tuple[PassTree, f
     return tree, part.training_error(dataset.x[cut:], dataset.y[cut:])
 
 
+@dataclass(frozen=True)
+class MainTree:
+    """A field model's training passes and the tree fitted on them (:func:`train_main_tree`).
+
+    Attributes:
+        dataset: The passes (attributes and labels).
+        collected: Labels of the training trials.
+        collection: The collection stage's timing.
+        path: The tree's file.
+        tree: The tree.
+        holdout_error: Error of the same procedure fitted on 70% and tested on 30%.
+        train_s: Wall seconds of fitting.
+    """
+
+    dataset: PassDataset
+    collected: Counter[str]
+    collection: StageTiming
+    path: Path
+    tree: PassTree
+    holdout_error: float
+    train_s: float
+
+
+def train_main_tree(
+    field_model: str,
+    preset: str,
+    net: Path,
+    plan: Layer2Plan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    progress: bool = False,
+) -> MainTree:
+    """Layer 2's collection and its tree only (no tests), into the run folder's usual places.
+
+    The same files and seeds as :func:`run_layer2_model`, so either resumes the other's work.
+    """
+    log(f"[{field_model}] layer 2: collect {plan.collect_trials} passes to a random receiver")
+    base = pass_spec(field_model, preset, seeds.collection, net)
+    dataset, collected, timing = collect_passes(
+        base, plan, out / "results" / field_model / "layer2",
+        out / "datasets" / field_model / "passes.npz", workers, progress,
+    )  # fmt: skip
+    labels = Counter(r.label for r in collected)
+    log(f"  {len(dataset)} passes: {dict(labels)} ({timing.wall_s:.1f} s)")
+    start = time.perf_counter()
+    path = out / "models" / field_model / "pass_tree.json"
+    tree, holdout = train_tree(dataset, path, seeds.collection)
+    return MainTree(
+        dataset, labels, timing, path, tree, holdout, time.perf_counter() - start
+    )
+
+
 def run_layer2_model(
     field_model: str,
     preset: str,
@@ -205,19 +259,14 @@ def run_layer2_model(
     """Collect, train and test layer 2 on one field model (module docstring)."""
     results_dir = out / "results" / field_model / "layer2"
     section = Layer2Section(field_model, preset, net.name)
-    log(f"[{field_model}] layer 2: collect {plan.collect_trials} passes to a random receiver")
-    base = pass_spec(field_model, preset, seeds.collection, net)
-    dataset, collected, timing = collect_passes(
-        base, plan, results_dir, out / "datasets" / field_model / "passes.npz", workers, progress
-    )
-    section.stages.append(timing)
-    section.collected = Counter(r.label for r in collected)
+    main = train_main_tree(field_model, preset, net, plan, out, seeds, workers, log, progress)
+    dataset, tree, tree_path = main.dataset, main.tree, main.path
+    section.stages.append(main.collection)
+    section.collected = main.collected
     section.dataset_rows = len(dataset)
-    log(f"  {len(dataset)} passes: {dict(section.collected)} ({timing.wall_s:.1f} s)")
+    section.holdout_error = main.holdout_error
 
-    start = time.perf_counter()
-    tree_path = out / "models" / field_model / "pass_tree.json"
-    tree, section.holdout_error = train_tree(dataset, tree_path, seeds.collection)
+    start = time.perf_counter() - main.train_s
     own_path = tree_path.with_name("pass_tree_passer_only.json")
     own, _ = train_tree(passer_half_only(dataset), own_path, seeds.collection)
     section.passer_only_nodes = own.n_nodes

@@ -37,9 +37,8 @@ from robotsoccer.experiments.layer1 import (
     base_spec,
     condition,
     evaluate,
-    train_main_net,
 )
-from robotsoccer.experiments.layer2 import Layer2Plan, collect_passes, pass_spec, train_tree
+from robotsoccer.experiments.layer2 import Layer2Plan, pass_spec
 from robotsoccer.experiments.report import paired_difference
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
@@ -104,31 +103,26 @@ def transfer_conditions(
 
 def run_transfer(
     models: Sequence[tuple[str, str]],
+    nets: dict[str, Path],
     plan: Layer1Plan,
     out: Path,
     seeds: Seeds,
     workers: int | None,
     log: Log,
     progress: bool = False,
-    nets: dict[str, Path] | None = None,
 ) -> list[Cell]:
-    """Train (or take) each field's net and run every cell into ``out/results/transfer``.
+    """Layer 1's matrix: run every cell into ``out/results/transfer``.
 
     Args:
         models: (field model, preset) pairs, each trained on and tested on.
-        plan: Layer 1's plan (trials per condition, noise, training).
-        out: The run folder; nets go where ``reproduce`` puts them.
-        seeds: Evaluation (shared by the cells of a test field) and collection seeds.
+        nets: Each field's net (:func:`~robotsoccer.experiments.layer1.train_main_net`).
+        plan: Layer 1's plan (trials per condition, noise).
+        out: The run folder.
+        seeds: Evaluation seeds (shared by the cells of a test field).
         workers: Processes.
         log: Progress lines.
         progress: Progress bars.
-        nets: Net files by field model; None trains them (resumable).
     """
-    if nets is None:
-        nets = {
-            model: train_main_net(model, preset, plan, out, seeds, workers, log, progress)
-            for model, preset in models
-        }
     cells = []
     for tested, defender, trained, cond in transfer_conditions(models, nets, plan, seeds):
         results, _, seconds = evaluate(
@@ -143,13 +137,13 @@ def run_transfer(
 def run_transfer_layer2(
     models: Sequence[tuple[str, str]],
     nets: dict[str, Path],
+    trees: dict[str, Path],
     plan: Layer2Plan,
     out: Path,
     seeds: Seeds,
     workers: int | None,
     log: Log,
     progress: bool = False,
-    trees: dict[str, Path] | None = None,
 ) -> list[Cell]:
     """Layer 2's matrix: each field's pass tree chooses the receiver on every field.
 
@@ -159,26 +153,15 @@ def run_transfer_layer2(
     Args:
         models: (field model, preset) pairs.
         nets: Each field's layer-1 net.
-        plan: Layer 2's plan (training passes, trials per condition).
-        out: The run folder; trees go where ``reproduce`` puts them.
-        seeds: Collection (training passes) and evaluation seeds.
+        trees: Each field's pass tree (:func:`~robotsoccer.experiments.layer2.
+            train_main_tree`).
+        plan: Layer 2's plan (trials per condition).
+        out: The run folder.
+        seeds: Evaluation seeds.
         workers: Processes.
         log: Progress lines.
         progress: Progress bars.
-        trees: Tree files by field model; None collects passes and trains them (resumable).
     """
-    if trees is None:
-        trees = {}
-        for model, preset in models:
-            log(f"[{model}] layer 2: collect {plan.collect_trials} passes to a random receiver")
-            base = pass_spec(model, preset, seeds.collection, nets[model])
-            dataset, _, timing = collect_passes(
-                base, plan, out / "results" / model / "layer2",
-                out / "datasets" / model / "passes.npz", workers, progress,
-            )  # fmt: skip
-            trees[model] = out / "models" / model / "pass_tree.json"
-            tree, _ = train_tree(dataset, trees[model], seeds.collection)
-            log(f"  {len(dataset)} passes ({timing.wall_s:.1f} s); tree: {tree.n_nodes} nodes")
     cells = []
     for tested, preset in models:
         base = pass_spec(tested, preset, seeds.evaluation, nets[tested])

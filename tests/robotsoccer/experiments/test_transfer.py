@@ -45,7 +45,7 @@ def test_only_the_cross_field_cells_are_transfer_runs(tmp_path: Path) -> None:
 def test_the_matrix_runs_and_reports_paired_cells(tmp_path: Path) -> None:
     plan = dataclasses.replace(plan_for(True), eval_trials=12)
     lines: list[str] = []
-    cells = run_transfer(MODELS, plan, tmp_path, seeds_for(0), 1, lines.append, nets=nets(tmp_path))
+    cells = run_transfer(MODELS, nets(tmp_path), plan, tmp_path, seeds_for(0), 1, lines.append)
     assert len(cells) == 8 and all(len(c.results) == 12 for c in cells)
     for tested, _ in MODELS:  # every cell of a test field ran the same placements
         indices = {tuple(r.index for r in c.results) for c in cells if c.tested_on == tested}
@@ -56,7 +56,7 @@ def test_the_matrix_runs_and_reports_paired_cells(tmp_path: Path) -> None:
     assert "| net trained on soccer_server |" in text and "| straight |" in text
     assert text.count("minus the native net") == 2 and "n = 12 trials per cell" in text
     assert (tmp_path / "results" / "transfer" / "robot_physics").is_dir()
-    again = run_transfer(MODELS, plan, tmp_path, seeds_for(0), 1, lines.append, nets=nets(tmp_path))
+    again = run_transfer(MODELS, nets(tmp_path), plan, tmp_path, seeds_for(0), 1, lines.append)
     assert [c.results for c in again] == [c.results for c in cells]  # resumed from the tables
 
 
@@ -71,7 +71,7 @@ def test_the_layer2_matrix_moves_only_the_passer_tree(tmp_path: Path) -> None:
     }
     plan = Layer2Plan("test", collect_trials=0, eval_trials=6)
     cells = run_transfer_layer2(
-        MODELS, nets(tmp_path), plan, tmp_path, seeds_for(0), 1, lambda _: None, trees=trees
+        MODELS, nets(tmp_path), trees, plan, tmp_path, seeds_for(0), 1, lambda _: None
     )
     assert len(cells) == 2 * 4 and all(c.success == "SUCCESS" for c in cells)
     for cell in cells:
