@@ -27,7 +27,7 @@ import numpy as np
 
 from field_models.registry import PAPER_FIELD
 from robotsoccer.drills.intercept_batch import DEFAULT_BATCH, run_intercept_batch
-from robotsoccer.runs.pool import _worker_context
+from robotsoccer.runs.pool import worker_context
 from robotsoccer.runs.runner import TrialSpec
 
 BATCH_SIZES = (256, 1024, 4096, 16384)
@@ -58,7 +58,7 @@ def batch_trials_per_s(trials: int, workers: int, batch_size: int = DEFAULT_BATC
     """Trials per wall second of the batched engine in `workers` processes (start-up excluded)."""
     spec = batch_spec()
     share = trials // workers
-    with ProcessPoolExecutor(workers, mp_context=_worker_context()) as pool:
+    with ProcessPoolExecutor(workers, mp_context=worker_context()) as pool:
         list(pool.map(count_batch, [spec] * workers, [0] * workers, [64] * workers, [64] * workers))
         start = time.perf_counter()
         jobs = [

@@ -141,6 +141,7 @@ class BatchSoccerServer:
         self._block_row = BATCH_BLOCK_CYCLES
         self._noise: tuple[np.ndarray, ...] = ()
         self._block_start = np.zeros(self.k, dtype=np.int64)
+        self._needed = self._needed_offsets().ravel()  # the block's always-used draws
 
     # ------------------------------------------------------------------ look-ups
 
@@ -338,8 +339,7 @@ class BatchSoccerServer:
         streams = self.streams
         if streams is not None:
             self._block_start = streams.positions.copy()
-            needed = self._needed_offsets()
-            u = streams.peek(needed.ravel()).reshape(self.k, BATCH_BLOCK_CYCLES, -1)
+            u = streams.peek(self._needed).reshape(self.k, BATCH_BLOCK_CYCLES, -1)
             streams.advance(BATCH_BLOCK_CYCLES * lay.width)
             n = self._n
             order, a, b = u[..., 2 * n :], u[..., :n], u[..., n : 2 * n]

@@ -202,7 +202,7 @@ class _InterceptBatch:
             trials: The trial indices.
             seeds: One experiment seed per trial (default: ``spec.seed`` for all).
             turn_angles: An external TA per trial, used instead of the behaviour's rule
-                (:class:`DecisionBatch`); None: the behaviour decides.
+                (:func:`play_batch`); None: the behaviour decides.
         """
         drill = make_drill(spec.drill, dict(spec.drill_options))
         assert isinstance(drill, InterceptDrill)
@@ -300,6 +300,7 @@ class _InterceptBatch:
         self.heading = np.zeros(k)  # the defender's reckoned heading
         self.pending_turn = np.zeros(k)  # commanded, not yet in a percept
         self.example = np.full((k, 4), np.nan)
+        self.inputs: tuple[Array, ...] = ()  # (BD, BA, previous BD, x, y) of the last percepts
 
     # ------------------------------------------------------------------ the loop
 

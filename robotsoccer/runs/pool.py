@@ -58,7 +58,7 @@ PRELOAD = ("robotsoccer.runs.pool", "robotsoccer.drills", *preload_modules())
 """Modules the fork server imports once, so that every worker starts with them loaded."""
 
 
-def _worker_context() -> multiprocessing.context.BaseContext:
+def worker_context() -> multiprocessing.context.BaseContext:
     """A fork-server context preloaded with the project (spawn where forkserver is missing)."""
     if "forkserver" not in multiprocessing.get_all_start_methods():  # pragma: no cover
         return multiprocessing.get_context("spawn")
@@ -84,10 +84,9 @@ def run_chunk(spec: TrialSpec, indices: Sequence[int]) -> list[TrialResult]:
     """
     if not batched(spec):
         return [run_trial(spec, i) for i in indices]
-    recorded = [i for i in indices if spec.record_dir is not None and i < spec.record_trials]
-    plain = [i for i in indices if not (spec.record_dir is not None and i < spec.record_trials)]
+    plain = [i for i in indices if not spec.records(i)]
     results = {r.index: r for r in run_intercept_batch(spec, plain)}
-    results.update((i, run_trial(spec, i)) for i in recorded)
+    results.update((i, run_trial(spec, i)) for i in indices if spec.records(i))
     return [results[i] for i in indices]
 
 
@@ -415,7 +414,7 @@ def _execute(
         for chunk in chunks:
             yield run_chunk(spec, chunk)
         return
-    context = _worker_context()
+    context = worker_context()
     pool = ProcessPoolExecutor(
         max_workers=workers, mp_context=context, initializer=_ignore_interrupts
     )

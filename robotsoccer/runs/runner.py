@@ -66,6 +66,10 @@ class TrialSpec:
         assert self.preset is not None
         return self.preset
 
+    def records(self, index: int) -> bool:
+        """Whether trial `index` is recorded (a record folder, and among the first trials)."""
+        return self.record_dir is not None and index < self.record_trials
+
     def with_options(self, **options: DrillOption) -> TrialSpec:
         """A copy with these drill options added (replacing any of the same name)."""
         merged = dict(self.drill_options) | options
@@ -245,7 +249,7 @@ def build_trial(
 
 def run_trial(spec: TrialSpec, index: int) -> TrialResult:
     """Run trial `index` of `spec` and return its result."""
-    recording = spec.record_dir is not None and index < spec.record_trials
+    recording = spec.records(index)
     rngs, drill, arena = build_trial(spec, index, keep_events=recording)
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
