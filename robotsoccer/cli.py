@@ -635,7 +635,9 @@ def cmd_transfer(args: argparse.Namespace) -> int:
     start = time.perf_counter()
     try:
         nets = {
-            model: train_main_net(model, preset, plan, out, seeds, workers, log, progress)
+            model: train_main_net(
+                model, preset, plan, out, seeds, workers, log, progress, "robotsoccer transfer"
+            )
             for model, preset in models
         }
         log("[transfer] layer 1")

@@ -875,6 +875,7 @@ def train_main_net(
     workers: int | None,
     log: Log,
     progress: bool = False,
+    created_by: str = "robotsoccer learn pass",
 ) -> Path:
     """Layer 1's collection and its main net only (no evaluations), for a layer-2 run.
 
@@ -882,7 +883,7 @@ def train_main_net(
     ``reproduce`` into the same folder resumes them. Returns the net's file.
     """
     dataset, _, _ = collect_into(
-        field_model, preset, plan, out, seeds, workers, log, "robotsoccer learn pass", progress
+        field_model, preset, plan, out, seeds, workers, log, created_by, progress
     )
     main = net_for_figures(plan, training_sizes(plan, len(dataset)))
     return train_series(dataset, [main], plan.epochs, out / "models" / field_model, log)[main]
