@@ -650,9 +650,7 @@ def cmd_transfer(args: argparse.Namespace) -> int:
             for model, preset in models
         }
         log("[transfer] layer 2")
-        cells2 = run_transfer_layer2(
-            models, nets, trees, plan2, out, seeds, workers, log, progress
-        )
+        cells2 = run_transfer_layer2(models, nets, trees, plan2, out, seeds, workers, log, progress)
     except KeyboardInterrupt:
         return _fail(
             EXIT_INTERRUPTED,

@@ -80,9 +80,11 @@ def concrete_model_uses(path: Path) -> list[str]:
             if any(name in node.value for name in MODEL_NAMES):
                 found.append(f"line {line}: names {node.value!r}")
         elif isinstance(node, ast.ImportFrom | ast.Import):
-            modules = [node.module or ""] if isinstance(node, ast.ImportFrom) else [
-                alias.name for alias in node.names
-            ]
+            modules = (
+                [node.module or ""]
+                if isinstance(node, ast.ImportFrom)
+                else [alias.name for alias in node.names]
+            )
             for module in modules:
                 if any(f"field_models.{name}" in module for name in MODEL_NAMES):
                     found.append(f"line {line}: imports {module}")

@@ -62,6 +62,9 @@ class RobotConfig:
     mass_kg: float = field(metadata=positive())
     elasticity: float = field(metadata=probability("effective restitution vs the ball"))
     kicker: KickerConfig | None = None
+    turn_style: str = "spin"
+    """How the host runs a turn followed by a dash: ``"spin"`` in place, then drive (the paper's
+    primitives, §2); ``"arc"``: drive forward while turning, with a wheel-speed difference."""
 
     @property
     def max_turn_rate_radps(self) -> float:
@@ -185,8 +188,17 @@ def load_preset(name_or_path: str = DEFAULT_PRESET) -> RobotPhysicsPreset:
     return preset
 
 
+TURN_STYLES = ("spin", "arc")
+"""The values of ``robot.turn_style``."""
+
+
 def _validate(p: RobotPhysicsPreset) -> None:
     """Cross-field checks a single key's range cannot express."""
+    if p.robot.turn_style not in TURN_STYLES:
+        raise PresetError(
+            f"{p.source}: key 'robot.turn_style': expected one of {', '.join(TURN_STYLES)}, "
+            f"got {p.robot.turn_style!r}"
+        )
     if p.timing.physics_hz < 240:
         raise PresetError(f"{p.source}: key 'timing.physics_hz': expected >= 240 (tunnelling)")
     p.ticks(1.0 / p.camera.frame_rate_hz, "camera.frame_rate_hz")

@@ -10,7 +10,7 @@ Behaviour:
 
 * **Addressing**: a command is accepted when addressed to this robot or broadcast (robot None).
 * **Newest wins**: a command whose `seq` is not newer than the newest accepted one is dropped
-  (stale or duplicate). An accepted drive command (STOP, FORWARD, BACKWARD, TURN) replaces
+  (stale or duplicate). An accepted drive command (STOP, FORWARD, BACKWARD, TURN, ARC) replaces
   the running one; a KICK only arms the kicker (:meth:`Firmware.take_kick`) and leaves the
   running motion as it is, so a robot can kick while driving.
 * **Duration**: a command with `duration_ticks = D` accepted at tick `r` drives for update ticks
@@ -19,6 +19,8 @@ Behaviour:
   `>= last + timeout_ticks`), the robot stops, whatever it was doing, so a robot
   whose host went quiet or whose link failed does not drive on.
 * **FORWARD/BACKWARD/TURN**: fixed targets (v, v), (-v, -v), (-ω·b/2, ω·b/2) for track b.
+* **ARC** (speed v, rate ω): (u - ω·b/2, u + ω·b/2) with u = min(v, v_max - |ω|·b/2): the turn
+  rate is kept and the forward speed is what the top wheel speed leaves.
 
 :meth:`Firmware.due` says when :meth:`Firmware.update` could change its output, so the arena can
 skip quiet ticks: a new command, or an expiring duration or timeout.
@@ -133,6 +135,11 @@ class Firmware:
             if primitive is Primitive.BACKWARD:
                 speed = -speed
             self._left = self._right = speed
+        elif primitive is Primitive.ARC:
+            rate = max(-self._max_rate, min(self._max_rate, command.rate))
+            spin = rate * self._half_track
+            forward = min(abs(command.value), self._vmax - abs(spin))
+            self._left, self._right = forward - spin, forward + spin
         elif primitive is Primitive.TURN:
             rate = max(-self._max_rate, min(self._max_rate, command.value))
             self._left = -rate * self._half_track

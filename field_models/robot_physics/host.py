@@ -37,6 +37,10 @@ Dash or Kick) at once. Let v_max be the top wheel speed, T one camera period, ω
   cap lets the wheel ramp reach ω within D; the ramp's lag at the start is then repaid by its
   run-down at the end, so a turn from rest rotates the robot by a (up to the world's grip and
   discretisation). ``Turn(0)``: STOP.
+* ``Turn(a)`` followed by ``Dash(p)`` with p > 0 on a robot whose preset says
+  ``robot.turn_style = "arc"``: ARC at the Turn's rate and duration with forward speed
+  p/100 · v_max (the firmware keeps the rate and drives as fast as the wheels have room left),
+  then the Dash; the robot keeps moving while it turns.
 * ``Kick(p, d)`` (d wrapped): with a kicker and |d| within its `half_angle_rad`: KICK(p) (p
   clipped to 0–100); the wheels keep their command. Without a kicker and |d| <=
   :data:`PUSH_HALF_ANGLE_RAD`: push, i.e. FORWARD at p/100 · v_max for 2·T. Otherwise (ball
@@ -136,6 +140,7 @@ class CentralHost:
         self._period_s = frame_period_ticks * preset.dt_s
         self._hold_ticks = DASH_HOLD_PERIODS * frame_period_ticks
         self._kick_half_angle = None if robot.kicker is None else robot.kicker.half_angle_rad
+        self._arcs = robot.turn_style == "arc"
         self._index = {ref: i for i, ref in enumerate(refs)}
         self._poses: list[Pose | None] = [None] * len(refs)
         self._heard: list[list[Heard]] = [[] for _ in refs]
@@ -227,6 +232,16 @@ class CentralHost:
             else:
                 body.append(action)
         i = self._index[ref]
+        if self._arcs and len(body) >= 2 and _turn_then_forward(body[0], body[1]):
+            turn, dash = body[0], body[1]
+            assert isinstance(turn, Turn) and isinstance(dash, Dash)
+            duration = self._arc(ref, wrap_angle(turn.angle_rad), dash.power, tick)
+            if duration:
+                body = body[1:]
+                body.reverse()
+                self._pending[i] = body
+                self._note_due(i, tick + duration)
+                return
         body.reverse()  # popped from the end, in order
         self._pending[i] = body
         self._run_chain(i, ref, tick)
@@ -251,7 +266,10 @@ class CentralHost:
         duration = 0
         while chain and duration == 0:
             duration = self._translate(ref, chain.pop(), tick)
-        due = tick + duration if chain else NEVER
+        self._note_due(i, tick + duration if chain else NEVER)
+
+    def _note_due(self, i: int, due: int) -> None:
+        """Robot `i`'s next pending action goes out at `due`."""
         self._release_at[i] = due
         if due < self.next_release_tick:
             self.next_release_tick = due
@@ -308,6 +326,22 @@ class CentralHost:
         self._send(ref, primitive, tick, value=abs(speed_mps), duration_ticks=self._hold_ticks)
         return max(self.frame_period_ticks, self._min_ticks)
 
+    def _arc(self, ref: PlayerRef, angle_rad: float, power: float, tick: int) -> int:
+        """ARC by `angle_rad` at the turn plan's rate, driving at `power`; 0: no turn needed."""
+        if angle_rad == 0.0:
+            return 0
+        rate, ticks = self.turn_plan(angle_rad)
+        speed = min(100.0, power) / 100.0 * self._vmax
+        self._send(
+            ref,
+            Primitive.ARC,
+            tick,
+            value=speed,
+            duration_ticks=ticks,
+            rate=math.copysign(rate, angle_rad),
+        )
+        return max(ticks, self._min_ticks)
+
     def _turn(self, ref: PlayerRef, angle_rad: float, tick: int) -> int:
         """A timed TURN by `angle_rad` (left positive); STOP for zero. Returns its ticks."""
         size = abs(angle_rad)
@@ -336,10 +370,11 @@ class CentralHost:
         *,
         value: float = 0.0,
         duration_ticks: int | None = None,
+        rate: float = 0.0,
     ) -> None:
         """Number a command, put it on the link and note it as an event."""
         self._seq += 1
-        command = Command(self._seq, ref, primitive, value, duration_ticks, tick)
+        command = Command(self._seq, ref, primitive, value, duration_ticks, tick, rate)
         self.link.send(command, tick)
         if self.keep_events:
             who = "all" if ref is None else str(ref)
@@ -367,6 +402,8 @@ def describe(command: Command) -> str:
         text = f"{primitive.name} {command.value:.2f} m/s"
     elif primitive is Primitive.TURN:
         text = f"TURN {command.value:+.2f} rad/s"
+    elif primitive is Primitive.ARC:
+        text = f"ARC {command.value:.2f} m/s {command.rate:+.2f} rad/s"
     elif primitive is Primitive.KICK:
         return f"KICK {command.value:.0f}"
     else:
@@ -394,3 +431,13 @@ def percept_text(percept: Percept) -> str:
         who = "player" if seen.team is None else f"player {seen.team} {seen.number}"
         parts.append(f"(({who}) {seen.distance_m:.3f} {server_degrees(seen.angle_rad):g})")
     return f"(see {percept.tick} {' '.join(parts)})"
+
+
+def _turn_then_forward(first: Action, second: Action) -> bool:
+    """A Turn followed by a forward Dash straight ahead (what an ARC runs as one motion)."""
+    return (
+        isinstance(first, Turn)
+        and isinstance(second, Dash)
+        and second.power > 0.0
+        and second.direction_rad == 0.0
+    )

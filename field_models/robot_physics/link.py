@@ -45,6 +45,9 @@ class Primitive(IntEnum):
     """Drive straight back at `value` m/s."""
     TURN = 3
     """Spin in place at `value` rad/s, left positive."""
+    ARC = 4
+    """Drive forward at up to `value` m/s while turning at `rate` rad/s (a wheel-speed
+    difference): the turn rate is kept, the forward speed is what the wheels' top speed leaves."""
     KICK = 5
     """Fire the kicker at power `value` (0–100); the wheels keep the running command."""
 
@@ -58,8 +61,9 @@ class Command:
             it ran.
         robot: The addressee, or None for a broadcast to every robot.
         primitive: What to do.
-        value: FORWARD/BACKWARD speed [m/s] (>= 0); TURN rate [rad/s], left positive; KICK power
-            (0–100). Unused by STOP.
+        value: FORWARD/BACKWARD/ARC speed [m/s] (>= 0); TURN rate [rad/s], left positive; KICK
+            power (0–100). Unused by STOP.
+        rate: ARC's turn rate [rad/s], left positive; unused by the others.
         duration_ticks: How long the motion runs from its arrival, or None: until replaced or
             the firmware's timeout.
         sent_tick: Tick at which the host sent the command.
@@ -71,6 +75,7 @@ class Command:
     value: float = 0.0
     duration_ticks: int | None = None
     sent_tick: int = 0
+    rate: float = 0.0
 
 
 class _Waiting:

@@ -10,8 +10,8 @@ its goal, at (half_length - 4 u, 0), facing the ball; the ball starts 20-30 unit
 (uniform), at a bearing uniform in ±``sector_deg`` (default 45°: the paper draws the sector but
 gives no number, so this is a calibrated setting) around the -x axis; the shooter stands behind
 the ball on the line to the defender. The trigger distance of the defender (paper: "BD <= 14")
-is 14 units. Placement draws, in this order, the distance and the bearing from
-``rngs["placement"]``.
+is 14 units (the ``task`` scaling moves it, below). Placement draws, in this order, the
+distance and the bearing from ``rngs["placement"]``.
 
 **Launch** (option ``launch``): ``"shooter"`` — the shooter sees the defender and at its first
 percept kicks with the plan's power toward the seen direction plus ``aim_offset_deg``, the
@@ -37,8 +37,15 @@ aimable) is aimed by placing the shooter facing along the aim line.
   The ball-motion noise then acts once per *scaled* server cycle
   (:meth:`InterceptDrill.field_settings`): the flight time over the reference's cycles in
   flight, to whole ticks, so a noise level means the same wander in units on both fields.
+* ``"task"`` — keep what the task is about: the defender's reach between the trigger and the
+  ball's arrival (in units), the ball's lateral wander (in touch distances) and the defender's
+  decisions in that time, as on the paper's field
+  (:mod:`robotsoccer.drills.task_scaling`). The launch speed, the trigger distance, the noise
+  period and the defender's decision period (:attr:`LaunchPlan.decision_period_s`) follow.
+  On the paper's field it is the literal drill.
 * ``"auto"`` (default) — ``"literal"`` on a field at the paper's scale (a 105 m pitch, unit =
-  1 m) whose kick takes a direction; ``"sensor_updates"`` anywhere else.
+  1 m) whose kick takes a direction; ``"task"`` anywhere else (``"sensor_updates"`` before
+  issue 10: selectable, and reported beside it).
 
 With a kicker that is not aimable, the power is the launch speed's share of its top speed.
 
@@ -79,6 +86,7 @@ from the trigger to the verdict (in units), that time, and the sensor updates in
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass
@@ -90,6 +98,7 @@ from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef
 from field_models.registry import paper_field_facts
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import GoalWatch, Verdict
+from robotsoccer.drills.task_scaling import ReferenceFlight, task_launch
 from robotsoccer.options import choice, flag
 from robotsoccer.skills.intercept import (
     AimedShooterMind,
@@ -154,6 +163,7 @@ class Scaling(StrEnum):
     AUTO = "auto"
     LITERAL = "literal"
     SENSOR_UPDATES = "sensor_updates"
+    TASK = "task"
 
 
 @dataclass(frozen=True, slots=True)
@@ -163,13 +173,14 @@ class LaunchPlan:
     Attributes:
         model: The field model's name.
         preset: The preset's name.
-        scaling: ``literal`` or ``sensor_updates`` (``auto`` resolved).
+        scaling: ``literal``, ``sensor_updates`` or ``task`` (``auto`` resolved).
         unit_m: One drill unit: pitch length / 105 [m].
         defender_x_m: The defender's start x (y = 0) [m].
         min_distance_m: Nearest ball start from the defender [m].
         max_distance_m: Farthest ball start from the defender [m].
         mean_distance_m: The distance the arrival numbers are computed for (25 units) [m].
-        trigger_distance_m: The defender chooses TA at this BD (14 units) [m].
+        trigger_distance_m: The defender chooses TA at this BD (14 units; ``task``: the
+            rule's) [m].
         launch: ``shooter`` or ``coach`` (``auto`` resolved).
         kick_power: The shooter's kick power (the reference's for a coach launch).
         aimable_kick: The shooter's kick takes a direction (else it fires along the heading).
@@ -182,6 +193,10 @@ class LaunchPlan:
         shooter_gap_m: Centre distance from the shooter to the ball at the start [m].
         turn_tolerance_rad: The defender leaves out smaller turns [rad].
         noise_period_s: How often ball-motion noise acts [s].
+        trigger_to_arrival_s: The ball's time from the trigger distance to the defender at the
+            mean distance, without noise [s].
+        decision_period_s: The defender decides at most this often [s]; 0: at every percept
+            (the ``task`` rule sets it to match the reference's decisions after the trigger).
     """
 
     model: str
@@ -204,6 +219,8 @@ class LaunchPlan:
     shooter_gap_m: float
     turn_tolerance_rad: float
     noise_period_s: float
+    trigger_to_arrival_s: float
+    decision_period_s: float
 
 
 def launch_plan(
@@ -219,7 +236,7 @@ def launch_plan(
         facts: The field's facts (:func:`field_models.registry.field_facts`, ``arena.facts``).
         kick_power: The shooter's kick power in the literal drill (paper: fixed, 100).
         launch: ``auto``, ``shooter`` or ``coach``.
-        scaling: ``auto``, ``literal`` or ``sensor_updates``.
+        scaling: ``auto``, ``literal``, ``sensor_updates`` or ``task``.
 
     Raises:
         ValueError: An unknown launch or scaling, a shooter launch where nobody can kick, a
@@ -236,17 +253,25 @@ def launch_plan(
     aimable = kick is not None and kick.aimable
     if scaling is Scaling.AUTO:
         paper_scale = math.isclose(facts.unit_m, 1.0) and aimable
-        scaling = Scaling.LITERAL if paper_scale else Scaling.SENSOR_UPDATES
+        scaling = Scaling.LITERAL if paper_scale else Scaling.TASK
     unit = facts.unit_m
     mean = 0.5 * (MIN_DISTANCE_UNITS + MAX_DISTANCE_UNITS) * unit
+    trigger = TRIGGER_UNITS * unit
+    decision_period = 0.0
     if scaling is Scaling.LITERAL:
         speed, time, power, noise_period = _literal_launch(facts, mean, kick_power)
-    else:
+    elif scaling is Scaling.SENSOR_UPDATES:
         speed, time, power, noise_period = _matched_launch(facts, mean, launch, kick_power)
+    else:
+        task = task_launch(facts, reference_flight(kick_power))
+        speed, time, trigger = task.launch_speed_mps, task.flight_s, task.trigger_distance_m
+        power = _launch_power(facts, launch, speed, kick_power)
+        noise_period, decision_period = task.noise_period_s, task.decision_period_s
     touch = facts.touch_distance_m
     gap = touch + 0.5 * unit
     if launch is Launch.SHOOTER and kick is not None:
         gap = 0.5 * (touch + kick.reach_m)  # between touching and the edge of its reach
+    before_trigger = facts.ball.time_to_cover(mean - trigger, speed)
     return LaunchPlan(
         model=facts.model,
         preset=facts.preset,
@@ -256,7 +281,7 @@ def launch_plan(
         min_distance_m=MIN_DISTANCE_UNITS * unit,
         max_distance_m=MAX_DISTANCE_UNITS * unit,
         mean_distance_m=mean,
-        trigger_distance_m=TRIGGER_UNITS * unit,
+        trigger_distance_m=trigger,
         launch=launch,
         kick_power=power,
         aimable_kick=aimable,
@@ -268,6 +293,8 @@ def launch_plan(
         shooter_gap_m=gap,
         turn_tolerance_rad=TOLERANCE_HEADING_SIGMAS * facts.heading_sigma_rad,
         noise_period_s=noise_period,
+        trigger_to_arrival_s=time - (0.0 if before_trigger is None else before_trigger),
+        decision_period_s=decision_period,
     )
 
 
@@ -295,18 +322,76 @@ def _matched_launch(
     if speed is None or speed > facts.ball_max_speed_mps:
         shown = "none" if speed is None else f"{speed:.3g} m/s"
         raise ValueError(f"{facts.preset}: the launch speed ({shown}) is not possible here")
-    power = reference.kick_power
-    kick = facts.kick
-    if launch is Launch.SHOOTER and kick is not None:
-        needed = kick.power_for(speed)
-        if needed is None:
-            raise ValueError(f"{facts.preset}: the kicker's top speed is below {speed:.3g} m/s")
-        power = needed
+    power = _launch_power(facts, launch, speed, reference.kick_power)
     # One server cycle in the drill's time: the flight over the reference's cycles in flight, so
     # the noise acts as many times per shot as on the paper's field.
     cycles = reference.arrival_time_s / reference.noise_period_s
     ticks = max(1, round(time / cycles / facts.dt_s))
     return speed, time, power, ticks * facts.dt_s
+
+
+@functools.lru_cache(maxsize=64)
+def ablated(
+    plan: LaunchPlan,
+    facts: FieldFacts,
+    trigger_scale: float = 1.0,
+    launch_speed_scale: float = 1.0,
+    turn_tolerance_deg: float | None = None,
+) -> LaunchPlan:
+    """`plan` on `facts` with the drill's ablation options applied (itself when none is set).
+
+    Raises:
+        ValueError: The scaled launch stops short of the mean distance or is too fast.
+    """
+    if trigger_scale == 1.0 and launch_speed_scale == 1.0 and turn_tolerance_deg is None:
+        return plan
+    tolerance = plan.turn_tolerance_rad
+    if turn_tolerance_deg is not None:
+        tolerance = math.radians(turn_tolerance_deg)
+    speed = plan.launch_speed_mps * launch_speed_scale
+    arrival = facts.ball.time_to_cover(plan.mean_distance_m, speed)
+    if arrival is None or speed > facts.ball_max_speed_mps:
+        raise ValueError(
+            f"{facts.preset}: launch_speed_scale={launch_speed_scale:g} gives "
+            f"{speed:.3g} m/s, which is not possible here"
+        )
+    trigger = plan.trigger_distance_m * trigger_scale
+    before = facts.ball.time_to_cover(plan.mean_distance_m - trigger, speed) or 0.0
+    return dataclasses.replace(
+        plan,
+        trigger_distance_m=trigger,
+        launch_speed_mps=speed,
+        arrival_time_s=arrival,
+        arrival_updates=arrival / plan.sensor_period_s,
+        trigger_to_arrival_s=arrival - before,
+        turn_tolerance_rad=tolerance,
+    )
+
+
+def decision_ticks(plan: LaunchPlan, facts: FieldFacts) -> int:
+    """The plan's decision period in whole ticks (0: every percept)."""
+    return round(plan.decision_period_s / facts.dt_s)
+
+
+def reference_flight(kick_power: float = 100.0) -> ReferenceFlight:
+    """The literal drill's flight on the paper's field, which the ``task`` rule keeps."""
+    facts = paper_field_facts()
+    plan = launch_plan(facts, kick_power=kick_power, scaling=Scaling.LITERAL)
+    mean_units = plan.mean_distance_m / plan.unit_m
+    return ReferenceFlight(
+        facts, plan.launch_speed_mps, plan.arrival_time_s, plan.trigger_to_arrival_s, mean_units
+    )
+
+
+def _launch_power(facts: FieldFacts, launch: Launch, speed_mps: float, reference: float) -> float:
+    """The shooter's power for `speed_mps`; the reference's power for a coach launch."""
+    kick = facts.kick
+    if launch is not Launch.SHOOTER or kick is None:
+        return reference
+    needed = kick.power_for(speed_mps)
+    if needed is None:
+        raise ValueError(f"{facts.preset}: the kicker's top speed is below {speed_mps:.3g} m/s")
+    return needed
 
 
 @functools.lru_cache(maxsize=64)
@@ -327,17 +412,24 @@ class InterceptDrill:
         aim_offset_deg: The shooter aims this far left of the defender [deg] (paper: 4° wide).
         kick_power: The shooter's kick power in the literal drill (scales the matched launch).
         launch: ``auto``, ``shooter`` or ``coach`` (module docstring).
-        scaling: ``auto``, ``literal`` or ``sensor_updates`` (module docstring).
+        scaling: ``auto``, ``literal``, ``sensor_updates`` or ``task`` (module docstring).
         sector_deg: Half-width of the ball's start bearing around -x from the defender [deg].
         max_time_s: Simulated time after which the trial is a MISS [s].
         defender_kick: Let the defender clear a ball within reach of an aimable kick; False
             (default): it stops the ball with its body (a calibrated choice, module docstring).
         transfer: Accept a model file trained on another field model or preset (the
             transfer study); False (default) refuses one whose provenance is not this field.
+        trigger_scale: Multiply the plan's trigger distance by this (an ablation; 1: as
+            planned).
+        launch_speed_scale: Multiply the plan's launch speed by this (an ablation; the noise
+            period and the trigger stay as planned).
+        turn_tolerance_deg: The defender's turn tolerance [deg] instead of the plan's (an
+            ablation); None: the plan's (three sigmas of the sensor's heading noise).
 
     Raises:
         ValueError: An unknown behaviour, TA mode, launch or scaling, a missing model file
-            name, or a sector outside [0, 90] or a time limit that is not positive.
+            name, or a sector outside [0, 90] or a time limit that is not positive, or a scale
+            that is not positive or a negative tolerance.
     """
 
     name: str = "intercept"
@@ -356,6 +448,9 @@ class InterceptDrill:
         max_time_s: float = 10.0,
         defender_kick: bool | str = False,
         transfer: bool | str = False,
+        trigger_scale: float = 1.0,
+        launch_speed_scale: float = 1.0,
+        turn_tolerance_deg: float | None = None,
     ) -> None:
         self.behaviour = check_behaviour(behaviour, model)
         self.model = model
@@ -368,6 +463,17 @@ class InterceptDrill:
             raise ValueError(f"max_time_s must be > 0, got {max_time_s!r}")
         if not kick_power > 0.0:
             raise ValueError(f"kick_power must be > 0, got {kick_power!r}")
+        for name, scale in (
+            ("trigger_scale", trigger_scale),
+            ("launch_speed_scale", launch_speed_scale),
+        ):
+            if not float(scale) > 0.0:
+                raise ValueError(f"{name} must be > 0, got {scale!r}")
+        if turn_tolerance_deg is not None and not float(turn_tolerance_deg) >= 0.0:
+            raise ValueError(f"turn_tolerance_deg must be >= 0, got {turn_tolerance_deg!r}")
+        self.trigger_scale = float(trigger_scale)
+        self.launch_speed_scale = float(launch_speed_scale)
+        self.turn_tolerance_deg = None if turn_tolerance_deg is None else float(turn_tolerance_deg)
         self.aim_offset_rad = math.radians(aim_offset_deg)
         self.kick_power = float(kick_power)
         self.sector_rad = math.radians(sector_deg)
@@ -392,8 +498,11 @@ class InterceptDrill:
         return self._plan
 
     def plan_for(self, facts: FieldFacts) -> LaunchPlan:
-        """This drill's launch plan on a field (cached per field)."""
-        return cached_launch_plan(facts, self.kick_power, self.launch, self.scaling)
+        """This drill's launch plan on a field (cached per field), with the ablations applied."""
+        plan = cached_launch_plan(facts, self.kick_power, self.launch, self.scaling)
+        return ablated(
+            plan, facts, self.trigger_scale, self.launch_speed_scale, self.turn_tolerance_deg
+        )
 
     def distance_factor(self, facts: FieldFacts) -> float:
         """The net's distance factor on this field (1 on the field it was trained on).
@@ -493,6 +602,7 @@ class InterceptDrill:
             ta_mode=self.ta_mode,
             kickable_distance_m=plan.kickable_distance_m if self.defender_kick else None,
             turn_tolerance_rad=plan.turn_tolerance_rad,
+            decision_period_ticks=decision_ticks(plan, arena.facts),
         )
         self.defender_mind = defender
         minds: dict[PlayerRef, Mind] = {DEFENDER: defender}
@@ -633,4 +743,3 @@ class _Judge:
             if abs(cross) < self.post:
                 return Verdict("GOAL", PAST_INTO_GOAL)
         return self._not_in(PAST_WIDE)
-

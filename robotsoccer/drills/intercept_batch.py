@@ -121,7 +121,12 @@ def batch_reason(spec: TrialSpec) -> str | None:
     assert isinstance(drill, InterceptDrill)
     if drill.defender_kick:
         return "the defender's clearing kick reads landmarks, which the batch does not see"
-    return field_batch_reason(spec.field_model, spec.preset, field_options(spec, drill))
+    options = field_options(spec, drill)
+    reason = field_batch_reason(spec.field_model, spec.preset, options)
+    facts = field_facts(spec.field_model, spec.preset, options)
+    if reason is None and drill.plan_for(facts).decision_period_s:
+        return "the batch decides at every percept; this plan sets a longer decision period"
+    return reason
 
 
 def run_intercept_batch(

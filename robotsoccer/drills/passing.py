@@ -51,7 +51,13 @@ from learning.pass_boost import load_pass_boost
 from learning.pass_features import PASS_SCHEMA
 from learning.pass_tree import load_pass_tree
 from robotsoccer.drills.base import Verdict
-from robotsoccer.drills.intercept import Launch, LaunchPlan, Scaling, cached_launch_plan
+from robotsoccer.drills.intercept import (
+    Launch,
+    LaunchPlan,
+    Scaling,
+    cached_launch_plan,
+    decision_ticks,
+)
 from robotsoccer.options import choice, flag
 from robotsoccer.skills.intercept import (
     Behaviour,
@@ -302,6 +308,7 @@ class PassDrill:
                 make_policy(self.interceptor, policy_rng, self.net, factor),
                 plan.trigger_distance_m,
                 turn_tolerance_rad=plan.turn_tolerance_rad,
+                decision_period_ticks=decision_ticks(plan, facts),
             )
 
         minds: dict[PlayerRef, Mind] = {PASSER: passer}

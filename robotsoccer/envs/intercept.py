@@ -1,8 +1,8 @@
 """The paper's layer-1 learning problem as a Gymnasium environment, on any field model.
 
 The paper's defender makes one learned decision per trial (§5): when the ball first comes within
-14 units, it picks TA, the angle to turn after facing the ball, from (BD, BA, previous BD). This
-environment poses exactly that decision:
+the trigger distance (14 units; the drill's plan), it picks TA, the angle to turn after facing
+the ball, from (BD, BA, previous BD). This environment poses exactly that decision:
 
 * :meth:`InterceptEnv.reset` places a trial of the interception drill
   (:class:`~robotsoccer.drills.intercept.InterceptDrill`) and runs it, with the shooter's kick
@@ -40,7 +40,7 @@ from gymnasium import spaces
 from field_models.protocol import Mind, Percept, PlayerRef
 from field_models.registry import FIELD_MODELS, field_facts
 from robotsoccer.drills.base import Verdict
-from robotsoccer.drills.intercept import DEFENDER, TRIGGER_UNITS, InterceptDrill
+from robotsoccer.drills.intercept import DEFENDER, InterceptDrill
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.intercept import TA_CLIP_RAD
 
@@ -145,7 +145,7 @@ class _Episode:
         self.arena = arena
         self.loop = TrialLoop(arena, drill, minds)
         self.unit_m = arena.facts.unit_m
-        self.trigger_m = TRIGGER_UNITS * self.unit_m
+        self.trigger_m = drill.plan(arena).trigger_distance_m
         self.previous_bd: float | None = None
         self.features = np.zeros(3, dtype=np.float32)
 
@@ -170,7 +170,9 @@ class _Episode:
         Asked of every percept before the decision, so it also keeps the previous sighting's BD
         (the defender's own rule, :class:`~robotsoccer.skills.intercept.DefenderMind`).
         """
-        if percept.player != DEFENDER or percept.ball is None:
+        if percept.player != DEFENDER or not self.defender.decides_at(percept.tick):
+            return False
+        if percept.ball is None:
             return False
         bd = percept.ball.distance_m
         previous = bd if self.previous_bd is None else self.previous_bd

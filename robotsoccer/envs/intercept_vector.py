@@ -176,4 +176,3 @@ def make_intercept_vector_env(
         [lambda: InterceptEnv(**kwargs) for _ in range(num_envs)],
         autoreset_mode=AutoresetMode.SAME_STEP,
     )
-

@@ -314,7 +314,7 @@ def collect(
         extra={
             "drill": DRILL,
             "ta_range_deg": 45.0,
-            "trigger_distance_units": 14.0,
+            "trigger_distance_units": launch.trigger_distance_m / launch.unit_m,
             "trigger_distance_m": launch.trigger_distance_m,
             "ball_noise_period_s": launch.noise_period_s,
             "ta_mode": str(dict(base.drill_options).get("ta_mode", "hold")),
@@ -695,7 +695,10 @@ def scaling_notes(field_model: str, preset: str) -> list[str]:
     lines += [f"| {key} | {_fmt(value)} |" for key, value in dataclasses.asdict(plan).items()]
     lines += [
         f"| noise applications during a shot (arrival_time_s / noise_period_s) "
-        f"| {plan.arrival_time_s / plan.noise_period_s:.1f} |"
+        f"| {plan.arrival_time_s / plan.noise_period_s:.1f} |",
+        f"| trigger distance [units] | {plan.trigger_distance_m / plan.unit_m:.2f} |",
+        f"| decisions after the trigger (trigger_to_arrival_s / decision period) "
+        f"| {plan.trigger_to_arrival_s / (plan.decision_period_s or plan.sensor_period_s):.1f} |",
     ]
     return lines
 

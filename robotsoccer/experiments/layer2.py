@@ -240,9 +240,7 @@ def train_main_tree(
     start = time.perf_counter()
     path = out / "models" / field_model / "pass_tree.json"
     tree, holdout = train_tree(dataset, path, seeds.collection)
-    return MainTree(
-        dataset, labels, timing, path, tree, holdout, time.perf_counter() - start
-    )
+    return MainTree(dataset, labels, timing, path, tree, holdout, time.perf_counter() - start)
 
 
 def run_layer2_model(

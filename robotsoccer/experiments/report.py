@@ -394,7 +394,7 @@ def model_markdown(section: ModelSection) -> str:
             "The real server checks overlaps only at the end of a cycle, so a ball may pass "
             "*through* a defender dashing at it (spec §4). The `_swept` variant preset also "
             "catches a ball that met the player mid-cycle. Same seeds and placements as Figure "
-            "8; the sizes and speeds involved are under \"Where we differ\".",
+            '8; the sizes and speeds involved are under "Where we differ".',
             "",
             paper_table(("Noise", "Behavior", "collisions"), swept_rows(section)),
             "",
@@ -570,7 +570,8 @@ def _travel_line(section: ModelSection) -> str:
     if not parts:
         return ""
     return (
-        "- **How far the defender gets.** From its trigger (BD ≤ 14 units) to the verdict, "
+        "- **How far the defender gets.** From its trigger (the first BD within the plan's "
+        "trigger distance) to the verdict, "
         "the defender moved a median of " + "; ".join(parts) + "."
     )
 

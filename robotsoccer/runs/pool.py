@@ -172,16 +172,12 @@ class Progress:
             self._bar.close()
 
 
-def read_results(
-    path: Path, warn: Callable[[str], None] | None = None
-) -> dict[int, TrialResult]:
+def read_results(path: Path, warn: Callable[[str], None] | None = None) -> dict[int, TrialResult]:
     """Results already in a table, by index (:func:`iter_results`); an absent file holds none."""
     return {result.index: result for result in iter_results(path, warn)}
 
 
-def iter_results(
-    path: Path, warn: Callable[[str], None] | None = None
-) -> Iterator[TrialResult]:
+def iter_results(path: Path, warn: Callable[[str], None] | None = None) -> Iterator[TrialResult]:
     """The results in a table, one at a time (a resumed run of any size reads it in passing).
 
     A last row without its line end was cut short by a killed write: it is dropped (and the

@@ -4,7 +4,7 @@
 under Figure 6; BD = ball distance, BA = ball angle, TA = "the angle to turn *after* facing the
 ball"), in our reading (``ta_mode="hold"``):
 
-* while BD > the trigger distance (14 units): TURN(BA) — watch and face the ball;
+* while BD > the trigger distance (14 units; the drill's plan): TURN(BA) — watch and face the ball;
 * the first time BD <= the trigger distance: TA is chosen by the behaviour from (BD, BA,
   previous BD), and the example (BD, BA, previous BD, TA) is recorded (:attr:`DefenderMind.
   example`, once per trial);
@@ -102,6 +102,7 @@ class TaMode(StrEnum):
     HOLD = "hold"
     EVERY_SEE = "every_see"
 
+
 RANDOM_TA_HALF_RANGE_RAD = math.radians(45.0)
 """The training behaviour's TA range: uniform in [-45°, 45°] (paper §5)."""
 
@@ -150,9 +151,7 @@ def straight_policy(
 class RandomPolicy:
     """TA uniform in [-half_range, half_range] from a generator (the training behaviour)."""
 
-    def __init__(
-        self, rng: Rng, half_range_rad: float = RANDOM_TA_HALF_RANGE_RAD
-    ) -> None:
+    def __init__(self, rng: Rng, half_range_rad: float = RANDOM_TA_HALF_RANGE_RAD) -> None:
         self.rng = rng
         self.half_range_rad = half_range_rad
 
@@ -374,11 +373,15 @@ class DefenderMind:
 
     Args:
         policy: The behaviour's TA rule; None stands still (``still``).
-        trigger_distance_m: TA is chosen the first time BD is at most this (14 units) [m].
+        trigger_distance_m: TA is chosen the first time BD is at most this (the drill plan's) [m].
         ta_mode: When TA is chosen (:class:`TaMode`, or its name).
         kickable_distance_m: Kick (clear) when BD is at most this [m]; None never kicks.
         turn_tolerance_rad: Leave out turns smaller than this [rad]; 0 keeps every turn.
         ta_clip_rad: |TA| is clipped to this [rad].
+        decision_period_ticks: Decide on a percept only when at least this many ticks have
+            passed since the last percept it decided on, and ignore the others entirely, as a
+            slower sensor would (previous BD is then the previous *decision's* sighting); 0
+            decides on every percept. The ``task`` scaling sets it (drill module docstring).
 
     Attributes:
         example: (BD [m], BA [rad], previous BD [m], TA [rad]) recorded at the trigger, or None.
@@ -395,8 +398,11 @@ class DefenderMind:
         kickable_distance_m: float | None = None,
         turn_tolerance_rad: float = 0.0,
         ta_clip_rad: float = TA_CLIP_RAD,
+        decision_period_ticks: int = 0,
     ) -> None:
         self.policy = policy
+        self.decision_period_ticks = decision_period_ticks
+        self._next_decision_tick = -1
         self.trigger_distance_m = trigger_distance_m
         self.every_see = choice(TaMode, ta_mode, "ta_mode") is TaMode.EVERY_SEE
         self.kickable_distance_m = kickable_distance_m
@@ -410,11 +416,19 @@ class DefenderMind:
         self._heading_rad = 0.0  # reckoned heading, turns already visible in the percepts
         self._turns: list[tuple[int, float]] = []  # (tick commanded, angle), not yet visible
 
+    def decides_at(self, tick: int) -> bool:
+        """Whether a percept delivered at `tick` is one this defender decides on."""
+        return not self.decision_period_ticks or tick >= self._next_decision_tick
+
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """One decision per percept (module docstring)."""
         policy = self.policy
         if policy is None:
             return ()
+        if self.decision_period_ticks:
+            if percept.tick < self._next_decision_tick:
+                return ()
+            self._next_decision_tick = percept.tick + self.decision_period_ticks
         ball = percept.ball
         if ball is None:
             return (Dash(DASH_POWER),) if self.triggered else ()

@@ -348,9 +348,7 @@ class PasserMind:
                 found[number] = best
         return found
 
-    def option(
-        self, percept: Percept, own: str, number: int, index: int | None
-    ) -> PassOption:
+    def option(self, percept: Percept, own: str, number: int, index: int | None) -> PassOption:
         """(number, direction [rad], tree confidence, attributes) of passing to one receiver."""
         seen = percept.players
         if index is None:
@@ -382,9 +380,7 @@ class PasserMind:
             return int(np.argmin([o[3][0] for o in options]))  # "passer receiver distance"
         return self._pick_analytic(percept, options)
 
-    def _pick_analytic(
-        self, percept: Percept, options: list[PassOption]
-    ) -> int:
+    def _pick_analytic(self, percept: Percept, options: list[PassOption]) -> int:
         assert self.physics is not None
         own = percept.player.team
         opponents = [(s.distance_m, s.angle_rad) for s in percept.players if s.team != own]

@@ -42,6 +42,7 @@ def test_shipped_presets_load(name: str) -> None:
         (r"^tyre_mu = 0\.8", "tyre_mu = 0.8\ntyre_grip = 1.0", "robot.tyre_grip", "unknown"),
         (r"^latency_s = 0\.05.*$", "latency_s = 0.051", "camera.latency_s", "whole number"),
         (r"^max_speed_mps = 4\.0", "max_speed_mps = 40.0", "ball.max_speed_mps", "tunnels"),
+        (r"^tyre_mu = 0\.8", "tyre_mu = 0.8\nturn_style = 'drift'", "robot.turn_style", "arc"),
     ],
 )
 def test_wrong_preset_names_file_and_key(tmp_path, old, new, key, expected) -> None:

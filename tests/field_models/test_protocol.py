@@ -104,4 +104,3 @@ def test_only_a_step_over_the_line_counts() -> None:
     assert end_line_crossing(SERVER_1996, 0.0, 0.0, 10.0, 30.0) is Crossing.NONE
     assert end_line_crossing(SERVER_1996, 52.0, 0.0, line + 1e-9, 0.0) is Crossing.RIGHT_GOAL
     assert not Crossing.NONE  # falsy, so `if crossing:` reads as "it crossed"
-

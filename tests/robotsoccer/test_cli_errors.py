@@ -108,6 +108,7 @@ def test_an_error_inside_a_worker_is_one_line(tmp_path) -> None:
             """
         )
     )
+
     def script(drill: str, out: str) -> str:
         return (
             "import sys, boom_drill\n"

@@ -118,3 +118,14 @@ def test_kick_armed_once_and_motion_kept() -> None:
     assert fw.take_kick() is None
     assert fw.update(1) == (0.6, 0.6)
 
+
+def test_arc_keeps_the_turn_rate_and_drives_with_what_is_left() -> None:
+    fw = make_firmware()
+    half = ROBOT.track_m / 2
+    fw.receive(Command(1, ME, Primitive.ARC, 0.5, rate=2.0), 0)
+    assert fw.update(0) == pytest.approx((0.5 - 2.0 * half, 0.5 + 2.0 * half))
+    fast = 20.0  # 0.75 m/s of the 1.2 m/s on each wheel goes to the turn
+    fw.receive(Command(2, ME, Primitive.ARC, 5.0, rate=-fast), 1)
+    left, right = fw.update(1)
+    assert left == pytest.approx(ROBOT.max_wheel_speed_mps)
+    assert (left - right) / ROBOT.track_m == pytest.approx(fast)

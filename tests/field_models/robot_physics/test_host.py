@@ -428,3 +428,24 @@ def test_a_directed_dash_turns_first_or_drives_backwards(
     host.release(due)
     (then,) = sent(link, due)
     assert then.primitive is primitive and then.value == pytest.approx(0.6 * VMAX)
+
+
+def test_an_arc_robot_drives_while_it_turns_then_dashes() -> None:
+    preset = load_preset("small_size_1997_arc")
+    host, link = make_host(preset)
+    host.submit(A, (Turn(math.pi / 2), Dash(100.0)), 0)
+    (c,) = sent(link)
+    spin = host.turn_plan(math.pi / 2)
+    assert (c.primitive, c.value, c.duration_ticks) == (Primitive.ARC, VMAX, spin[1])
+    assert c.rate == pytest.approx(spin[0])  # the same turn as a spin, in the same time
+    assert host.pending(A) == (Dash(100.0),)
+    host.release(spin[1])
+    (c,) = sent(link, spin[1])
+    assert c.primitive is Primitive.FORWARD
+
+
+def test_an_arc_robot_still_spins_for_a_turn_alone() -> None:
+    host, link = make_host(load_preset("small_size_1997_arc"))
+    host.submit(A, (Turn(-0.5),), 0)
+    (c,) = sent(link)
+    assert c.primitive is Primitive.TURN and c.value < 0.0

@@ -13,7 +13,13 @@ from field_models.protocol import Action, BodyState, Percept, PlayerRef
 from field_models.registry import field_facts, make_arena
 from field_models.seeding import TrialRngs
 from robotsoccer.drills import DRILLS, make_drill
-from robotsoccer.drills.intercept import DEFENDER, SHOOTER, InterceptDrill, launch_plan
+from robotsoccer.drills.intercept import (
+    DEFENDER,
+    SHOOTER,
+    InterceptDrill,
+    decision_ticks,
+    launch_plan,
+)
 from robotsoccer.runs.runner import TrialSpec, play, run_trial
 from robotsoccer.skills.intercept import AimedShooterMind
 
@@ -52,7 +58,7 @@ def test_server_geometry_and_launch_numbers_by_hand() -> None:
 
 def test_robot_launch_matches_the_servers_sensor_updates() -> None:
     server = launch_plan(field_facts("soccer_server"))
-    plan = launch_plan(field_facts("robot_physics", "small_size_1997"))
+    plan = launch_plan(field_facts("robot_physics", "small_size_1997"), scaling="sensor_updates")
     unit = 2.74 / 105.0
     assert plan.unit_m == pytest.approx(unit)
     assert plan.defender_x_m == pytest.approx(1.37 - 4 * unit)
@@ -243,6 +249,26 @@ def with_noise(spec: TrialSpec, noise: float) -> TrialSpec:
     return spec.with_field(ball_noise=noise)
 
 
+def decided(percepts: list[Percept], drill: InterceptDrill, arena: Arena) -> list[Percept]:
+    """The percepts a defender with the plan's decision period decides on (the others unseen)."""
+    period = decision_ticks(drill.plan(arena), arena.facts)
+    out: list[Percept] = []
+    for p in percepts:
+        if not out or p.tick >= out[-1].tick + period:
+            out.append(p)
+    return out
+
+
+def test_the_robots_defender_decides_every_other_frame_under_the_task_rule() -> None:
+    drill = InterceptDrill(behaviour="straight")
+    rngs = TrialRngs.for_trial(2, 1)
+    arena = make_arena("robot_physics", MODELS["robot_physics"], drill.players(), rngs)
+    plan = drill.plan(arena)
+    assert plan.scaling == "task"
+    frame_ticks = round(arena.facts.sensor_period_s / arena.facts.dt_s)
+    assert decision_ticks(plan, arena.facts) == 2 * frame_ticks
+
+
 @pytest.mark.parametrize("field_model", sorted(MODELS))
 def test_the_example_is_recorded_once_at_the_trigger(field_model: str) -> None:
     drill = InterceptDrill(behaviour="straight")
@@ -259,7 +285,7 @@ def test_the_example_is_recorded_once_at_the_trigger(field_model: str) -> None:
 
     play(arena, drill, minds, decisions=log)
     trigger = drill.plan(arena).trigger_distance_m
-    sightings = [p for p in seen if p.ball is not None]
+    sightings = [p for p in decided(seen, drill, arena) if p.ball is not None]
     first = next(i for i, p in enumerate(sightings) if p.ball and p.ball.distance_m <= trigger)
     assert first > 0
     now, before = sightings[first].ball, sightings[first - 1].ball
@@ -384,3 +410,23 @@ def test_a_glancing_ball_that_stops_short_is_a_save(field_model: str) -> None:
     assert label is None
     verdict = drill.timeout(arena)
     assert verdict.label == "SAVE" and "deflected" in verdict.reason
+
+
+def test_the_ablation_options_change_the_plan_and_nothing_else() -> None:
+    facts = field_facts("robot_physics", "small_size_1997")
+    plan = InterceptDrill().plan_for(facts)
+    changed = InterceptDrill(
+        trigger_scale=1.5, launch_speed_scale=0.5, turn_tolerance_deg=0.0
+    ).plan_for(facts)
+    assert changed.trigger_distance_m == pytest.approx(1.5 * plan.trigger_distance_m)
+    assert changed.launch_speed_mps == pytest.approx(0.5 * plan.launch_speed_mps)
+    assert changed.turn_tolerance_rad == 0.0
+    assert changed.arrival_time_s > plan.arrival_time_s
+    same = ("noise_period_s", "decision_period_s", "min_distance_m", "defender_x_m")
+    assert all(getattr(changed, name) == getattr(plan, name) for name in same)
+    with pytest.raises(ValueError, match="trigger_scale"):
+        InterceptDrill(trigger_scale=0.0)
+    with pytest.raises(ValueError, match="turn_tolerance_deg"):
+        InterceptDrill(turn_tolerance_deg=-1.0)
+    with pytest.raises(ValueError, match=r"launch_speed_scale=0\.01"):
+        InterceptDrill(launch_speed_scale=0.01).plan_for(facts)  # stops short

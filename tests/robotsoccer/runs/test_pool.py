@@ -84,7 +84,9 @@ def test_a_resume_refuses_results_made_with_another_model_file(tmp_path) -> None
     model = tmp_path / "table.json"
     LookupTable([-0.1, 0.1], [0.0, 0.0]).save(model)
     spec = TrialSpec(drill="intercept", field_model="soccer_server", seed=1).with_options(
-        behaviour="lookup", model=str(model), transfer=True  # a hand-made table: no origin
+        behaviour="lookup",
+        model=str(model),
+        transfer=True,  # a hand-made table: no origin
     )
     path = tmp_path / "results.csv"
     run_trials(spec, 2, workers=1, results_path=path, progress=False)
