@@ -208,9 +208,14 @@ def build_parser() -> argparse.ArgumentParser:
     reproduce = command("reproduce", "layers 1 and 2 on both field models: report, plots")
     _experiment_options(reproduce)
     transfer = command(
-        "transfer", "the transfer matrix: each field model's net and pass tree on every model"
+        "transfer",
+        "the transfer matrix: each field model's net and pass tree on every model; then the "
+        "ablations of the robots' interception drill",
     )
     _experiment_options(transfer)
+    transfer.add_argument(
+        "--no-ablations", action="store_true", help="the matrix only, without the ablations"
+    )
 
     bench = command("bench", "measure speed, each figure beside its target")
     bench.add_argument("--json", action="store_true", help="print one JSON object at the end")
@@ -612,6 +617,7 @@ def _run_layer1(
 
 def cmd_transfer(args: argparse.Namespace) -> int:
     """``transfer``: each field model's net and pass tree tested on every field model."""
+    from robotsoccer.experiments.ablations import ablation_markdown, ablation_plan, run_ablations
     from robotsoccer.experiments.layer1 import plan_for, seeds_for, train_main_net
     from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
     from robotsoccer.experiments.transfer import (
@@ -651,6 +657,12 @@ def cmd_transfer(args: argparse.Namespace) -> int:
         }
         log("[transfer] layer 2")
         cells2 = run_transfer_layer2(models, nets, trees, plan2, out, seeds, workers, log, progress)
+        ablation_text = ""
+        if not args.no_ablations:
+            log("[transfer] ablations")
+            plan3 = ablation_plan(args.quick)
+            rows = run_ablations(plan3, out, seeds, workers, log, progress)
+            ablation_text = "\n" + ablation_markdown(rows, plan3)
     except KeyboardInterrupt:
         return _fail(
             EXIT_INTERRUPTED,
@@ -664,7 +676,8 @@ def cmd_transfer(args: argparse.Namespace) -> int:
     report = out / "report.md"
     title = "# The transfer study" + (" — quick plan" if args.quick else "")
     found = [path for path in heatmaps if path is not None]
-    report.write_text(f"{title}\n\n{transfer_markdown([*cells, *cells2], plan.noise, found)}")
+    matrix = transfer_markdown([*cells, *cells2], plan.noise, found)
+    report.write_text(f"{title}\n\n{matrix}{ablation_text}")
     print()
     print(report.read_text())
     print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")

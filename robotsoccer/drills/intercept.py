@@ -44,8 +44,9 @@ aimable) is aimed by placing the shooter facing along the aim line.
   period and the defender's decision period (:attr:`LaunchPlan.decision_period_s`) follow.
   On the paper's field it is the literal drill.
 * ``"auto"`` (default) — ``"literal"`` on a field at the paper's scale (a 105 m pitch, unit =
-  1 m) whose kick takes a direction; ``"task"`` anywhere else (``"sensor_updates"`` before
-  issue 10: selectable, and reported beside it).
+  1 m) whose kick takes a direction; ``"sensor_updates"`` anywhere else. (``"task"`` matches
+  the still and straight baselines better, but the learned net loses to straight under it:
+  README, "Ablations"; it is not the default until a rule makes learning pay.)
 
 With a kicker that is not aimable, the power is the launch speed's share of its top speed.
 
@@ -253,7 +254,7 @@ def launch_plan(
     aimable = kick is not None and kick.aimable
     if scaling is Scaling.AUTO:
         paper_scale = math.isclose(facts.unit_m, 1.0) and aimable
-        scaling = Scaling.LITERAL if paper_scale else Scaling.TASK
+        scaling = Scaling.LITERAL if paper_scale else Scaling.SENSOR_UPDATES
     unit = facts.unit_m
     mean = 0.5 * (MIN_DISTANCE_UNITS + MAX_DISTANCE_UNITS) * unit
     trigger = TRIGGER_UNITS * unit

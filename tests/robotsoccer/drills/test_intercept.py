@@ -58,7 +58,7 @@ def test_server_geometry_and_launch_numbers_by_hand() -> None:
 
 def test_robot_launch_matches_the_servers_sensor_updates() -> None:
     server = launch_plan(field_facts("soccer_server"))
-    plan = launch_plan(field_facts("robot_physics", "small_size_1997"), scaling="sensor_updates")
+    plan = launch_plan(field_facts("robot_physics", "small_size_1997"))
     unit = 2.74 / 105.0
     assert plan.unit_m == pytest.approx(unit)
     assert plan.defender_x_m == pytest.approx(1.37 - 4 * unit)
@@ -260,7 +260,7 @@ def decided(percepts: list[Percept], drill: InterceptDrill, arena: Arena) -> lis
 
 
 def test_the_robots_defender_decides_every_other_frame_under_the_task_rule() -> None:
-    drill = InterceptDrill(behaviour="straight")
+    drill = InterceptDrill(behaviour="straight", scaling="task")
     rngs = TrialRngs.for_trial(2, 1)
     arena = make_arena("robot_physics", MODELS["robot_physics"], drill.players(), rngs)
     plan = drill.plan(arena)
@@ -414,9 +414,9 @@ def test_a_glancing_ball_that_stops_short_is_a_save(field_model: str) -> None:
 
 def test_the_ablation_options_change_the_plan_and_nothing_else() -> None:
     facts = field_facts("robot_physics", "small_size_1997")
-    plan = InterceptDrill().plan_for(facts)
+    plan = InterceptDrill(scaling="task").plan_for(facts)
     changed = InterceptDrill(
-        trigger_scale=1.5, launch_speed_scale=0.5, turn_tolerance_deg=0.0
+        scaling="task", trigger_scale=1.5, launch_speed_scale=0.5, turn_tolerance_deg=0.0
     ).plan_for(facts)
     assert changed.trigger_distance_m == pytest.approx(1.5 * plan.trigger_distance_m)
     assert changed.launch_speed_mps == pytest.approx(0.5 * plan.launch_speed_mps)
@@ -429,4 +429,4 @@ def test_the_ablation_options_change_the_plan_and_nothing_else() -> None:
     with pytest.raises(ValueError, match="turn_tolerance_deg"):
         InterceptDrill(turn_tolerance_deg=-1.0)
     with pytest.raises(ValueError, match=r"launch_speed_scale=0\.01"):
-        InterceptDrill(launch_speed_scale=0.01).plan_for(facts)  # stops short
+        InterceptDrill(scaling="task", launch_speed_scale=0.01).plan_for(facts)  # stops short

@@ -1,0 +1,267 @@
+"""Ablations of the robots' interception drill: what makes a learned turn angle pay (issue 10).
+
+Each row changes one thing against the robots' drill under the ``task`` scaling
+(:mod:`robotsoccer.drills.task_scaling`; not the drill's default), and learns under that
+change: random TA until the plan's saves, a net on the first
+:attr:`AblationPlan.net_examples` of them, then the still,
+straight and net defenders on the same placements at the plan's noise. The Soccer Server's
+literal drill is the first row, the reference the robots' rows are scaled to.
+
+Rows: the scaling rule (``task`` against the former ``sensor_updates``); the turn primitive
+(spin in place against an arc, preset ``small_size_1997_arc``); the turn tolerance; the trigger
+distance; camera latency; the launch speed; faster robots (preset ``small_size_fast``); TA
+chosen at every decision instead of once; a table 2.55 times as large (preset ``large_table``),
+on which a robot's touch distance is the server player's in drill units.
+
+Per row the report gives saves with 95% Wilson intervals, the net's gain over straight trial by
+trial (paired, 95% interval), and the median distance the straight and net defenders move from
+their trigger to the verdict, in drill units.
+"""
+
+from __future__ import annotations
+
+import statistics
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from robotsoccer.experiments.layer1 import (
+    Layer1Plan,
+    Seeds,
+    base_spec,
+    collect,
+    condition,
+    evaluate,
+    train_series,
+)
+from robotsoccer.experiments.report import paired_difference
+from robotsoccer.runs.runner import DrillOption, TrialResult, TrialSpec
+from robotsoccer.stats import wilson_interval
+
+Log = Callable[[str], None]
+ROBOTS = ("robot_physics", "small_size_1997")
+SERVER = ("soccer_server", "soccer_server_1996")
+
+
+@dataclass(frozen=True)
+class Ablation:
+    """One row: a field model and preset, drill options and a camera latency.
+
+    Attributes:
+        key: Folder name of the row's files.
+        label: What the row changes, for the report.
+        field_model: The field model.
+        preset: Its preset.
+        options: Drill options beside the behaviour.
+        latency_s: Sensor latency override [s]; None keeps the preset's.
+    """
+
+    key: str
+    label: str
+    field_model: str
+    preset: str
+    options: tuple[tuple[str, DrillOption], ...] = ()
+    latency_s: float | None = None
+
+
+def ablations() -> list[Ablation]:
+    """The rows of the study, the Soccer Server's reference first.
+
+    Every robot row but ``sensor_updates`` runs the ``task`` scaling (its own option first, so
+    a row's options may override it).
+    """
+    r = ROBOTS
+    rows = [
+        Ablation("server", "Soccer Server, literal drill (the reference)", *SERVER),
+        Ablation("task", "robots, task scaling", *r),
+        Ablation("sensor_updates", "robots, sensor_updates scaling", *r,
+                 (("scaling", "sensor_updates"),)),
+        Ablation("arc", "turn on an arc (preset small_size_1997_arc)", r[0],
+                 "small_size_1997_arc"),
+        Ablation("tolerance0", "turn tolerance 0° (plan: 3 heading sigmas)", *r,
+                 (("turn_tolerance_deg", 0.0),)),
+        Ablation("tolerance10", "turn tolerance 10°", *r, (("turn_tolerance_deg", 10.0),)),
+        Ablation("trigger06", "trigger distance x0.6", *r, (("trigger_scale", 0.6),)),
+        Ablation("trigger15", "trigger distance x1.5", *r, (("trigger_scale", 1.5),)),
+        Ablation("latency0", "camera latency 0 ms", *r, latency_s=0.0),
+        Ablation("latency100", "camera latency 100 ms", *r, latency_s=0.1),
+        Ablation("launch05", "launch speed x0.5", *r, (("launch_speed_scale", 0.5),)),
+        Ablation("launch15", "launch speed x1.5", *r, (("launch_speed_scale", 1.5),)),
+        Ablation("fast", "robots 2x speed and acceleration (preset small_size_fast)", r[0],
+                 "small_size_fast"),
+        Ablation("every_see", "TA chosen at every decision", *r, (("ta_mode", "every_see"),)),
+        Ablation("large_table", "table 2.55x as large: touch distance 0.88 units as on the "
+                 "server (preset large_table)", r[0], "large_table"),
+    ]  # fmt: skip
+    return [_task_first(row) for row in rows]
+
+
+def _task_first(row: Ablation) -> Ablation:
+    if row.field_model != ROBOTS[0]:
+        return row
+    options = dict((("scaling", "task"), *row.options))
+    return Ablation(
+        row.key, row.label, row.field_model, row.preset, tuple(options.items()), row.latency_s
+    )
+
+
+@dataclass(frozen=True)
+class AblationPlan:
+    """Sizes of the study.
+
+    Attributes:
+        collect_saves: Random-TA saves collected per row.
+        net_examples: Saves the row's net trains on.
+        eval_trials: Trials per defender per row.
+        noise: Ball noise of collection and evaluation.
+        epochs: Training epochs.
+    """
+
+    collect_saves: int = 1500
+    net_examples: int = 750
+    eval_trials: int = 1000
+    noise: float = 0.05
+    epochs: int = 3000
+
+
+def ablation_plan(quick: bool) -> AblationPlan:
+    """The full plan, or a quick one (a few minutes less, wider intervals)."""
+    if quick:
+        return AblationPlan(collect_saves=400, net_examples=300, eval_trials=300)
+    return AblationPlan()
+
+
+@dataclass(frozen=True)
+class AblationRow:
+    """One row's trials, by defender (``still``, ``straight``, ``net``)."""
+
+    ablation: Ablation
+    trials: dict[str, list[TrialResult]]
+
+
+def run_ablation(
+    ablation: Ablation,
+    plan: AblationPlan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    progress: bool = False,
+) -> AblationRow:
+    """Collect, train and evaluate one row into ``out/ablations/<key>/`` (resumable)."""
+    folder = out / "ablations" / ablation.key
+    layer1 = Layer1Plan(
+        name="ablation",
+        eval_trials=plan.eval_trials,
+        collect_saves=plan.collect_saves,
+        collect_batch=2000,
+        noise=plan.noise,
+        epochs=plan.epochs,
+    )
+
+    def spec_for(seed: int) -> TrialSpec:
+        base = base_spec(ablation.field_model, ablation.preset, seed, "hold")
+        return base.with_options(**dict(ablation.options))
+
+    collect_base = spec_for(seeds.collection)
+    dataset, _, _ = collect(
+        collect_base,
+        layer1,
+        folder / "results",
+        folder / "train.npz",
+        workers,
+        "robotsoccer transfer (ablations)",
+        progress,
+    )
+    size = min(plan.net_examples, len(dataset))
+    net = train_series(dataset, [size], plan.epochs, folder, log)[size]
+    base = spec_for(seeds.evaluation)
+    trials: dict[str, list[TrialResult]] = {}
+    for behaviour in ("still", "straight", "net"):
+        cond = condition(
+            base,
+            plan.eval_trials,
+            behaviour,
+            noise=plan.noise,
+            model=net if behaviour == "net" else None,
+            camera_latency_s=ablation.latency_s,
+        )
+        results, _, _ = evaluate(cond, folder / "results", workers, progress)
+        trials[behaviour] = results
+    row = AblationRow(ablation, trials)
+    log(f"  [ablation] {ablation.label}: {row_summary(row)}")
+    return row
+
+
+def run_ablations(
+    plan: AblationPlan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    progress: bool = False,
+    rows: Sequence[Ablation] | None = None,
+) -> list[AblationRow]:
+    """Every row of :func:`ablations` (or `rows`), in order."""
+    chosen = ablations() if rows is None else rows
+    return [run_ablation(a, plan, out, seeds, workers, log, progress) for a in chosen]
+
+
+def _share(results: Sequence[TrialResult]) -> str:
+    n = len(results)
+    saves = sum(r.label == "SAVE" for r in results)
+    low, high = wilson_interval(saves, n)
+    return f"{100 * saves / n:.1f} [{100 * low:.1f}, {100 * high:.1f}]"
+
+
+def _gain(row: AblationRow) -> str:
+    found = paired_difference(row.trials["net"], row.trials["straight"], "SAVE")
+    if found is None:
+        return "—"
+    diff, low, high, _ = found
+    return f"{diff:+.1f} [{low:+.1f}, {high:+.1f}]"
+
+
+def median_travel(results: Sequence[TrialResult]) -> float | None:
+    """The median distance the defender moved from its trigger to the verdict [units]."""
+    travel = [r.measure("defender_travel_units") for r in results if r.measures]
+    return statistics.median(travel) if travel else None
+
+
+def _travel(results: Sequence[TrialResult]) -> str:
+    value = median_travel(results)
+    return "—" if value is None else f"{value:.2f}"
+
+
+def row_summary(row: AblationRow) -> str:
+    """One line: still, straight, net and the paired gain."""
+    t = row.trials
+    return (
+        f"still {_share(t['still'])}, straight {_share(t['straight'])}, "
+        f"net {_share(t['net'])}, net - straight {_gain(row)}"
+    )
+
+
+def ablation_markdown(rows: Sequence[AblationRow], plan: AblationPlan) -> str:
+    """The report section: one table row per ablation."""
+    lines = [
+        "## Ablations: what makes the turn angle matter on the robots",
+        "",
+        f"Each row learns under its own change: random TA until {plan.collect_saves} saves, a "
+        f"net on {plan.net_examples} of them, then {plan.eval_trials} trials per defender on "
+        f"the same placements at ball noise {plan.noise:g}. Saves in % with 95% Wilson "
+        "intervals; net - straight is paired, trial by trial, with its 95% interval; travel is "
+        "the median distance the defender moves from its trigger to the verdict, in drill "
+        "units.",
+        "",
+        "| change | still | straight | net | net - straight | travel: straight / net |",
+        "|---|---|---|---|---|---|",
+    ]
+    for row in rows:
+        t = row.trials
+        lines.append(
+            f"| {row.ablation.label} | {_share(t['still'])} | {_share(t['straight'])} | "
+            f"{_share(t['net'])} | {_gain(row)} | {_travel(t['straight'])} / "
+            f"{_travel(t['net'])} |"
+        )
+    return "\n".join(lines) + "\n"
