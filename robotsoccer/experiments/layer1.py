@@ -47,7 +47,8 @@ import numpy as np
 from field_models.registry import default_preset, field_facts, has_preset
 from learning.datasets import InterceptionDataset, Provenance
 from learning.lookup import PAPER_GRID_DEG, LookupTable
-from robotsoccer.drills.intercept import launch_plan
+from robotsoccer.drills import make_drill
+from robotsoccer.drills.intercept import InterceptDrill, launch_plan
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.report import Counts, ModelSection, StageTiming
 from robotsoccer.runs.pool import run_trials
@@ -288,7 +289,9 @@ def collect(
     one sized from the save rate so far (rounded up to 500 trials, 5% spare). The batch sizes
     depend only on the results, so the dataset is a function of the seed.
     """
-    launch = launch_plan(field_facts(base.field_model, base.preset))
+    drill = make_drill(DRILL, {k: v for k, v in base.drill_options if k in PLAN_OPTIONS})
+    assert isinstance(drill, InterceptDrill)
+    launch = drill.plan_for(field_facts(base.field_model, base.preset))
     cond = condition(base, plan.collect_batch, COLLECT_BEHAVIOUR, noise=plan.noise)
     cond = dataclasses.replace(cond, name=f"collect_{cond.name}")
     limit = COLLECT_LIMIT_PER_SAVE * plan.collect_saves
@@ -331,6 +334,9 @@ def collect(
     dataset.save(dataset_path)
     return dataset, counts, StageTiming("collect (random TA)", ran_total, wall_total)
 
+
+PLAN_OPTIONS = frozenset({"scaling", "trigger_scale", "launch_speed_scale", "turn_tolerance_deg"})
+"""The drill options that change the launch plan (named in a dataset's provenance)."""
 
 COLLECT_LIMIT_PER_SAVE = 50
 """The training drill gives up growing after this many trials per wanted save (2% saves)."""
