@@ -617,7 +617,12 @@ def _run_layer1(
 
 def cmd_transfer(args: argparse.Namespace) -> int:
     """``transfer``: each field model's net and pass tree tested on every field model."""
-    from robotsoccer.experiments.ablations import ablation_markdown, ablation_plan, run_ablations
+    from robotsoccer.experiments.ablations import (
+        ablation_markdown,
+        ablation_plan,
+        ablations,
+        run_ablations,
+    )
     from robotsoccer.experiments.layer1 import plan_for, seeds_for, train_main_net
     from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
     from robotsoccer.experiments.transfer import (
@@ -661,7 +666,12 @@ def cmd_transfer(args: argparse.Namespace) -> int:
         if not args.no_ablations:
             log("[transfer] ablations")
             plan3 = ablation_plan(args.quick)
-            rows = run_ablations(plan3, out, seeds, workers, log, progress)
+            fields = dict(models)
+            study = ablations(
+                ("soccer_server", fields["soccer_server"]),
+                ("robot_physics", fields["robot_physics"]),
+            )
+            rows = run_ablations(study, plan3, out, seeds, workers, log, progress)
             ablation_text = "\n" + ablation_markdown(rows, plan3)
     except KeyboardInterrupt:
         return _fail(

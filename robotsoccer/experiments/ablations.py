@@ -39,8 +39,8 @@ from robotsoccer.runs.runner import DrillOption, TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
 
 Log = Callable[[str], None]
-ROBOTS = ("robot_physics", "small_size_1997")
-SERVER = ("soccer_server", "soccer_server_1996")
+Field = tuple[str, str]
+"""(field model, preset)."""
 
 
 @dataclass(frozen=True)
@@ -64,15 +64,16 @@ class Ablation:
     latency_s: float | None = None
 
 
-def ablations() -> list[Ablation]:
-    """The rows of the study, the Soccer Server's reference first.
+def ablations(reference: Field, robots: Field) -> list[Ablation]:
+    """The rows of the study, the reference field's first (the caller names both fields).
 
     Every robot row but ``sensor_updates`` runs the ``task`` scaling (its own option first, so
-    a row's options may override it).
+    a row's options may override it). The arc, fast and large-table rows use presets of the
+    robots' field model.
     """
-    r = ROBOTS
+    r = robots
     rows = [
-        Ablation("server", "Soccer Server, literal drill (the reference)", *SERVER),
+        Ablation("server", "reference field, literal drill", *reference),
         Ablation("task", "robots, task scaling", *r),
         Ablation("sensor_updates", "robots, sensor_updates scaling", *r,
                  (("scaling", "sensor_updates"),)),
@@ -93,12 +94,10 @@ def ablations() -> list[Ablation]:
         Ablation("large_table", "table 2.55x as large: touch distance 0.88 units as on the "
                  "server (preset large_table)", r[0], "large_table"),
     ]  # fmt: skip
-    return [_task_first(row) for row in rows]
+    return [rows[0], *(_task_first(row) for row in rows[1:])]
 
 
 def _task_first(row: Ablation) -> Ablation:
-    if row.field_model != ROBOTS[0]:
-        return row
     options = dict((("scaling", "task"), *row.options))
     return Ablation(
         row.key, row.label, row.field_model, row.preset, tuple(options.items()), row.latency_s
@@ -194,17 +193,16 @@ def run_ablation(
 
 
 def run_ablations(
+    rows: Sequence[Ablation],
     plan: AblationPlan,
     out: Path,
     seeds: Seeds,
     workers: int | None,
     log: Log,
     progress: bool = False,
-    rows: Sequence[Ablation] | None = None,
 ) -> list[AblationRow]:
-    """Every row of :func:`ablations` (or `rows`), in order."""
-    chosen = ablations() if rows is None else rows
-    return [run_ablation(a, plan, out, seeds, workers, log, progress) for a in chosen]
+    """Every row (:func:`ablations`), in order."""
+    return [run_ablation(a, plan, out, seeds, workers, log, progress) for a in rows]
 
 
 def _share(results: Sequence[TrialResult]) -> str:

@@ -16,7 +16,7 @@ from robotsoccer.experiments.layer1 import seeds_for
 
 
 def test_every_robot_row_but_the_former_rule_runs_the_task_scaling() -> None:
-    rows = ablations()
+    rows = ablations(("soccer_server", "soccer_server_1996"), ("robot_physics", "small_size_1997"))
     assert len({row.key for row in rows}) == len(rows)
     assert rows[0].field_model == "soccer_server"
     for row in rows[1:]:
@@ -31,7 +31,7 @@ def test_a_row_learns_and_reports_its_defenders(tmp_path: Path) -> None:
         (("scaling", "task"), ("trigger_scale", 1.5)),
     )  # fmt: skip
     lines: list[str] = []
-    (result,) = run_ablations(plan, tmp_path, seeds_for(0), 1, lines.append, rows=[row])
+    (result,) = run_ablations([row], plan, tmp_path, seeds_for(0), 1, lines.append)
     assert {k: len(v) for k, v in result.trials.items()} == {"still": 30, "straight": 30, "net": 30}
     # Same placements for every defender: the still defender never moves.
     assert median_travel(result.trials["still"]) in (None, 0.0)
@@ -39,5 +39,5 @@ def test_a_row_learns_and_reports_its_defenders(tmp_path: Path) -> None:
     assert (tmp_path / "ablations" / "trigger" / "net_10.npz").is_file()
     text = ablation_markdown([result], plan)
     assert "| trigger x1.5 |" in text and "net - straight" in text
-    again = run_ablations(plan, tmp_path, seeds_for(0), 1, lines.append, rows=[row])
+    again = run_ablations([row], plan, tmp_path, seeds_for(0), 1, lines.append)
     assert again[0].trials == result.trials  # resumed from the files, the same trials
