@@ -149,9 +149,7 @@ def check_placement_and_stepping(model: str, preset: str | None = None) -> None:
     speed = 0.1 * pitch.length_m
     arena.place_ball(start, 0.0, speed, 0.0)
     a, ball = arena.player_state(A), arena.ball_state()
-    _require(
-        math.isclose(a.x, -10 * unit) and math.isclose(a.y, 5 * unit), model, "player placed"
-    )
+    _require(math.isclose(a.x, -10 * unit) and math.isclose(a.y, 5 * unit), model, "player placed")
     _require(math.isclose(a.heading, 0.5) and a.speed == 0.0, model, "placed player at rest")
     _require(
         math.isclose(ball.x, start) and math.isclose(ball.vx, speed), model, "ball placed moving"
@@ -235,9 +233,7 @@ def _check_seen(
     others = [s for s in p.players if abs(wrap_angle(s.angle_rad - other_angle)) < tolerance]
     _require(len(others) == 1, model, "the other player 25° to the right is seen there")
     other = others[0]
-    _require(
-        math.isclose(other.distance_m, other_distance, rel_tol=0.05), model, "at its distance"
-    )
+    _require(math.isclose(other.distance_m, other_distance, rel_tol=0.05), model, "at its distance")
     _require((other.team, other.number) == (B.team, B.number), model, "and who it is")
 
 

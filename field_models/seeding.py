@@ -311,9 +311,7 @@ class StreamBatch:
         """Stream `name` of the given trials of an experiment (or one seed per trial)."""
         return cls(stream_keys(experiment_seed, trial_indices, name))
 
-    def take(
-        self, count: int, rows: npt.NDArray[np.intp] | None = None
-    ) -> npt.NDArray[np.float64]:
+    def take(self, count: int, rows: npt.NDArray[np.intp] | None = None) -> npt.NDArray[np.float64]:
         """The next `count` draws of every trial (or of `rows` only): (K or len(rows), count)."""
         if rows is None:
             drawn = uniforms(self.keys, self.positions, count)

@@ -165,9 +165,7 @@ class RobotArena:
             return
         tick = self.world.tick
         if self.keep_events:
-            self._events += [
-                ArenaEvent(tick, "command", render_command(a), ref) for a in actions
-            ]
+            self._events += [ArenaEvent(tick, "command", render_command(a), ref) for a in actions]
         self.host.submit(ref, actions, tick)
 
     def drain_events(self) -> list[ArenaEvent]:

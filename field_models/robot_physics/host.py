@@ -232,18 +232,14 @@ class CentralHost:
             else:
                 body.append(action)
         i = self._index[ref]
-        if self._arcs and len(body) >= 2 and _turn_then_forward(body[0], body[1]):
-            turn, dash = body[0], body[1]
-            assert isinstance(turn, Turn) and isinstance(dash, Dash)
-            duration = self._arc(ref, wrap_angle(turn.angle_rad), dash.power, tick)
-            if duration:
-                body = body[1:]
-                body.reverse()
-                self._pending[i] = body
-                self._note_due(i, tick + duration)
-                return
         body.reverse()  # popped from the end, in order
         self._pending[i] = body
+        if self._arcs and len(body) >= 2:
+            duration = self._arc(ref, body[-1], body[-2], tick)
+            if duration:
+                body.pop()  # the turn runs as the arc; its dash follows when the arc ends
+                self._note_due(i, tick + duration)
+                return
         self._run_chain(i, ref, tick)
 
     def release(self, tick: int) -> None:
@@ -326,19 +322,30 @@ class CentralHost:
         self._send(ref, primitive, tick, value=abs(speed_mps), duration_ticks=self._hold_ticks)
         return max(self.frame_period_ticks, self._min_ticks)
 
-    def _arc(self, ref: PlayerRef, angle_rad: float, power: float, tick: int) -> int:
-        """ARC by `angle_rad` at the turn plan's rate, driving at `power`; 0: no turn needed."""
-        if angle_rad == 0.0:
+    def _arc(self, ref: PlayerRef, first: Action, second: Action, tick: int) -> int:
+        """ARC for a Turn then a forward Dash (module docstring); returns its ticks.
+
+        0 (nothing sent) when the actions are not that pair or the turn is zero.
+        """
+        if not (
+            isinstance(first, Turn)
+            and isinstance(second, Dash)
+            and second.power > 0.0
+            and second.direction_rad == 0.0
+        ):
             return 0
-        rate, ticks = self.turn_plan(angle_rad)
-        speed = min(100.0, power) / 100.0 * self._vmax
+        angle = wrap_angle(first.angle_rad)
+        if angle == 0.0:
+            return 0
+        rate, ticks = self.turn_plan(angle)
+        speed = min(100.0, second.power) / 100.0 * self._vmax
         self._send(
             ref,
             Primitive.ARC,
             tick,
             value=speed,
             duration_ticks=ticks,
-            rate=math.copysign(rate, angle_rad),
+            rate=math.copysign(rate, angle),
         )
         return max(ticks, self._min_ticks)
 
@@ -431,13 +438,3 @@ def percept_text(percept: Percept) -> str:
         who = "player" if seen.team is None else f"player {seen.team} {seen.number}"
         parts.append(f"(({who}) {seen.distance_m:.3f} {server_degrees(seen.angle_rad):g})")
     return f"(see {percept.tick} {' '.join(parts)})"
-
-
-def _turn_then_forward(first: Action, second: Action) -> bool:
-    """A Turn followed by a forward Dash straight ahead (what an ARC runs as one motion)."""
-    return (
-        isinstance(first, Turn)
-        and isinstance(second, Dash)
-        and second.power > 0.0
-        and second.direction_rad == 0.0
-    )

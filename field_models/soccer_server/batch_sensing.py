@@ -78,8 +78,6 @@ def quantised_distances(params: SensingParams, distance_m: Array) -> Array:
     step = params.quantize_step
     index = np.rint(np.log(distance_m + EPS) / step).astype(np.int64)
     low, high = int(index.min(initial=0)), int(index.max(initial=0))
-    table = np.array(
-        [quantised_distance_for_index(params, m, step) for m in range(low, high + 1)]
-    )
+    table = np.array([quantised_distance_for_index(params, m, step) for m in range(low, high + 1)])
     out: Array = table[index - low]
     return out

@@ -271,9 +271,7 @@ class SoccerServerModel:
     below the bottom touchline) until the coach places them.
     """
 
-    def __init__(
-        self, preset: ServerPreset, players: tuple[PlayerRef, ...], rng: Rng
-    ) -> None:
+    def __init__(self, preset: ServerPreset, players: tuple[PlayerRef, ...], rng: Rng) -> None:
         p = preset.dynamics
         self.preset = preset
         self.params = p

@@ -272,7 +272,6 @@ def launch_plan(
     gap = touch + 0.5 * unit
     if launch is Launch.SHOOTER and kick is not None:
         gap = 0.5 * (touch + kick.reach_m)  # between touching and the edge of its reach
-    before_trigger = facts.ball.time_to_cover(mean - trigger, speed)
     return LaunchPlan(
         model=facts.model,
         preset=facts.preset,
@@ -294,7 +293,7 @@ def launch_plan(
         shooter_gap_m=gap,
         turn_tolerance_rad=TOLERANCE_HEADING_SIGMAS * facts.heading_sigma_rad,
         noise_period_s=noise_period,
-        trigger_to_arrival_s=time - (0.0 if before_trigger is None else before_trigger),
+        trigger_to_arrival_s=_after_trigger_s(facts, mean, trigger, speed, time),
         decision_period_s=decision_period,
     )
 
@@ -357,16 +356,23 @@ def ablated(
             f"{speed:.3g} m/s, which is not possible here"
         )
     trigger = plan.trigger_distance_m * trigger_scale
-    before = facts.ball.time_to_cover(plan.mean_distance_m - trigger, speed) or 0.0
     return dataclasses.replace(
         plan,
         trigger_distance_m=trigger,
         launch_speed_mps=speed,
         arrival_time_s=arrival,
         arrival_updates=arrival / plan.sensor_period_s,
-        trigger_to_arrival_s=arrival - before,
+        trigger_to_arrival_s=_after_trigger_s(facts, plan.mean_distance_m, trigger, speed, arrival),
         turn_tolerance_rad=tolerance,
     )
+
+
+def _after_trigger_s(
+    facts: FieldFacts, mean_m: float, trigger_m: float, speed_mps: float, arrival_s: float
+) -> float:
+    """The ball's time from `trigger_m` before the defender to its arrival there [s]."""
+    before = facts.ball.time_to_cover(mean_m - trigger_m, speed_mps)
+    return arrival_s - (0.0 if before is None else before)
 
 
 def decision_ticks(plan: LaunchPlan, facts: FieldFacts) -> int:

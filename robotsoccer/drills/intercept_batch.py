@@ -123,10 +123,11 @@ def batch_reason(spec: TrialSpec) -> str | None:
         return "the defender's clearing kick reads landmarks, which the batch does not see"
     options = field_options(spec, drill)
     reason = field_batch_reason(spec.field_model, spec.preset, options)
-    facts = field_facts(spec.field_model, spec.preset, options)
-    if reason is None and drill.plan_for(facts).decision_period_s:
+    if reason is not None:
+        return reason
+    if drill.plan_for(field_facts(spec.field_model, spec.preset, options)).decision_period_s:
         return "the batch decides at every percept; this plan sets a longer decision period"
-    return reason
+    return None
 
 
 def run_intercept_batch(

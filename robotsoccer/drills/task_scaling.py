@@ -141,11 +141,13 @@ def task_launch(facts: FieldFacts, reference: ReferenceFlight) -> TaskLaunch:
         ValueError: The field's ball cannot make the flight (it would stop short or be too fast).
     """
     unit = facts.unit_m
-    latency = (facts.sensor_latency_s or 0.0) + facts.sensor_period_s
-    reach_m = REACH_UNITS * unit
-    after = latency + run_time_s(reach_m, facts.player_accel_mps2, facts.player_top_speed_mps)
-    if facts == reference.facts:
+    on_reference = facts == reference.facts
+    if on_reference:  # the reference's own flight; its defender decides at every percept
         after = reference.after_trigger_s
+    else:
+        latency = (facts.sensor_latency_s or 0.0) + facts.sensor_period_s
+        reach_m = REACH_UNITS * unit
+        after = latency + run_time_s(reach_m, facts.player_accel_mps2, facts.player_top_speed_mps)
     periods = max(1, round(after / reference.decisions / facts.sensor_period_s))
     decision_period = periods * facts.sensor_period_s
     flight = after * reference.flight_s / reference.after_trigger_s
@@ -164,7 +166,7 @@ def task_launch(facts: FieldFacts, reference: ReferenceFlight) -> TaskLaunch:
         after_trigger_s=after,
         trigger_distance_m=trigger,
         noise_period_s=noise_period,
-        decision_period_s=decision_period if facts != reference.facts else 0.0,
+        decision_period_s=0.0 if on_reference else decision_period,
         reach_units=REACH_UNITS,
         wander_touches=wander,
         decisions=after / decision_period,

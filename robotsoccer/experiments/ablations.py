@@ -34,9 +34,8 @@ from robotsoccer.experiments.layer1 import (
     evaluate,
     train_series,
 )
-from robotsoccer.experiments.report import paired_difference
+from robotsoccer.experiments.report import paired_cell, percent_cell
 from robotsoccer.runs.runner import DrillOption, TrialResult, TrialSpec
-from robotsoccer.stats import wilson_interval
 
 Log = Callable[[str], None]
 Field = tuple[str, str]
@@ -206,18 +205,11 @@ def run_ablations(
 
 
 def _share(results: Sequence[TrialResult]) -> str:
-    n = len(results)
-    saves = sum(r.label == "SAVE" for r in results)
-    low, high = wilson_interval(saves, n)
-    return f"{100 * saves / n:.1f} [{100 * low:.1f}, {100 * high:.1f}]"
+    return percent_cell(sum(r.label == "SAVE" for r in results), len(results))
 
 
 def _gain(row: AblationRow) -> str:
-    found = paired_difference(row.trials["net"], row.trials["straight"], "SAVE")
-    if found is None:
-        return "—"
-    diff, low, high, _ = found
-    return f"{diff:+.1f} [{low:+.1f}, {high:+.1f}]"
+    return paired_cell(row.trials["net"], row.trials["straight"])
 
 
 def median_travel(results: Sequence[TrialResult]) -> float | None:

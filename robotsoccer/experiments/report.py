@@ -170,6 +170,18 @@ def percent_cell(successes: int, trials: int) -> str:
     return f"{100 * successes / trials:.1f} [{100 * low:.1f}, {100 * high:.1f}]"
 
 
+def paired_cell(a: Sequence[TrialResult], b: Sequence[TrialResult], label: str = "SAVE") -> str:
+    """``"+27.5 [+24.0, +31.0]"``: `a` minus `b`, paired (:func:`paired_difference`), 95%.
+
+    "—" when the two share no trials.
+    """
+    found = paired_difference(a, b, label)
+    if found is None:
+        return "—"
+    diff, low, high, _ = found
+    return f"{diff:+.1f} [{low:+.1f}, {high:+.1f}]"
+
+
 def paper_cell(value: float | None) -> str:
     """A paper number, or "—" when the paper does not give one."""
     return "—" if value is None else f"{value:g}"

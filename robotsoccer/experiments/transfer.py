@@ -39,7 +39,7 @@ from robotsoccer.experiments.layer1 import (
     evaluate,
 )
 from robotsoccer.experiments.layer2 import Layer2Plan, pass_spec
-from robotsoccer.experiments.report import paired_difference
+from robotsoccer.experiments.report import paired_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
 
@@ -194,11 +194,7 @@ def _percent(cell: Cell) -> str:
 
 
 def _paired(a: Cell, b: Cell) -> str:
-    found = paired_difference(list(a.results), list(b.results), a.success)
-    if found is None:
-        return "—"
-    diff, low, high, _ = found
-    return f"{diff:+.1f} [{low:+.1f}, {high:+.1f}]"
+    return paired_cell(a.results, b.results, a.success)
 
 
 def transfer_markdown(cells: Sequence[Cell], noise: float, heatmaps: Sequence[Path] = ()) -> str:
