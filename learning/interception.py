@@ -209,6 +209,64 @@ class InterceptionModel:
         self.provenance_ = None
         return self
 
+    def fine_tuned(
+        self,
+        x: npt.ArrayLike,
+        y: npt.ArrayLike,
+        *,
+        distance_scale_m: float | None = None,
+        epochs: int = 1000,
+        learning_rate: float = 1e-3,
+    ) -> InterceptionModel:
+        """A copy trained further on `x`, `y`, starting from this model's weights (warm start).
+
+        The transfer study's fine-tuning: a net pre-trained on one field learns from a few
+        examples of another. The copy keeps this model's input standardisation (the
+        pre-training data's mean and spread, so each input keeps its meaning for the learned
+        weights) and reads distances divided by `distance_scale_m` (None: this model's), so a
+        Soccer Server net given ``distance_scale_m`` = one drill unit of the robot table reads
+        the robots' metres as the drill units it learned in. It trains without the paper's
+        weight decay: the decay pulls the weights toward 0, not toward the pre-trained ones,
+        and the pre-training is the prior here.
+
+        Args:
+            x: (N, 3) features [m, rad, m] of the new field.
+            y: (N,) turn angles [rad].
+            distance_scale_m: Divisor of the new field's distances [m].
+            epochs: Passes over the new data.
+            learning_rate: The optimiser's step (this model's optimiser).
+
+        Returns:
+            A new fitted model; `n_train_` counts the new rows, `loss_history_` the new epochs.
+        """
+        self._check_fitted()
+        scale_m = (
+            self.feature_schema_.distance_scale_m
+            if distance_scale_m is None
+            else (distance_scale_m)
+        )
+        tuned = self.with_distance_scale(scale_m)
+        tuned.epochs, tuned.learning_rate, tuned.weight_decay = epochs, learning_rate, 0.0
+        _check_params(tuned.get_params())
+        rows = scale_distances(x, scale_m)
+        targets = np.array(y, dtype=np.float64)
+        if targets.shape != (rows.shape[0],) or rows.shape[0] < 1 or not np.isfinite(targets).all():
+            raise ValueError(f"need >= 1 row and finite y of shape ({len(rows)},)")
+        z = (rows - self.input_mean_) / self.input_scale_
+        threads = torch.get_num_threads()
+        torch.set_num_threads(1)  # thread count changes summation order: notes/tooling.md §4
+        try:
+            generator = torch.Generator().manual_seed(tuned.random_state)
+            net = self.to_torch()
+            history = tuned._epochs(net, torch.from_numpy(z), torch.from_numpy(targets), generator)
+        finally:
+            torch.set_num_threads(threads)
+        tuned.weights_ = {k: v.detach().numpy().copy() for k, v in net.state_dict().items()}
+        tuned.loss_history_ = history
+        tuned.n_train_ = int(rows.shape[0])
+        tuned.provenance_ = None
+        return tuned
+
     def _train(self, z: Array, targets: Array) -> tuple[InterceptionNet, Array]:
         threads = torch.get_num_threads()
         torch.set_num_threads(1)  # thread count changes summation order: notes/tooling.md §4

@@ -309,3 +309,54 @@ def test_schema_is_recorded_in_the_file(fitted: InterceptionModel, tmp_path: Pat
     assert FeatureSchema.from_dict(meta["schema"]) == fitted.feature_schema_
     assert meta["hyperparameters"]["random_state"] == 3
     assert meta["provenance"]["ball_noise"] == 0.05
+
+
+# ----------------------------------------------------------------------------- fine-tuning
+
+
+def test_fine_tuning_starts_from_the_pretrained_weights(fitted: InterceptionModel) -> None:
+    x, y = saves(50, seed=5)
+    barely = fitted.fine_tuned(x, y, epochs=1, learning_rate=1e-12)
+    probe = _probe_rows()
+    assert np.allclose(barely.predict(probe), fitted.predict(probe), rtol=0, atol=1e-9)
+    assert barely.n_train_ == 50 and barely.weight_decay == 0.0 and barely.epochs == 1
+    assert np.array_equal(barely.input_mean_, fitted.input_mean_)  # the pre-training scaler
+
+
+def test_fine_tuning_fits_the_new_field_and_leaves_the_source_alone(
+    fitted: InterceptionModel,
+) -> None:
+    x, y = saves(60, seed=6)
+    shifted = y + 0.2  # the new field wants a different turn
+    before = {k: v.copy() for k, v in fitted.weights_.items()}
+    tuned = fitted.fine_tuned(x, shifted, epochs=300, learning_rate=1e-2)
+    old_mse = float(np.mean((fitted.predict(x) - shifted) ** 2))
+    new_mse = float(np.mean((tuned.predict(x) - shifted) ** 2))
+    assert new_mse < 0.25 * old_mse
+    assert tuned.loss_history_.shape == (300,) and tuned.loss_history_[-1] < tuned.loss_history_[0]
+    assert all(np.array_equal(before[k], fitted.weights_[k]) for k in before)
+
+
+def test_fine_tuning_reads_the_new_fields_distances_through_its_scale(
+    fitted: InterceptionModel,
+) -> None:
+    x, y = saves(40, seed=7)
+    table = x.copy()
+    table[:, [0, 2]] *= 0.0261  # the same situations in metres of a table of unit 0.0261 m
+    on_table = fitted.fine_tuned(table, y, distance_scale_m=0.0261, epochs=20, learning_rate=1e-3)
+    in_units = fitted.fine_tuned(x, y, epochs=20, learning_rate=1e-3)
+    assert on_table.feature_schema_.distance_scale_m == 0.0261
+    assert np.allclose(on_table.predict(table), in_units.predict(x), rtol=0, atol=1e-9)
+
+
+def test_fine_tuning_is_reproducible_and_refuses_bad_rows(fitted: InterceptionModel) -> None:
+    x, y = saves(30, seed=8)
+    a = fitted.fine_tuned(x, y, epochs=50)
+    b = fitted.fine_tuned(x, y, epochs=50)
+    assert all(np.array_equal(a.weights_[k], b.weights_[k]) for k in a.weights_)
+    with pytest.raises(ValueError):
+        fitted.fine_tuned(x, y[:-1])
+    with pytest.raises(ValueError):
+        fitted.fine_tuned(x, y, epochs=0)
+    with pytest.raises(RuntimeError):
+        InterceptionModel().fine_tuned(x, y)
