@@ -11,7 +11,8 @@ Rows: the scaling rule (``task`` against the former ``sensor_updates``); the tur
 (spin in place against an arc, preset ``small_size_1997_arc``); the turn tolerance; the trigger
 distance; camera latency; the launch speed; faster robots (preset ``small_size_fast``); TA
 chosen at every decision instead of once; a table 2.55 times as large (preset ``large_table``),
-on which a robot's touch distance is the server player's in drill units.
+on which a robot's touch distance is the server player's in drill units; and that table with
+robots 2.55 times as fast (preset ``large_table_fast``), whose reach in units is also kept.
 
 Per row the report gives saves with 95% Wilson intervals, the net's gain over straight trial by
 trial (paired, 95% interval), and the median distance the straight and net defenders move from
@@ -92,6 +93,9 @@ def ablations(reference: Field, robots: Field) -> list[Ablation]:
         Ablation("every_see", "TA chosen at every decision", *r, (("ta_mode", "every_see"),)),
         Ablation("large_table", "table 2.55x as large: touch distance 0.88 units as on the "
                  "server (preset large_table)", r[0], "large_table"),
+        Ablation("large_table_fast", "table 2.55x as large and robots 2.55x as fast: touch "
+                 "and reach in units as on the server (preset large_table_fast)", r[0],
+                 "large_table_fast"),
     ]  # fmt: skip
     return [rows[0], *(_task_first(row) for row in rows[1:])]
 
