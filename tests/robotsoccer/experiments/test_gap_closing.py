@@ -26,7 +26,7 @@ from robotsoccer.experiments.gap_closing import (
     variant_text,
     write_variants,
 )
-from robotsoccer.experiments.layer1 import collect, plan_for, seeds_for, base_spec
+from robotsoccer.experiments.layer1 import base_spec, collect, plan_for, seeds_for
 from robotsoccer.experiments.transfer import run_transfer
 from robotsoccer.experiments.transfer_study import references
 from tests.robotsoccer.experiments.test_transfer import MODELS, nets
