@@ -10,12 +10,14 @@ from typing import Any
 from robotsoccer.drills.base import Drill, GoalWatch, Verdict
 from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.passing import PassDrill
+from robotsoccer.drills.setplay import SetPlayDrill
 from robotsoccer.drills.shootout import ShootoutDrill
 
 DRILLS: dict[str, Callable[..., Drill]] = {
     "shootout": ShootoutDrill,
     "intercept": InterceptDrill,
     "pass": PassDrill,
+    "setplay": SetPlayDrill,
 }
 """Registered drills: name → factory taking the drill's options as keywords."""
 
