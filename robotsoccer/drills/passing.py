@@ -110,7 +110,70 @@ def load_evaluator(
     return _model_file(file_key(path), boost)
 
 
-class PassDrill:
+class LayeredDrill:
+    """What a drill on both learned layers shares: layer 1's plan and the model files' origins.
+
+    A subclass sets ``model`` (the pass tree or boosted trees, or ""), ``chooser``, ``net`` (the
+    interception net, or ""), ``transfer`` and ``_checked`` (None) in its constructor.
+    """
+
+    model: str
+    chooser: Chooser
+    net: str
+    transfer: bool
+    _checked: FieldFacts | None
+
+    def plan(self, facts: FieldFacts) -> LaunchPlan:
+        """Layer 1's plan on this field: launch, trigger distance, turn tolerance."""
+        return cached_launch_plan(facts, 100.0, Launch.AUTO, Scaling.AUTO)
+
+    def field_settings(self, facts: FieldFacts) -> dict[str, float]:
+        """Layer 1's ball-noise period where it differs from the field's own."""
+        plan = self.plan(facts)
+        if math.isclose(plan.noise_period_s, facts.ball_noise_period_s):
+            return {}
+        return {"ball_noise_period_s": plan.noise_period_s}
+
+    def inputs(self) -> tuple[str, ...]:
+        """The tree and net files the trials read."""
+        return tuple(f for f in (self.model, self.net) if f)
+
+    def _check_origins(self, facts: FieldFacts) -> None:
+        """Refuse a tree or net trained on another field (unless this is a transfer run)."""
+        if facts is self._checked:
+            return
+        self._checked = facts
+        if self.transfer:
+            return
+        here = (facts.model, Path(facts.preset).stem)
+        if self.model:
+            _, provenance = load_evaluator(self.model, boost=self.chooser is Chooser.BOOST)
+            origin = (str(provenance.get("field_model")), Path(str(provenance.get("preset"))).stem)
+            if origin != here:
+                raise ValueError(
+                    f"tree {self.model} was trained on {origin[0]} `{origin[1]}`, this run is "
+                    f"{here[0]} `{here[1]}`: give option transfer=true to test it across fields"
+                )
+        if self.net:
+            from robotsoccer.skills.intercept import model_origin
+
+            net_origin = model_origin(self.net)
+            if net_origin is None or (net_origin[0], Path(net_origin[1]).stem) != here:
+                trained = "an unrecorded field" if net_origin is None else str(net_origin)
+                raise ValueError(
+                    f"net {self.net} was trained on {trained}, this run is {here[0]} "
+                    f"`{here[1]}`: give option transfer=true to test it across fields"
+                )
+
+
+def control_reach(facts: FieldFacts) -> float:
+    """Control of the ball: kick reach, or touching plus :data:`CONTROL_MARGIN_UNITS` [m]."""
+    if facts.kick is not None:
+        return facts.kick.reach_m
+    return facts.touch_distance_m + CONTROL_MARGIN_UNITS * facts.unit_m
+
+
+class PassDrill(LayeredDrill):
     """The paper's Figure 9–13 trial (module docstring).
 
     Args:
@@ -170,48 +233,6 @@ class PassDrill:
     def players(self) -> tuple[PlayerRef, ...]:
         """The passer, its 3 receivers and 2 more teammates; 4 defenders and 2 more opponents."""
         return PLAYERS
-
-    def plan(self, facts: FieldFacts) -> LaunchPlan:
-        """Layer 1's plan on this field: launch, trigger distance, turn tolerance."""
-        return cached_launch_plan(facts, 100.0, Launch.AUTO, Scaling.AUTO)
-
-    def field_settings(self, facts: FieldFacts) -> dict[str, float]:
-        """Layer 1's ball-noise period where it differs from the field's own."""
-        plan = self.plan(facts)
-        if math.isclose(plan.noise_period_s, facts.ball_noise_period_s):
-            return {}
-        return {"ball_noise_period_s": plan.noise_period_s}
-
-    def inputs(self) -> tuple[str, ...]:
-        """The tree and net files the trials read."""
-        return tuple(f for f in (self.model, self.net) if f)
-
-    def _check_origins(self, facts: FieldFacts) -> None:
-        """Refuse a tree or net trained on another field (unless this is a transfer run)."""
-        if facts is self._checked:
-            return
-        self._checked = facts
-        if self.transfer:
-            return
-        here = (facts.model, Path(facts.preset).stem)
-        if self.model:
-            _, provenance = load_evaluator(self.model, boost=self.chooser is Chooser.BOOST)
-            origin = (str(provenance.get("field_model")), Path(str(provenance.get("preset"))).stem)
-            if origin != here:
-                raise ValueError(
-                    f"tree {self.model} was trained on {origin[0]} `{origin[1]}`, this run is "
-                    f"{here[0]} `{here[1]}`: give option transfer=true to test it across fields"
-                )
-        if self.net:
-            from robotsoccer.skills.intercept import model_origin
-
-            net_origin = model_origin(self.net)
-            if net_origin is None or (net_origin[0], Path(net_origin[1]).stem) != here:
-                trained = "an unrecorded field" if net_origin is None else str(net_origin)
-                raise ValueError(
-                    f"net {self.net} was trained on {trained}, this run is {here[0]} "
-                    f"`{here[1]}`: give option transfer=true to test it across fields"
-                )
 
     def setup(self, arena: Arena, rngs: TrialRngs) -> None:
         """Place ball and players (module docstring)."""
@@ -369,11 +390,7 @@ class _PassJudge:
         self.plan = plan
         kick = facts.kick
         self.coach_launch = kick is None or not kick.aimable
-        reach = (
-            kick.reach_m
-            if kick is not None
-            else facts.touch_distance_m + (CONTROL_MARGIN_UNITS * facts.unit_m)
-        )
+        reach = control_reach(facts)
         self.reach2 = reach * reach
         self.half_length = pitch.half_length_m
         self.half_width = pitch.half_width_m

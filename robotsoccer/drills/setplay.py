@@ -45,10 +45,11 @@ from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import GoalWatch, Verdict
-from robotsoccer.drills.intercept import Launch, LaunchPlan, Scaling, cached_launch_plan
+from robotsoccer.drills.intercept import LaunchPlan
 from robotsoccer.drills.passing import (
-    CONTROL_MARGIN_UNITS,
     STOPPED_SPEED_PER_LENGTH,
+    LayeredDrill,
+    control_reach,
     load_evaluator,
 )
 from robotsoccer.options import choice, flag
@@ -98,7 +99,7 @@ SAFE_REACH_SHARE = 0.85
 """The players kick when the ball seems within this share of their reach (sensor noise)."""
 
 
-class SetPlayDrill:
+class SetPlayDrill(LayeredDrill):
     """Figure 15's set play (module docstring).
 
     Args:
@@ -139,29 +140,16 @@ class SetPlayDrill:
         self.max_time_s = max_time_s or 60.0
         self.transfer = flag("transfer", transfer)
         self._judge: _SetPlayJudge | None = None
+        self._checked: FieldFacts | None = None
 
     def players(self) -> tuple[PlayerRef, ...]:
         """Six attackers and seven defenders (the goalie last)."""
         return PLAYERS
 
-    def plan(self, facts: FieldFacts) -> LaunchPlan:
-        """Layer 1's plan on this field: launch, trigger distance, turn tolerance."""
-        return cached_launch_plan(facts, 100.0, Launch.AUTO, Scaling.AUTO)
-
-    def field_settings(self, facts: FieldFacts) -> dict[str, float]:
-        """Layer 1's ball-noise period where it differs from the field's own."""
-        plan = self.plan(facts)
-        if math.isclose(plan.noise_period_s, facts.ball_noise_period_s):
-            return {}
-        return {"ball_noise_period_s": plan.noise_period_s}
-
-    def inputs(self) -> tuple[str, ...]:
-        """The tree and net files the plays read."""
-        return tuple(f for f in (self.model, self.net) if f)
-
     def setup(self, arena: Arena, rngs: TrialRngs) -> None:
         """Place the ball and the players (module docstring)."""
         facts = arena.facts
+        self._check_origins(facts)
         if self._max_time_s is None:
             self.max_time_s = TIME_LIMIT_ARRIVALS * self.plan(facts).arrival_time_s
         unit = facts.unit_m
@@ -190,7 +178,7 @@ class SetPlayDrill:
         rng = rngs["policy"]
         tree = load_evaluator(self.model)[0] if self.model else None
         # Minds kick inside a safe share of the reach: a sensor's distance may read short.
-        reach = SAFE_REACH_SHARE * _reach(facts)
+        reach = SAFE_REACH_SHARE * control_reach(facts)
         powers = _powers(facts, plan)
         factor = 1.0
         if self.transfer and self.net and self.interceptor is Behaviour.NET:
@@ -294,13 +282,6 @@ class SetPlayDrill:
         }
 
 
-def _reach(facts: FieldFacts) -> float:
-    """Control distance: kick reach, or touching plus a quarter unit without a kick [m]."""
-    if facts.kick is not None:
-        return facts.kick.reach_m
-    return facts.touch_distance_m + CONTROL_MARGIN_UNITS * facts.unit_m
-
-
 def _powers(facts: FieldFacts, plan: LaunchPlan) -> KickPowers:
     """Dribble, pass and shot powers: layer 1's launch for passes and shots."""
     kick = facts.kick
@@ -320,7 +301,7 @@ class _SetPlayJudge:
     def __init__(self, arena: Arena, ball: tuple[float, float]) -> None:
         facts = arena.facts
         pitch = facts.pitch
-        reach = _reach(facts)
+        reach = control_reach(facts)
         self.reach2 = reach * reach
         self.half_length = pitch.half_length_m
         self.half_width = pitch.half_width_m
