@@ -22,12 +22,14 @@ their trigger to the verdict, in drill units.
 from __future__ import annotations
 
 import statistics
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from robotsoccer.experiments.layer1 import (
+    Field,
     Layer1Plan,
+    Log,
     Seeds,
     base_spec,
     collect,
@@ -37,10 +39,6 @@ from robotsoccer.experiments.layer1 import (
 )
 from robotsoccer.experiments.report import paired_cell, percent_cell
 from robotsoccer.runs.runner import DrillOption, TrialResult, TrialSpec
-
-Log = Callable[[str], None]
-Field = tuple[str, str]
-"""(field model, preset)."""
 
 
 @dataclass(frozen=True)

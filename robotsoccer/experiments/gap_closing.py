@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -31,7 +31,9 @@ import numpy as np
 from learning.datasets import InterceptionDataset, Provenance
 from robotsoccer.experiments.layer1 import (
     Condition,
+    Field,
     Layer1Plan,
+    Log,
     Seeds,
     base_spec,
     collect,
@@ -43,9 +45,6 @@ from robotsoccer.experiments.layer1 import (
 from robotsoccer.experiments.report import paired_cell, percent_cell
 from robotsoccer.runs.runner import TrialResult
 
-Log = Callable[[str], None]
-Field = tuple[str, str]
-"""(field model, preset)."""
 PresetValue = float | int
 
 

@@ -58,6 +58,8 @@ from robotsoccer.skills.intercept import TaMode
 
 Log = Callable[[str], None]
 """Where progress lines go (the CLI prints them)."""
+Field = tuple[str, str]
+"""A field model and its preset."""
 
 DRILL = "intercept"
 """The registered name of the interception drill (paper Figure 6)."""

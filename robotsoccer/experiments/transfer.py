@@ -26,13 +26,14 @@ numbers, the ablations and the gap-closing methods come later.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from robotsoccer.experiments.layer1 import (
     Condition,
     Layer1Plan,
+    Log,
     Seeds,
     base_spec,
     condition,
@@ -43,7 +44,6 @@ from robotsoccer.experiments.report import paired_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
 
-Log = Callable[[str], None]
 BASELINES = ("straight", "analytic")
 """The defenders every test field also runs (no model file)."""
 

@@ -8,7 +8,6 @@ reference (the paper's, whose net is moved) and the target.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -28,7 +27,14 @@ from robotsoccer.experiments.gap_closing import (
     gap_plan,
     plot_curve,
 )
-from robotsoccer.experiments.layer1 import Seeds, collect_into, plan_for, train_main_net
+from robotsoccer.experiments.layer1 import (
+    Field,
+    Log,
+    Seeds,
+    collect_into,
+    plan_for,
+    train_main_net,
+)
 from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
 from robotsoccer.experiments.transfer import (
     Cell,
@@ -37,10 +43,6 @@ from robotsoccer.experiments.transfer import (
     run_transfer_layer2,
     transfer_markdown,
 )
-
-Log = Callable[[str], None]
-Field = tuple[str, str]
-"""(field model, preset)."""
 
 
 @dataclass(frozen=True)
