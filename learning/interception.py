@@ -39,6 +39,7 @@ The file layout, its validation and the plain-Python closure live in the torch-f
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import math
 import os
@@ -253,14 +254,10 @@ class InterceptionModel:
         if targets.shape != (rows.shape[0],) or rows.shape[0] < 1 or not np.isfinite(targets).all():
             raise ValueError(f"need >= 1 row and finite y of shape ({len(rows)},)")
         z = (rows - self.input_mean_) / self.input_scale_
-        threads = torch.get_num_threads()
-        torch.set_num_threads(1)  # thread count changes summation order: notes/tooling.md §4
-        try:
+        with _one_thread():
             generator = torch.Generator().manual_seed(tuned.random_state)
             net = self.to_torch()
             history = tuned._epochs(net, torch.from_numpy(z), torch.from_numpy(targets), generator)
-        finally:
-            torch.set_num_threads(threads)
         tuned.weights_ = {k: v.detach().numpy().copy() for k, v in net.state_dict().items()}
         tuned.loss_history_ = history
         tuned.n_train_ = int(rows.shape[0])
@@ -268,16 +265,12 @@ class InterceptionModel:
         return tuned
 
     def _train(self, z: Array, targets: Array) -> tuple[InterceptionNet, Array]:
-        threads = torch.get_num_threads()
-        torch.set_num_threads(1)  # thread count changes summation order: notes/tooling.md §4
-        try:
+        with _one_thread():
             # The one seeding block: a private generator, so fitting never touches global RNGs.
             generator = torch.Generator().manual_seed(self.random_state)
             net = _new_net(self.hidden)
             _initialise(net, generator)
             return net, self._epochs(net, torch.from_numpy(z), torch.from_numpy(targets), generator)
-        finally:
-            torch.set_num_threads(threads)
 
     def _epochs(
         self, net: InterceptionNet, xs: torch.Tensor, ys: torch.Tensor, generator: torch.Generator
@@ -422,6 +415,17 @@ class InterceptionModel:
         model.n_train_ = net.n_train
         model.provenance_ = net.provenance
         return model
+
+
+@contextlib.contextmanager
+def _one_thread() -> Iterator[None]:
+    """Torch on one thread inside (notes/tooling.md §4: threads change the float sums)."""
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    try:
+        yield
+    finally:
+        torch.set_num_threads(threads)
 
 
 def _new_net(hidden: int) -> InterceptionNet:
