@@ -30,7 +30,6 @@ Minds of the play (the drill :mod:`robotsoccer.drills.setplay` places them):
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 from field_models.protocol import Action, Dash, Kick, Percept, Say, SeenPlayer, Turn, wrap_angle
@@ -307,11 +306,3 @@ def _face_ball(percept: Percept) -> tuple[Action, ...]:
     if ball is not None and abs(ball.angle_rad) > FACING_RAD:
         return (Turn(ball.angle_rad),)
     return ()
-
-
-def nearest_teammates(
-    positions: Sequence[tuple[int, float, float]], x: float, y: float, count: int
-) -> tuple[int, ...]:
-    """The numbers of the `count` teammates nearest to (x, y), from (number, x, y) rows."""
-    ranked = sorted(positions, key=lambda row: math.hypot(row[1] - x, row[2] - y))
-    return tuple(number for number, _, _ in ranked[:count])

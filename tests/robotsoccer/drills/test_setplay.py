@@ -11,7 +11,6 @@ from robotsoccer.skills.setplay import (
     WINGER_CUE,
     chase,
     dribble,
-    nearest_teammates,
     opponent_in_path,
     shoot,
 )
@@ -35,7 +34,6 @@ def test_the_skills_chase_dribble_and_shoot_by_the_ball_and_goal() -> None:
     assert type(shoot(percept((1.0, 0.0)), True, 1.5, 100.0)[0]).__name__ == "Turn"
     shot = shoot(percept((1.0, 0.0), goal=-0.2), True, 1.5, 100.0)[0]
     assert type(shot).__name__ == "Kick" and shot.direction_rad == pytest.approx(-0.2)
-    assert nearest_teammates([(2, 5.0, 0.0), (3, 1.0, 0.0), (4, 9.0, 0.0)], 0.0, 0.0, 2) == (3, 2)
     assert not opponent_in_path(percept((1.0, 0.0)), 0.0, 10.0)
     assert WINGER_CUE == "wing"
 
