@@ -187,6 +187,10 @@ class FieldFacts:
         perfect_perception: The sensor runs without noise, misses or latency.
         say_max_chars: The longest message a ``Say`` may carry [characters]; None: no limit
             (the robots' host relays any text).
+        walled: Walls close the field: the ball bounces back and never leaves it (the robots'
+            table). False: the ball can cross the lines, and a referee restarts play.
+        landmarks: Where the landmarks a percept may name stand, as (name, x [m], y [m]) in
+            the field frame: what a client knows of the field to localise itself by.
     """
 
     model: str
@@ -206,6 +210,8 @@ class FieldFacts:
     player_shape: PlayerShape
     perfect_perception: bool = False
     say_max_chars: int | None = None
+    walled: bool = False
+    landmarks: tuple[tuple[str, float, float], ...] = ()
     _hash: int = field(init=False, repr=False, compare=False, default=0)
 
     def __post_init__(self) -> None:
@@ -240,12 +246,16 @@ class FieldOptions:
         ball_noise: Ball-motion noise (:attr:`FieldFacts.ball_noise`) [-].
         ball_noise_period_s: How often ball noise acts [s].
         sensor_latency_s: Sensor latency [s].
+        all_landmarks: Percepts carry every landmark the sensor sees (the Soccer Server's
+            flags as well as the goals), for clients that localise themselves; a sensor that
+            gives only the goals ignores it. None: the model's default (the goals only).
     """
 
     perfect_perception: bool = False
     ball_noise: float | None = None
     ball_noise_period_s: float | None = None
     sensor_latency_s: float | None = None
+    all_landmarks: bool | None = None
 
     def __post_init__(self) -> None:
         _check_setting("ball_noise", self.ball_noise, allow_zero=True)

@@ -78,6 +78,11 @@ def facts(preset: RobotPhysicsPreset) -> FieldFacts:
         heading_sigma_rad=0.0 if perfect else camera.heading_sigma_rad,
         player_shape="square",
         perfect_perception=perfect,
+        walled=True,
+        landmarks=(
+            ("g l", -0.5 * preset.field.length_m, 0.0),
+            ("g r", 0.5 * preset.field.length_m, 0.0),
+        ),
     )
 
 

@@ -41,6 +41,7 @@ from field_models.soccer_server.percepts import (
 )
 from field_models.soccer_server.sensing import (
     HearInfo,
+    LandmarkMode,
     SeeTimer,
     deliver_says,
     observe,
@@ -79,6 +80,7 @@ class SoccerServerArena:
         self.keep_events = keep_events or trace
         self.trace = trace
         self._see_rng = rngs["sensing"]
+        self._landmarks: LandmarkMode = "all" if self.sensing.percept_flags else "goals"
         self._see_schedule = see_schedule(self.sensing)
         self._timer = SeeTimer(self.sensing)  # every player's sees share one phase (0)
         self._listening = [True] * len(players)
@@ -150,7 +152,7 @@ class SoccerServerArena:
         if not self.trace:
             return percept_from_state(
                 i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
-                self._see_rng, tick=cycle, heard=heard,
+                self._see_rng, tick=cycle, heard=heard, landmarks=self._landmarks,
             )  # fmt: skip
         info = observe(
             i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,

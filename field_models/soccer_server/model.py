@@ -13,6 +13,7 @@ from field_models.arena import Arena, BallLaw, FieldFacts, FieldOptions, KickFac
 from field_models.batch_arena import BatchArena
 from field_models.protocol import PlayerRef
 from field_models.seeding import StreamBatch, TrialRngs
+from field_models.soccer_server.landmarks import landmarks_for
 from field_models.soccer_server.params import ServerPreset, load_server_preset
 
 NAME = "soccer_server"
@@ -46,6 +47,8 @@ def load(preset: str, options: FieldOptions) -> ServerPreset:
         loaded = loaded.replace_dynamics(ball_rand=options.ball_noise)
     if options.perfect_perception:
         loaded = loaded.replace_sensing(perfect=True)
+    if options.all_landmarks:
+        loaded = loaded.replace_sensing(percept_flags=True)
     return loaded
 
 
@@ -80,6 +83,7 @@ def facts(preset: ServerPreset) -> FieldFacts:
         player_shape="circle",
         perfect_perception=s.perfect,
         say_max_chars=s.say_msg_size,
+        landmarks=tuple((m.name, m.x, m.y) for m in landmarks_for(s.landmark_set)),
     )
 
 

@@ -90,6 +90,9 @@ class SensingParams:
         perfect: perfect perception: exact distances, directions and changes (no quantisation,
             rounding or random omission), team and number always shown; the cone and the see
             timing as above.
+        percept_flags: a client's percept carries every flag it sees as well as the goals
+            (the see message always holds them; the fast percept path leaves the flags out
+            unless a client localises itself from them, as a match's players do).
     """
 
     send_step_ms: int = field(metadata=positive("server.conf send_step"))
@@ -119,6 +122,7 @@ class SensingParams:
     dir_change_step_deg: float = field(default=0.1, metadata=positive("compiled in: 0.1°"))
     dist_change_rel_step: float = field(default=0.02, metadata=positive("compiled in: 0.02"))
     perfect: bool = False
+    percept_flags: bool = False
 
     def __post_init__(self) -> None:
         if self.unum_too_far_length_m < self.unum_far_length_m:

@@ -9,6 +9,7 @@ from typing import Any
 
 from robotsoccer.drills.base import Drill, GoalWatch, Verdict
 from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.passing import PassDrill
 from robotsoccer.drills.setplay import SetPlayDrill
 from robotsoccer.drills.shootout import ShootoutDrill
@@ -18,6 +19,7 @@ DRILLS: dict[str, Callable[..., Drill]] = {
     "intercept": InterceptDrill,
     "pass": PassDrill,
     "setplay": SetPlayDrill,
+    "match": MatchDrill,
 }
 """Registered drills: name → factory taking the drill's options as keywords."""
 

@@ -12,7 +12,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol, runtime_checkable
 
 from field_models.arena import Arena, ArenaEvent, FieldOptions
 from field_models.commands import render_command
@@ -20,6 +20,7 @@ from field_models.protocol import Action, Mind, Percept, PlayerRef
 from field_models.registry import DEFAULT_OPTIONS, default_preset, field_facts, make_arena
 from field_models.seeding import TrialRngs
 from robotsoccer.drills import Drill, Verdict, make_drill
+from robotsoccer.replay.frames import GameFrame
 
 Observer = Callable[[Arena, list[Percept]], None]
 """Called after every tick with the arena and the percepts of that tick (recordings, traces)."""
@@ -235,12 +236,17 @@ def build_trial(
     """
     rngs = TrialRngs.for_trial(spec.seed, index)
     drill = make_drill(spec.drill, dict(spec.drill_options))
+    options = field_options(spec, drill)
+    players = drill.players()
+    sized = getattr(drill, "players_for", None)  # a drill whose team size follows the field
+    if sized is not None:
+        players = sized(field_facts(spec.field_model, spec.preset, options))
     arena = make_arena(
         spec.field_model,
         spec.preset,
-        drill.players(),
+        players,
         rngs,
-        field_options(spec, drill),
+        options,
         keep_events=keep_events,
         trace=trace,
     )
@@ -253,7 +259,9 @@ def run_trial(spec: TrialSpec, index: int) -> TrialResult:
     rngs, drill, arena = build_trial(spec, index, keep_events=recording)
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
-    if recording:
+    if recording and isinstance(drill, MatchLike):
+        verdict = _play_match_recorded(arena, drill, drill, minds, spec, index)
+    elif recording:
         verdict = _play_recorded(arena, drill, minds, spec, index)
     else:
         verdict = play(arena, drill, minds)
@@ -319,4 +327,99 @@ def _play_recorded(
         verdict = play(arena, drill, minds, observe, decide)
         recorder.log_label(arena.tick, verdict.label, verdict.reason)
     partial.replace(folder / recording_name(index, verdict.label))
+    return verdict
+
+
+@runtime_checkable
+class MatchLike(Protocol):
+    """A drill that plays a match: its frames and referee calls make a match recording."""
+
+    def game_frame(self, arena: Arena) -> GameFrame:
+        """This tick as a match recording keeps it."""
+        ...
+
+    def drain_events(self) -> list[ArenaEvent]:
+        """Referee calls and the coach's events since the last call."""
+        ...
+
+    def team_names(self) -> tuple[str, str]:
+        """The teams' names."""
+        ...
+
+
+def _play_match_recorded(
+    arena: Arena,
+    drill: Drill,
+    match: MatchLike,
+    minds: dict[PlayerRef, Mind],
+    spec: TrialSpec,
+    index: int,
+) -> Verdict:
+    """Play match `index` with a rerun recording (and an ``.rcg`` game log on a server pitch).
+
+    The game log (:mod:`robotsoccer.replay.rcg`) is written only on a field drawn in Soccer
+    Server metres (``unit_m`` 1): the format's tools draw the server's pitch. Both files
+    are written under part names and renamed once the match is over
+    (``match_<index>_<LABEL>.rrd`` / ``.rcg``). Left 1's percepts are drawn beside the truth.
+    """
+    from robotsoccer.replay.match_recording import MatchRecorder  # rerun loads late
+    from robotsoccer.replay.rcg import RcgWriter
+
+    assert spec.record_dir is not None
+    facts = arena.facts
+    folder = Path(spec.record_dir)
+    folder.mkdir(parents=True, exist_ok=True)
+    stem = f"match_{index:04d}"
+    teams = match.team_names()
+    selected = arena.players[0]
+    every = max(1, round(1.0 / 30.0 / facts.dt_s))  # draw at <= 30 Hz: enough to watch
+    recorder = MatchRecorder(
+        folder / f"{stem}.rrd.part",
+        pitch=facts.pitch,
+        players=arena.players,
+        dt_s=facts.dt_s,
+        player_shape=facts.player_shape,
+        sensor_period_s=facts.sensor_period_s,
+        teams=teams,
+        selected=selected,
+        title=f"{teams[0]} v {teams[1]} on {spec.field_model} ({spec.preset_name}), "
+        f"seed {spec.seed}, game {index}",
+        recording_id=f"match-{spec.field_model}-seed{spec.seed}-game{index}",
+        every_ticks=every,
+    )
+    server_pitch = math.isclose(facts.unit_m, 1.0)
+    rcg = folder / f"{stem}.rcg"
+    writer = (
+        RcgWriter(rcg, players=arena.players, teams=teams, dt_s=facts.dt_s)
+        if server_pitch
+        else None
+    )
+
+    def observe(a: Arena, percepts: list[Percept]) -> None:
+        frame = match.game_frame(a)
+        recorder.log_frame(frame)
+        if writer is not None:
+            writer.write(frame)
+        for percept in percepts:
+            if percept.player == selected:
+                recorder.log_percept(percept, a.player_state(selected))
+        recorder.log_events(match.drain_events())
+
+    def decide(percept: Percept, actions: tuple[Action, ...]) -> None:
+        if percept.player == selected:
+            text = describe_decision(actions)
+            recorder.log_events([ArenaEvent(percept.tick, "decision", text, percept.player)])
+
+    with recorder:
+        first = match.game_frame(arena)
+        recorder.log_frame(first)
+        if writer is not None:
+            writer.write(first)
+        verdict = play(arena, drill, minds, observe, decide)
+        recorder.log_events(match.drain_events())
+        recorder.log_events([ArenaEvent(arena.tick, "referee", f"time_over: {verdict.reason}")])
+    if writer is not None:
+        writer.close()
+        rcg.replace(folder / f"{stem}_{verdict.label}.rcg")
+    (folder / f"{stem}.rrd.part").replace(folder / f"{stem}_{verdict.label}.rrd")
     return verdict

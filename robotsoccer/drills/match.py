@@ -1,0 +1,365 @@
+"""A whole match: two teams, a referee, two halves; labels by who won.
+
+**Teams** (:mod:`robotsoccer.skills.team`): ``layered`` — the learned layers: interception
+with layer 1's net, passes chosen by layer 2's tree; ``baseline`` — no learned layer: it runs
+straight at the ball and passes to the closest teammate. Both localise from landmarks, send
+their nearest player to the ball, dribble, shoot and keep a formation; they differ only in the
+two learned decisions, so a series measures what the layers are worth in play.
+
+**Size.** ``players`` per side: by default 11 on an open field (the Soccer Server) and 5 on a
+walled table (the robots). Formation homes are in units (:data:`FORMATIONS`, ours: 4-4-2 and
+1-2-2), mirrored for the right team.
+
+**Referee** (:mod:`robotsoccer.drills.referee`): the Soccer Server's play modes on an open
+field, the table's restart rules on a walled one. The match lasts two halves of
+``half_time_s`` (default :data:`HALF_TIME_S`, rcssserver's ``half_time``).
+
+**Labels** ``LEFT_WIN``, ``DRAW``, ``RIGHT_WIN``. **Measures**: goals, possession share
+(ticks in which the team touched the ball last), passes completed (the ball goes from one
+player to a teammate: the coach's touch rule), shots (kicks its players meant as shots, one
+per spell on the ball), kicks its players tried at all, per side.
+"""
+
+from __future__ import annotations
+
+import math
+from enum import StrEnum
+
+from field_models.arena import Arena, ArenaEvent, FieldFacts
+from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
+from field_models.seeding import TrialRngs
+from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.passing import LayeredDrill, control_reach, load_evaluator
+from robotsoccer.drills.referee import SIDE, Referee
+from robotsoccer.options import choice, flag
+from robotsoccer.replay.frames import GameFrame
+from robotsoccer.skills.intercept import Behaviour, make_policy, transfer_distance_factor
+from robotsoccer.skills.passing import Chooser, PassEvaluator
+from robotsoccer.skills.setplay import KickPowers
+from robotsoccer.skills.team import TeamMind, TeamSetup
+
+HALF_TIME_S = 300.0
+"""One half [s]: rcssserver's ``half_time`` (3000 cycles)."""
+FORMATIONS: dict[int, dict[int, tuple[float, float]]] = {
+    11: {
+        1: (-50.0, 0.0),
+        2: (-36.0, 20.0),
+        3: (-38.0, 7.0),
+        4: (-38.0, -7.0),
+        5: (-36.0, -20.0),
+        6: (-16.0, 22.0),
+        7: (-19.0, 8.0),
+        8: (-19.0, -8.0),
+        9: (-16.0, -22.0),
+        10: (2.0, 10.0),
+        11: (2.0, -10.0),
+    },
+    5: {
+        1: (-50.0, 0.0),
+        2: (-30.0, 14.0),
+        3: (-30.0, -14.0),
+        4: (-2.0, 12.0),
+        5: (-2.0, -12.0),
+    },
+}
+"""Formation homes of the left team [units] (module docstring); number 1 keeps goal."""
+KICKER = {11: 10, 5: 4}
+"""Who kicks off."""
+GOALIE = 1
+BLOCKED_UNITS = 8.0
+"""An opponent this close in the path ends a dribble [units]."""
+SHOOT_RANGE_UNITS = 25.0
+PASS_RANGE_UNITS = 30.0
+"""Longest shot and pass [units], or less where the field's kick cannot carry the ball."""
+GOALIE_ZONE_UNITS = 16.5
+"""The goalie goes for a ball this close to its goal (the penalty area's depth) [units]."""
+HOME_TOLERANCE_UNITS = 2.0
+DRIBBLE_UNITS = 4.0
+DRIBBLE_TIME_S = 2.0
+"""A dribble kick sends the ball this far in this time (on a field with an aimable kick)."""
+SAFE_REACH_SHARE = 0.85
+"""Minds kick when the ball seems within this share of their reach (sensor noise)."""
+CARRY_SHARE = 0.6
+"""Shots and passes are aimed at most this share of how far a kick carries the ball."""
+JITTER_UNITS = 1.0
+"""Kick-off spots are moved by up to this in x and y from the ``placement`` stream."""
+
+
+class TeamKind(StrEnum):
+    """A team's behaviour (module docstring)."""
+
+    LAYERED = "layered"
+    BASELINE = "baseline"
+
+
+class MatchDrill(LayeredDrill):
+    """A match (module docstring).
+
+    Args:
+        left: The left team's kind.
+        right: The right team's kind.
+        net: Layer 1's net, for a layered team.
+        tree: Layer 2's pass tree, for a layered team.
+        players: Players per side (0: 11 on an open field, 5 on a walled one).
+        half_time_s: One half [s].
+        transfer: Accept a net or tree trained on another field model or preset.
+
+    Raises:
+        ValueError: An unknown team kind, a layered team without its model files, an unknown
+            team size, a half <= 0.
+    """
+
+    name: str = "match"
+    labels: tuple[str, ...] = ("LEFT_WIN", "DRAW", "RIGHT_WIN")
+
+    def __init__(
+        self,
+        left: TeamKind | str = TeamKind.LAYERED,
+        right: TeamKind | str = TeamKind.BASELINE,
+        net: str = "",
+        tree: str = "",
+        players: int | str = 0,
+        half_time_s: float | str = HALF_TIME_S,
+        transfer: bool | str = False,
+    ) -> None:
+        self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
+        layered = TeamKind.LAYERED in self.kinds.values()
+        if layered and not (net and tree):
+            raise ValueError("a layered team needs a net and a tree (options net=... tree=...)")
+        self.net = net if layered else ""
+        self.model = tree if layered else ""
+        self.chooser = Chooser.TREE
+        self.size = int(players)
+        if self.size not in (0, *FORMATIONS):
+            known = ", ".join(str(n) for n in FORMATIONS)
+            raise ValueError(f"players must be 0 (the field's default) or one of {known}")
+        half = float(half_time_s)
+        if not half > 0.0 or not math.isfinite(half):
+            raise ValueError(f"half_time_s must be > 0, got {half_time_s!r}")
+        self.half_time_s = half
+        self.max_time_s = 2.0 * half
+        self.transfer = flag("transfer", transfer)
+        self._checked: FieldFacts | None = None
+        self.referee: Referee | None = None
+        self.minds_by_ref: dict[PlayerRef, TeamMind] = {}
+        self._holder: PlayerRef | None = None
+        self._possession = {LEFT: 0, RIGHT: 0}
+        self._passes = {LEFT: 0, RIGHT: 0}
+        self._events: list[ArenaEvent] = []
+
+    # ------------------------------------------------------------------ who plays
+
+    def team_size(self, facts: FieldFacts | None = None) -> int:
+        """Players per side on this field."""
+        if self.size:
+            return self.size
+        return 5 if facts is not None and facts.walled else 11
+
+    def players(self) -> tuple[PlayerRef, ...]:
+        """Both teams, left first, at the size asked for (11 a side when the field decides)."""
+        return self.players_for(None)
+
+    def players_for(self, facts: FieldFacts | None) -> tuple[PlayerRef, ...]:
+        """Both teams, left first, on this field (the runner asks this when it exists)."""
+        n = self.team_size(facts)
+        return tuple(PlayerRef(t, i) for t in (LEFT, RIGHT) for i in range(1, n + 1))
+
+    def field_settings(self, facts: FieldFacts) -> dict[str, float]:
+        """Percepts with every landmark: the players localise themselves."""
+        return {"all_landmarks": True}
+
+    def inputs(self) -> tuple[str, ...]:
+        """The net and tree files."""
+        return tuple(f for f in (self.model, self.net) if f)
+
+    # ------------------------------------------------------------------ kick-off
+
+    def setup(self, arena: Arena, rngs: TrialRngs) -> None:
+        """Kick-off spots and the referee; the left team kicks off."""
+        facts = arena.facts
+        self._check_origins(facts)
+        n = len(arena.players) // 2
+        if n not in FORMATIONS:
+            raise ValueError(f"no formation for {n} players a side")
+        rng = rngs["placement"]
+        jitter = {
+            ref: (float(rng.uniform(-1.0, 1.0)), float(rng.uniform(-1.0, 1.0)))
+            for ref in arena.players
+        }
+        spots = {team: self._kickoff_spots(facts, n, team, jitter) for team in (LEFT, RIGHT)}
+        ticks = round(self.half_time_s / facts.dt_s)
+        self.referee = Referee(arena, spots, ticks, control_reach(facts))
+        self.referee.start(arena)
+
+    def _kickoff_spots(
+        self,
+        facts: FieldFacts,
+        n: int,
+        kicker_team: str,
+        jitter: dict[PlayerRef, tuple[float, float]],
+    ) -> dict[PlayerRef, tuple[float, float, float]]:
+        """Every player's spot when `kicker_team` kicks off: own half, out of the circle."""
+        unit = facts.unit_m
+        circle = 10.0 * unit
+        spots: dict[PlayerRef, tuple[float, float, float]] = {}
+        for team in (LEFT, RIGHT):
+            sign = 1.0 if team == LEFT else -1.0
+            for number, (hx, hy) in FORMATIONS[n].items():
+                ref = PlayerRef(team, number)
+                jx, jy = jitter.get(ref, (0.0, 0.0))
+                x = min(hx + JITTER_UNITS * jx, -1.0) * unit
+                y = (hy + JITTER_UNITS * jy) * unit
+                if team == kicker_team and number == KICKER[n]:
+                    x, y = -(facts.touch_distance_m + 0.3 * unit), 0.0
+                elif math.hypot(x, y) < circle:
+                    scale = circle / max(math.hypot(x, y), 1e-9)
+                    x, y = x * scale, y * scale
+                heading = 0.0 if team == LEFT else math.pi
+                spots[ref] = (sign * x, sign * y, heading)
+        return spots
+
+    # ------------------------------------------------------------------ minds
+
+    def minds(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
+        """Every player's :class:`~robotsoccer.skills.team.TeamMind`."""
+        facts = arena.facts
+        n = len(arena.players) // 2
+        tree: PassEvaluator | None = load_evaluator(self.model)[0] if self.model else None
+        factor = 1.0
+        if self.transfer and self.net:
+            factor = transfer_distance_factor(self.net, facts)
+        minds: dict[PlayerRef, Mind] = {}
+        for team in (LEFT, RIGHT):
+            setup = self.team_setup(facts, n, team)
+            layered = self.kinds[team] is TeamKind.LAYERED
+            policy = (
+                make_policy(Behaviour.NET, rngs["policy"], self.net, factor) if layered else None
+            )
+            for number in FORMATIONS[n]:
+                mind = TeamMind(
+                    number,
+                    setup,
+                    interception=policy,
+                    evaluator=tree if layered else None,
+                )
+                self.minds_by_ref[PlayerRef(team, number)] = mind
+                minds[PlayerRef(team, number)] = mind
+        return minds
+
+    def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:
+        """One team's plan on this field (module docstring)."""
+        unit = facts.unit_m
+        sign = 1.0 if team == LEFT else -1.0
+        plan = self.plan(facts)
+        powers = kick_powers(facts, plan.kick_power)
+        carry = CARRY_SHARE * _carry_m(facts, powers.shot)
+        pass_carry = CARRY_SHARE * _carry_m(facts, powers.passing)
+        return TeamSetup(
+            attack_right=team == LEFT,
+            home={k: (sign * x * unit, sign * y * unit) for k, (x, y) in FORMATIONS[n].items()},
+            goalie=GOALIE,
+            landmarks=facts.landmarks,
+            unit_m=unit,
+            reach_m=SAFE_REACH_SHARE * control_reach(facts),
+            blocked_m=BLOCKED_UNITS * unit,
+            shoot_range_m=min(SHOOT_RANGE_UNITS * unit, carry),
+            pass_range_m=min(PASS_RANGE_UNITS * unit, pass_carry),
+            trigger_distance_m=plan.trigger_distance_m,
+            goalie_zone_m=GOALIE_ZONE_UNITS * unit,
+            home_tolerance_m=HOME_TOLERANCE_UNITS * unit,
+            powers=powers,
+            half_length_m=facts.pitch.half_length_m,
+            half_width_m=facts.pitch.half_width_m,
+            dt_s=facts.dt_s,
+            latency_s=facts.sensor_latency_s or 0.0,
+            spin_accel_radps2=facts.player_accel_mps2 / facts.pitch.player_radius_m,
+        )
+
+    # ------------------------------------------------------------------ the coach
+
+    def judge(self, arena: Arena) -> Verdict | None:
+        """The referee's tick, and the coach's count of possession and passes."""
+        referee = self.referee
+        if referee is None:
+            raise RuntimeError("judge() before setup()")
+        before = referee.last_touch
+        referee.step(arena)
+        holder = referee.last_touch
+        if holder is not None:
+            self._possession[holder.team] += 1
+            if before is not None and holder != before and holder.team == before.team:
+                self._passes[holder.team] += 1
+                self._events.append(
+                    ArenaEvent(arena.tick, "decision", f"pass {before} -> {holder}", holder)
+                )
+        return None
+
+    def timeout(self, arena: Arena) -> Verdict:
+        """Full time: who won, and the score."""
+        referee = self.referee
+        assert referee is not None
+        left, right = referee.score
+        label = "LEFT_WIN" if left > right else "RIGHT_WIN" if right > left else "DRAW"
+        kinds = f"{self.kinds[LEFT].value} {left}-{right} {self.kinds[RIGHT].value}"
+        return Verdict(label, kinds)
+
+    def data(self) -> tuple[float, ...]:
+        """Nothing to learn from."""
+        return ()
+
+    def measures(self) -> dict[str, float]:
+        """Goals, possession share, passes, shots and kicks tried, per side."""
+        referee = self.referee
+        if referee is None:
+            return {}
+        touched = sum(self._possession.values())
+        out: dict[str, float] = {}
+        for i, team in enumerate((LEFT, RIGHT)):
+            side = SIDE[team]
+            minds = [m for r, m in self.minds_by_ref.items() if r.team == team]
+            out[f"goals_{side}"] = float(referee.score[i])
+            out[f"possession_{side}"] = self._possession[team] / touched if touched else 0.5
+            out[f"passes_{side}"] = float(self._passes[team])
+            out[f"shots_{side}"] = float(sum(m.shots for m in minds))
+            out[f"pass_kicks_{side}"] = float(sum(m.passes for m in minds))
+        return out
+
+    # ------------------------------------------------------------------ recordings
+
+    def game_frame(self, arena: Arena) -> GameFrame:
+        """This tick as a match recording keeps it."""
+        referee = self.referee
+        assert referee is not None
+        score = (referee.score[0], referee.score[1])
+        return GameFrame(arena.truth(), referee.play_mode, score)
+
+    def drain_events(self) -> list[ArenaEvent]:
+        """Referee calls and completed passes since the last call."""
+        referee = self.referee
+        events = (referee.drain() if referee is not None else []) + self._events
+        self._events = []
+        events.sort(key=lambda e: e.tick)
+        return events
+
+    def team_names(self) -> tuple[str, str]:
+        """The teams' names as recordings and game logs show them."""
+        return (self.kinds[LEFT].value, self.kinds[RIGHT].value)
+
+
+def kick_powers(facts: FieldFacts, pass_power: float) -> KickPowers:
+    """Dribble, pass and shot powers on this field (pass: layer 1's launch power)."""
+    kick = facts.kick
+    if kick is None or not kick.aimable:
+        return KickPowers(dribble=40.0, passing=100.0, shot=100.0)
+    speed = facts.ball.speed_to_cover(DRIBBLE_UNITS * facts.unit_m, DRIBBLE_TIME_S)
+    power = kick.power_for(speed) if speed is not None else None
+    if power is None:
+        raise ValueError(f"{facts.preset}: no kick sends the ball {DRIBBLE_UNITS:g} units")
+    return KickPowers(dribble=power, passing=pass_power, shot=100.0)
+
+
+def _carry_m(facts: FieldFacts, power: float) -> float:
+    """How far a kick of `power` carries the ball before it stops (or in 10 s) [m]."""
+    kick = facts.kick
+    speed = kick.speed(power) if kick is not None else facts.player_top_speed_mps
+    return facts.ball.distance_in(speed, 10.0)

@@ -1,0 +1,458 @@
+"""Team play for whole matches: one mind per player, for the layered team and the baseline.
+
+Every mind reads its percept only (DESIGN.md §2) and does what a 1996 client did each time a
+percept arrives:
+
+1. **Localise** (:class:`Localiser`): its own position and heading from the landmarks it sees
+   and where the field's facts say they stand (the Soccer Server's flags and goals; the
+   robots' host gives the two goals). With one landmark it keeps its last heading; with none
+   it keeps its last pose.
+2. **Who goes for the ball.** It is the *chaser* when no teammate it sees is nearer the ball
+   than itself (by :data:`CHASE_MARGIN_UNITS`; a player that was chasing keeps chasing until
+   a teammate is that much nearer). The goalie chases only a ball inside its own zone.
+3. **With the ball in reach** (the skills of :mod:`robotsoccer.skills.setplay`):
+
+   * the opponents' goal within :attr:`TeamSetup.shoot_range_m`: *shoot*;
+   * an opponent in the path within :attr:`TeamSetup.blocked_m`: *pass*: the layered team
+     asks layer 2's tree (its own half of the 174 attributes; the receiver's half is unknown,
+     as §6 allows: there is no time for the say/hear exchange in open play) and passes to the
+     teammate with the highest success confidence if that is at least
+     :attr:`TeamMind.pass_threshold`; the baseline passes to the closest teammate ahead (the
+     paper's "closest" heuristic). No teammate: dribble on;
+   * else *dribble* toward the goal.
+4. **Chasing a ball out of reach:** the layered team intercepts with layer 1's net (TA from
+   the net while the ball comes toward it within the trigger distance, as in §5's drill;
+   straight at it otherwise); the baseline always runs straight at the ball.
+5. **Otherwise** it goes to its formation home, shifted toward the ball
+   (:data:`BALL_SHIFT_X`, :data:`BALL_SHIFT_Y`), and faces the ball there.
+
+What a team may not do is read truth: the coach places players for kick-offs (as clients'
+``move`` commands would) and the referee restarts play.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+from field_models.protocol import Action, Dash, Kick, Percept, SeenPlayer, Turn, wrap_angle
+from learning.pass_features import pass_attributes, passer_attributes, unknown_half
+from robotsoccer.skills.intercept import TurnPolicy
+from robotsoccer.skills.passing import PassEvaluator, view_arrays
+from robotsoccer.skills.setplay import KickPowers, opponent_in_path
+
+SEARCH_TURN_RAD = math.radians(60.0)
+"""A player that sees no ball turns this far per decision to find it."""
+FACING_RAD = math.radians(12.0)
+"""Within this of the heading a player runs; farther, it turns first."""
+CHASE_MARGIN_UNITS = 2.0
+"""Hysteresis of the chaser rule [units]."""
+BALL_SHIFT_X = 0.4
+"""A home shifts this share of the ball's x toward the ball."""
+BALL_SHIFT_Y = 0.2
+"""... and this share of the ball's offset in y."""
+NEAR_REACHES = 3.0
+"""A ball within this many reaches is near: turn to it before running (no circling), and
+layer 1's net is not asked (it learned to meet a ball from afar, §5)."""
+COMING_SHARE = 0.1
+"""The ball comes toward the player when its distance fell by this share of the reach since
+the last percept (the net's case, §5)."""
+MIN_PASS_UNITS = 6.0
+"""Teammates nearer than this are not passed to (the ball would barely leave)."""
+GOALIE_RANGE_UNITS = 5.0
+"""The goalie keeps within this of the goal's centre line [units], half the ball's y."""
+AHEAD_UNITS = -5.0
+"""A teammate is a pass candidate when at least this far ahead of the passer (negative: a
+little behind is fine)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Pose:
+    """Where a player believes it is: field frame [m], heading [rad]."""
+
+    x: float
+    y: float
+    heading: float
+
+
+class Localiser:
+    """A player's pose from the landmarks it sees (module docstring, step 1).
+
+    Args:
+        landmarks: (name, x [m], y [m]) of the field's landmarks (:attr:`FieldFacts.landmarks`).
+    """
+
+    def __init__(self, landmarks: Sequence[tuple[str, float, float]]) -> None:
+        self.known = {name: (x, y) for name, x, y in landmarks}
+        self.pose: Pose | None = None
+
+    def update(self, percept: Percept) -> Pose | None:
+        """The pose this percept gives (or the last one, when it gives none)."""
+        marks = []
+        for mark in percept.landmarks:
+            where = self.known.get(mark.name)
+            if where is not None:
+                ex = mark.distance_m * math.cos(mark.angle_rad)
+                ey = mark.distance_m * math.sin(mark.angle_rad)
+                marks.append((where[0], where[1], ex, ey, mark.distance_m))
+        if len(marks) >= 2:
+            heading = _heading_from_pair(marks)
+        elif marks and self.pose is not None:
+            heading = self.pose.heading
+        else:
+            return self.pose
+        c, s = math.cos(heading), math.sin(heading)
+        # Near landmarks weigh more: the server quantises log-distance, so far ones err more.
+        x = y = total = 0.0
+        for wx, wy, ex, ey, distance in marks:
+            w = 1.0 / (1.0 + distance)
+            x += w * (wx - (c * ex - s * ey))
+            y += w * (wy - (s * ex + c * ey))
+            total += w
+        x, y = x / total, y / total
+        self.pose = Pose(x, y, heading)
+        return self.pose
+
+
+def _heading_from_pair(marks: Sequence[tuple[float, float, float, float, float]]) -> float:
+    """Heading from the two landmarks farthest apart in view (the best-conditioned pair)."""
+    best, pair = -1.0, (marks[0], marks[1])
+    for i in range(len(marks)):
+        for j in range(i + 1, len(marks)):
+            a, b = marks[i], marks[j]
+            gap = (a[2] - b[2]) ** 2 + (a[3] - b[3]) ** 2
+            if gap > best:
+                best, pair = gap, (a, b)
+    a, b = pair
+    world = math.atan2(b[1] - a[1], b[0] - a[0])
+    seen = math.atan2(b[3] - a[3], b[2] - a[2])
+    return wrap_angle(world - seen)
+
+
+@dataclass(frozen=True, slots=True)
+class TeamSetup:
+    """One team's plan on one field (the match drill fills it from the field's facts).
+
+    Attributes:
+        attack_right: The team attacks the goal at +x.
+        home: Formation home of each uniform number, field frame [m].
+        goalie: The goalie's number, or None.
+        landmarks: The field's landmarks (:attr:`FieldFacts.landmarks`).
+        unit_m: One drill unit [m].
+        reach_m: Kick reach the minds trust (a share of the true reach: sensor noise) [m].
+        blocked_m: An opponent this close in the path ends a dribble [m].
+        shoot_range_m: The goal this close: shoot [m].
+        pass_range_m: Teammates farther than this are not passed to [m].
+        trigger_distance_m: Layer 1's trigger distance on the field [m].
+        goalie_zone_m: The goalie chases a ball this close to its goal [m].
+        home_tolerance_m: Close enough to home [m].
+        powers: The field's kick powers.
+        half_length_m: Half the pitch's length [m].
+        half_width_m: Half its width [m].
+        dt_s: One tick [s].
+        latency_s: The sensor's latency [s].
+        spin_accel_radps2: How fast a player's spin can build up: its acceleration over its
+            half-size [rad/s²].
+    """
+
+    attack_right: bool
+    home: Mapping[int, tuple[float, float]]
+    goalie: int | None
+    landmarks: tuple[tuple[str, float, float], ...]
+    unit_m: float
+    reach_m: float
+    blocked_m: float
+    shoot_range_m: float
+    pass_range_m: float
+    trigger_distance_m: float
+    goalie_zone_m: float
+    home_tolerance_m: float
+    powers: KickPowers
+    half_length_m: float
+    half_width_m: float
+    dt_s: float
+    latency_s: float
+    spin_accel_radps2: float
+
+    def turn_ticks(self, angle_rad: float) -> int:
+        """Ticks until a percept shows a turn by `angle_rad` done: latency plus the spin.
+
+        A body that spins up at ``spin_accel`` and down again turns by a in about
+        sqrt(|a| / spin_accel) (the robots' host plans its turns so, `robot_physics.host`).
+        """
+        spin = math.sqrt(abs(angle_rad) / self.spin_accel_radps2)
+        return math.ceil((self.latency_s + spin) / self.dt_s)
+
+    @property
+    def goal_xy(self) -> tuple[float, float]:
+        """The opponents' goal centre [m]."""
+        return (self.half_length_m if self.attack_right else -self.half_length_m, 0.0)
+
+    @property
+    def own_goal_xy(self) -> tuple[float, float]:
+        """The team's own goal centre [m]."""
+        return (-self.goal_xy[0], 0.0)
+
+
+class TeamMind:
+    """One player of a match team (module docstring).
+
+    Args:
+        number: Its uniform number.
+        setup: Its team's plan.
+        interception: Layer 1's TA rule (the net); None: run straight at the ball.
+        evaluator: Layer 2's pass evaluator; None: pass to the closest teammate.
+        pass_threshold: The tree's least success confidence for a pass.
+
+    Attributes:
+        intent: What its last decision was for (``shoot``, ``pass 7``, ``dribble``,
+            ``intercept``, ``chase``, ``home``, ``search``).
+        shots: Shots it kicked (one per spell on the ball).
+        passes: Passes it kicked (one per spell on the ball).
+    """
+
+    def __init__(
+        self,
+        number: int,
+        setup: TeamSetup,
+        *,
+        interception: TurnPolicy | None = None,
+        evaluator: PassEvaluator | None = None,
+        pass_threshold: float = 0.5,
+    ) -> None:
+        self.number = number
+        self.setup = setup
+        self.interception = interception
+        self.evaluator = evaluator
+        self.pass_threshold = pass_threshold
+        self.localiser = Localiser(setup.landmarks)
+        self.is_goalie = number == setup.goalie
+        self.intent = "search"
+        self.shots = 0
+        self.passes = 0
+        self.chasing = False
+        self._ball_xy: tuple[float, float] | None = None
+        self._previous_bd: float | None = None
+        self._previous_xy: tuple[float, float] | None = None
+        self._spell_kicked = ""  # what it kicked in this spell on the ball
+        self._hold_until = -1  # percepts sampled before this tick predate the last turn
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """One decision (module docstring), its turns remembered until percepts show them."""
+        if percept.observed_tick < self._hold_until:
+            # The last turn is not over in what this percept shows (the robots' camera latency
+            # and spin-up): deciding again would turn twice and swing about. The body goes on
+            # with the last decision (an empty one keeps it, on the robots' host).
+            return ()
+        actions = self._decide(percept)
+        for action in actions:
+            if isinstance(action, Turn):
+                self._hold_until = percept.tick + self.setup.turn_ticks(action.angle_rad)
+                break
+        return actions
+
+    def _decide(self, percept: Percept) -> tuple[Action, ...]:
+        pose = self.localiser.update(percept)
+        ball = percept.ball
+        if ball is None:
+            self._previous_bd = None
+            return self._no_ball(percept, pose)
+        if pose is not None:
+            heading = pose.heading + ball.angle_rad
+            self._ball_xy = (
+                pose.x + ball.distance_m * math.cos(heading),
+                pose.y + ball.distance_m * math.sin(heading),
+            )
+        self.chasing = self._is_chaser(percept)
+        if not self.chasing:
+            self._spell_kicked = ""
+            self._previous_bd = ball.distance_m
+            return self._go_home(percept, pose)
+        if ball.distance_m <= self.setup.reach_m:
+            return self._on_ball(percept, pose)
+        self._spell_kicked = ""
+        return self._chase(percept)
+
+    # ------------------------------------------------------------------ who chases
+
+    def _is_chaser(self, percept: Percept) -> bool:
+        ball = percept.ball
+        assert ball is not None
+        setup = self.setup
+        if self.is_goalie:
+            if self._ball_xy is None:
+                return ball.distance_m <= setup.reach_m
+            gx, gy = setup.own_goal_xy
+            bx, by = self._ball_xy
+            return math.hypot(bx - gx, by - gy) <= setup.goalie_zone_m
+        bx = ball.distance_m * math.cos(ball.angle_rad)
+        by = ball.distance_m * math.sin(ball.angle_rad)
+        margin = CHASE_MARGIN_UNITS * setup.unit_m
+        mine = ball.distance_m - (margin if self.chasing else 0.0)
+        own = percept.player.team
+        for seen in percept.players:
+            if seen.team != own:
+                continue
+            tx = seen.distance_m * math.cos(seen.angle_rad)
+            ty = seen.distance_m * math.sin(seen.angle_rad)
+            if math.hypot(tx - bx, ty - by) < mine:
+                return False
+        return True
+
+    # ------------------------------------------------------------------ on the ball
+
+    def _on_ball(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...]:
+        setup = self.setup
+        goal = self._goal_direction(percept, pose)
+        if goal is not None and goal[0] <= setup.shoot_range_m:
+            self.intent = "shoot"
+            if self._spell_kicked != "shoot":
+                self.shots += 1
+                self._spell_kicked = "shoot"
+            return (Kick(setup.powers.shot, goal[1]),)
+        direction = 0.0 if goal is None else goal[1]
+        if self.is_goalie or opponent_in_path(percept, direction, setup.blocked_m):
+            target = self._choose_receiver(percept, pose)
+            if target is not None:
+                number, angle = target
+                self.intent = f"pass {number}" if number else "pass"
+                if self._spell_kicked != "pass":
+                    self.passes += 1
+                    self._spell_kicked = "pass"
+                return (Kick(setup.powers.passing, angle),)
+        if goal is None:
+            self.intent = "search"
+            return (Turn(SEARCH_TURN_RAD),)  # hold the ball, look for the goal
+        self.intent = "dribble"
+        return (Kick(setup.powers.dribble, direction),)
+
+    def _goal_direction(self, percept: Percept, pose: Pose | None) -> tuple[float, float] | None:
+        """(distance [m], angle [rad]) of the opponents' goal: seen, else from the pose."""
+        mark = percept.landmark("g r" if self.setup.attack_right else "g l")
+        if mark is not None:
+            return (mark.distance_m, mark.angle_rad)
+        if pose is None:
+            return None
+        gx, gy = self.setup.goal_xy
+        return (
+            math.hypot(gx - pose.x, gy - pose.y),
+            wrap_angle(math.atan2(gy - pose.y, gx - pose.x) - pose.heading),
+        )
+
+    def _choose_receiver(self, percept: Percept, pose: Pose | None) -> tuple[int, float] | None:
+        """(number or 0, direction [rad]) of the pass, or None: no one to pass to."""
+        setup = self.setup
+        own = percept.player.team
+        candidates = [
+            (i, s)
+            for i, s in enumerate(percept.players)
+            if s.team == own and self._passable(s, pose)
+        ]
+        if not candidates:
+            return None
+        if self.evaluator is None:
+            _, best = min(candidates, key=lambda c: c[1].distance_m)
+            return (best.number or 0, best.angle_rad)
+        scored = []
+        for index, seen in candidates:
+            others = [s for i, s in enumerate(percept.players) if i != index]
+            dist, ang, team = view_arrays(others, own, setup.unit_m)
+            mine = passer_attributes(
+                seen.distance_m / setup.unit_m, math.degrees(seen.angle_rad), dist, ang, team
+            )
+            x = pass_attributes(mine, unknown_half())
+            scored.append((self.evaluator.success_confidence(x), seen))
+        confidence, best = max(scored, key=lambda c: c[0])
+        if not confidence >= self.pass_threshold:
+            return None
+        return (best.number or 0, best.angle_rad)
+
+    def _passable(self, seen: SeenPlayer, pose: Pose | None) -> bool:
+        setup = self.setup
+        if not MIN_PASS_UNITS * setup.unit_m <= seen.distance_m <= setup.pass_range_m:
+            return False
+        if pose is None:
+            return True
+        heading = pose.heading + seen.angle_rad
+        ahead = seen.distance_m * math.cos(heading)  # along +x
+        if not setup.attack_right:
+            ahead = -ahead
+        return ahead >= AHEAD_UNITS * setup.unit_m
+
+    # ------------------------------------------------------------------ chase, home
+
+    def _chase(self, percept: Percept) -> tuple[Action, ...]:
+        """Layer 1's interception (the net) or straight at the ball."""
+        ball = percept.ball
+        assert ball is not None
+        bd, ba = ball.distance_m, ball.angle_rad
+        previous = self._previous_bd
+        self._previous_bd = bd
+        ta = 0.0
+        reach = self.setup.reach_m
+        coming = previous is not None and previous - bd > COMING_SHARE * reach
+        if (
+            self.interception is not None
+            and coming
+            and previous is not None
+            and NEAR_REACHES * reach < bd <= self.setup.trigger_distance_m
+        ):
+            xy = self._ball_xy or (0.0, 0.0)
+            ta = self.interception(bd, ba, previous, self._previous_xy, xy)
+            self.intent = "intercept"
+        else:
+            self.intent = "chase"
+        self._previous_xy = self._ball_xy
+        angle = wrap_angle(ba + ta)
+        if abs(angle) <= FACING_RAD:
+            return (Dash(100.0),)
+        if bd <= NEAR_REACHES * reach:
+            return (Turn(angle),)  # near the ball: run on only once facing it, or it circles
+        return (Turn(angle), Dash(100.0))
+
+    def _go_home(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...]:
+        ball = percept.ball
+        if pose is None:
+            self.intent = "search"
+            return (Turn(SEARCH_TURN_RAD),)
+        tx, ty = self._home_target()
+        dx, dy = tx - pose.x, ty - pose.y
+        self.intent = "home"
+        if math.hypot(dx, dy) > self.setup.home_tolerance_m:
+            angle = wrap_angle(math.atan2(dy, dx) - pose.heading)
+            if abs(angle) > 2.0 * FACING_RAD:
+                return (Turn(angle), Dash(80.0))
+            return (Dash(80.0),)
+        if ball is not None and abs(ball.angle_rad) > FACING_RAD:
+            return (Turn(ball.angle_rad),)
+        return ()
+
+    def _home_target(self) -> tuple[float, float]:
+        setup = self.setup
+        hx, hy = setup.home[self.number]
+        if self._ball_xy is None:
+            return hx, hy
+        bx, by = self._ball_xy
+        if self.is_goalie:
+            gx = setup.own_goal_xy[0]
+            inward = -1.0 if gx > 0 else 1.0
+            post = GOALIE_RANGE_UNITS * setup.unit_m
+            return gx + inward * 2.0 * setup.unit_m, max(-post, min(0.5 * by, post))
+        x = hx + BALL_SHIFT_X * bx
+        y = hy + BALL_SHIFT_Y * (by - hy)
+        lx, ly = setup.half_length_m - setup.unit_m, setup.half_width_m - setup.unit_m
+        return max(-lx, min(x, lx)), max(-ly, min(y, ly))
+
+    def _no_ball(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...]:
+        remembered = self._ball_xy
+        if remembered is not None and pose is not None:
+            # Turn toward where the ball was last seen (a search with a memory).
+            angle = wrap_angle(
+                math.atan2(remembered[1] - pose.y, remembered[0] - pose.x) - pose.heading
+            )
+            if abs(angle) > FACING_RAD:
+                self.intent = "search"
+                return (Turn(angle),)
+        self.intent = "search"
+        return (Turn(SEARCH_TURN_RAD),)
