@@ -1,0 +1,523 @@
+"""The Soccer Server's text game log (``.rcg``, format ``ULG5``): writing ours, reading any.
+
+rcssserver writes one such log per match when started with ``game_log_version 5``; rcssmonitor,
+rcsslogplayer and the usual analysis tools replay and read it. The syntax here is rcssserver
+19.0.0's, read from its source:
+
+* ``src/initsenderlogger.cpp`` (``InitSenderLoggerV5``): the header line ``ULG5``, then the
+  ``(server_param ...)``, ``(player_param ...)`` and ``(player_type ...)`` lines
+  (``src/initsender.cpp``, ``InitSenderCommonV8``; each parameter ``(name value)`` with no
+  space between parameters, doubles as a C++ stream prints them, booleans ``0``/``1``,
+  strings in double quotes);
+* ``src/logger.cpp`` (``Logger::writeGameLogImpl``): every cycle a ``(playmode T mode)`` line
+  when the play mode changed, a ``(team T LEFT RIGHT SL SR)`` line when a name or the score
+  changed (both first written at the first cycle), then the ``(show T ...)`` line;
+* ``src/dispsender.cpp`` (``DispSenderLoggerV4::sendShow``) and ``src/serializermonitor.cpp``
+  (``SerializerMonitorStdv3``/``v4``; log version 5 uses monitor serializer 4): the show line
+  ``(show T ((b) x y vx vy) ((l 1) TYPE STATE x y vx vy body neck (v h 90)
+  (s stamina effort recovery capacity) (c kick dash turn catch move turn_neck change_view say
+  tackle pointto attentionto)) ...)``. Every show carries all 22 player slots in the
+  server's order (left 1..11, right 1..11): the server creates its 22 players at the start
+  (``Stadium``'s constructor, ``src/stadium.cpp``), and rcssmonitor's reader
+  (``rcss/rcg/parser_v4.cpp``) refuses a show with fewer. STATE is hexadecimal with a ``0x``
+  prefix (``std::showbase``, which prints zero as ``0``); bit 0x1 (``STAND``) marks an
+  enabled player. A player not connected is written disabled (state 0) at x = -3·unum·side,
+  y = -(68/2 + 3) (``Player::disable`` in ``src/player.cpp``; side +1 left, -1 right), which
+  is how this writer writes a slot without a player in the frame.
+
+Coordinates are the server's: metres, x toward the right goal, **y down**, angles in degrees
+clockwise positive, velocities per cycle. Our field frame has y up, counter-clockwise radians
+and m/s, so the writer writes y, vy and the body angle negated and velocities times the cycle
+(``dt_s``), and the reader undoes it. Positions and velocities are written with four decimals
+and angles with three (the server's ``PREC`` 0.0001 and ``DPREC`` 0.001); with ``%.4f``
+instead of the server's ``%g`` of the quantised value the file is a little larger and every
+log reader parses it the same. Velocities are therefore kept to 0.0001 m per cycle (0.001 m/s
+at the server's 100 ms cycle).
+
+The cycle written is the frame's tick. ``simulator_step`` (ms) is always written, from
+``dt_s``; the reader takes the cycle from it (0.1 s when a log has none). A step that is not a
+whole number of milliseconds (a robot table's 1/240 s) is written as a decimal: the log players
+then warn that the value is not an integer and keep their default, and our reader keeps the
+exact step.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from types import TracebackType
+
+from field_models.protocol import LEFT, RIGHT, BodyState, PlayerRef, Truth, wrap_angle
+from robotsoccer.replay.frames import TEAM_NAME_CHARS, GameFrame
+
+HEADER = "ULG5"
+"""First line of the log: text format, version 5."""
+READABLE_HEADERS = ("ULG4", "ULG5", "ULG6")
+"""Headers :func:`read_rcg` accepts: the text versions, whose show lines read alike."""
+MAX_PLAYERS_PER_TEAM = 11
+"""Highest uniform number the log players accept (rcssmonitor's ``MAX_PLAYER``)."""
+DEFAULT_CYCLE_S = 0.1
+"""Cycle assumed when a log's ``server_param`` line has no ``simulator_step``."""
+NO_PLAY_MODE = "before_kick_off"
+"""Play mode of shows read before any ``playmode`` line (real logs always have one first)."""
+
+SLOTS = tuple(
+    PlayerRef(team, number)
+    for team in (LEFT, RIGHT)
+    for number in range(1, MAX_PLAYERS_PER_TEAM + 1)
+)
+"""Every show line's player slots, in rcssserver's order: left 1..11, then right 1..11."""
+
+_STAND = 0x1
+_PITCH_WIDTH_M = 68.0  # rcssserver's compiled ServerParam::PITCH_WIDTH
+_RAD2DEG = 180.0 / math.pi
+_DEG2RAD = math.pi / 180.0
+_TEAM_NAME = re.compile(rf"[A-Za-z0-9_-]{{1,{TEAM_NAME_CHARS}}}", re.ASCII)
+_PARAM_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*", re.ASCII)
+_PLAY_MODE = re.compile(r"[A-Za-z0-9_]+", re.ASCII)
+# The server's defaults for what a show line carries but our models do not simulate
+# (src/serverparam.cpp): view cone, stamina, effort, recovery, stamina capacity.
+_SHOW_DEFAULTS: dict[str, float] = {
+    "visible_angle": 90.0,
+    "stamina_max": 8000.0,
+    "effort_init": 1.0,
+    "recover_init": 1.0,
+    "stamina_capacity": 130600.0,
+}
+# The default player type (id 0) takes these from the server parameters of the same names
+# (src/heteroplayer.cpp, HeteroPlayer's default constructor); effort_max is effort_init.
+_PLAYER_TYPE_FIELDS = (
+    "player_speed_max",
+    "stamina_inc_max",
+    "player_decay",
+    "inertia_moment",
+    "dash_power_rate",
+    "player_size",
+    "kickable_margin",
+    "kick_rand",
+)
+
+_NUM = r"([-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)"
+_SHOW = re.compile(
+    r"\(show (-?[0-9]+)\s*(?:\(pm [0-9]+\)\s*)?(?:\(tm [^()]*\)\s*)?"
+    rf"\(\(b\) {_NUM} {_NUM} {_NUM} {_NUM}\)",
+    re.ASCII,
+)
+_PLAYER = re.compile(
+    r"\(\(([lr]) ([0-9]+)\) [0-9]+ (0[xX][0-9a-fA-F]+|[0-9a-fA-F]+)"
+    rf" {_NUM} {_NUM} {_NUM} {_NUM} {_NUM} {_NUM}[ )]",
+    re.ASCII,
+)
+_PLAYMODE_LINE = re.compile(r"\(playmode (-?[0-9]+) ([A-Za-z0-9_]+)\)", re.ASCII)
+_TEAM_LINE = re.compile(
+    r"\(team (-?[0-9]+) (\S+) (\S+) ([0-9]+) ([0-9]+)(?: [0-9]+ [0-9]+ [0-9]+ [0-9]+)?\)",
+    re.ASCII,
+)
+_PARAM_VALUE = r"(?:[^()\s\"]+|\"[^\"]*\")"
+_SERVER_PARAM_LINE = re.compile(
+    rf"\(server_param\s*(?:\([A-Za-z0-9_]+ {_PARAM_VALUE}\)\s*)*\)", re.ASCII
+)
+_PARAM = re.compile(rf"\(([A-Za-z0-9_]+) ({_PARAM_VALUE})\)", re.ASCII)
+_LINE_NAME = re.compile(r"\(([A-Za-z_][A-Za-z0-9_]*)[\s)]", re.ASCII)
+
+
+# ----------------------------------------------------------------------------- writing
+
+
+class RcgWriter:
+    """Streams frames to an ``.rcg`` file (no frame kept in memory).
+
+    The log is written under ``<name>.part`` next to `path` and renamed to `path` on
+    :meth:`close`, so a file under the final name is always a whole log. Also a context
+    manager: leaving the ``with`` block closes the writer, also on an exception.
+
+    Args:
+        path: Where the finished log goes (``.rcg`` by convention).
+        players: Every player of the match; a frame may hold no other. Teams must be
+            :data:`~field_models.protocol.LEFT` or :data:`~field_models.protocol.RIGHT`,
+            numbers 1..11. A slot of :data:`SLOTS` whose player a frame lacks is written
+            disconnected.
+        teams: The left and right team names: letters, digits, ``-`` and ``_``, at most
+            :data:`~robotsoccer.replay.frames.TEAM_NAME_CHARS` characters (rcssserver's rule).
+        dt_s: One cycle [s]; velocities are written per cycle and ``simulator_step`` from it.
+        server_params: Parameters for the ``server_param`` line, in rcssserver's names and
+            units (``goal_width``, ``ball_size``, ``player_size``, ``kickable_margin``,
+            ``ball_decay``, ``player_decay``, ``visible_angle``, ...). ``simulator_step`` comes
+            from `dt_s`; one given here must agree with it. ``visible_angle``, ``stamina_max``,
+            ``effort_init``, ``recover_init`` and ``stamina_capacity`` also fill each player's
+            ``(v ...)`` and ``(s ...)`` (server defaults otherwise).
+        player_params: Parameters for the ``player_param`` line, in rcssserver's names.
+
+    Raises:
+        ValueError: On a bad team name, player, cycle or parameter.
+    """
+
+    def __init__(
+        self,
+        path: Path,
+        *,
+        players: tuple[PlayerRef, ...],
+        teams: tuple[str, str],
+        dt_s: float,
+        server_params: Mapping[str, float | int | str] | None = None,
+        player_params: Mapping[str, float | int | str] | None = None,
+    ) -> None:
+        for name in teams:
+            if not isinstance(name, str) or _TEAM_NAME.fullmatch(name) is None:
+                raise ValueError(
+                    f"team name {name!r}: rcssserver allows 1 to {TEAM_NAME_CHARS} letters, "
+                    "digits, '-' and '_'"
+                )
+        if len(teams) != 2:
+            raise ValueError(f"need the left and the right team's names, got {teams!r}")
+        if not (math.isfinite(dt_s) and dt_s > 0.0):
+            raise ValueError(f"dt_s must be a positive number of seconds, got {dt_s!r}")
+        self._players = _checked_players(players)
+        self._dt = float(dt_s)
+        params = _server_params(server_params or {}, self._dt)
+
+        self.path = Path(path)
+        self._part = self.path.with_name(self.path.name + ".part")
+        self._teams = (teams[0], teams[1])
+        self._mode: str | None = None
+        self._score: tuple[int, int] | None = None
+        self._show = _show_format(params)
+        # rcssserver's show lines carry all 22 player slots (its players exist from the start,
+        # and rcssmonitor refuses a show with fewer); a slot without a player is written as the
+        # server writes a disconnected one.
+        self._slots = tuple(
+            (
+                ref,
+                ("0", -3.0 * ref.number * _side(ref), -(0.5 * _PITCH_WIDTH_M + 3.0), 0.0, 0.0, 0.0),
+            )
+            for ref in SLOTS
+        )
+        self._file = self._part.open("w", encoding="ascii", newline="\n", buffering=1 << 20)
+        try:
+            self._file.write(_header(params, dict(player_params or {})))
+        except BaseException:
+            self._file.close()
+            self._part.unlink(missing_ok=True)
+            raise
+
+    @property
+    def closed(self) -> bool:
+        """Whether :meth:`close` has run."""
+        return self._file.closed
+
+    def write(self, frame: GameFrame) -> None:
+        """Append one cycle: playmode and team lines where they changed, then the show line.
+
+        Raises:
+            ValueError: If the writer is closed, the play mode is not one word, or the frame
+                holds a player the writer was not given.
+        """
+        if self._file.closed:
+            raise ValueError(f"{self._part}: the writer is closed")
+        truth = frame.truth
+        tick = truth.tick
+        if not self._players.issuperset(truth.players):
+            extra = sorted(set(truth.players) - self._players)
+            raise ValueError(
+                f"tick {tick}: players {', '.join(map(str, extra))} are not in this log"
+            )
+        write = self._file.write
+        if frame.play_mode != self._mode:
+            if _PLAY_MODE.fullmatch(frame.play_mode) is None:
+                raise ValueError(f"play mode {frame.play_mode!r} is not one word")
+            self._mode = frame.play_mode
+            write(f"(playmode {tick} {frame.play_mode})\n")
+        if frame.score != self._score:
+            left, right = frame.score
+            self._score = (left, right)
+            write(f"(team {tick} {self._teams[0]} {self._teams[1]} {left:d} {right:d})\n")
+
+        dt = self._dt
+        ball = truth.ball
+        values: list[object] = [tick, ball.x, 0.0 - ball.y, ball.vx * dt, 0.0 - ball.vy * dt]
+        get = truth.players.get
+        for ref, absent in self._slots:
+            state = get(ref)
+            if state is None:
+                values.extend(absent)
+                continue
+            x, y, heading, vx, vy = state
+            # 0.0 - v rather than -v: no "-0.0000" for a zero.
+            body = 0.0 - heading * _RAD2DEG
+            if not -180.0 < body <= 180.0:
+                body = 180.0 - (180.0 - body) % 360.0
+            values.extend(("0x1", x, 0.0 - y, vx * dt, 0.0 - vy * dt, body))
+        write(self._show % tuple(values))
+
+    def close(self) -> None:
+        """Flush, close and move the log to its final name; a second call does nothing."""
+        if self._file.closed:
+            return
+        self._file.close()
+        os.replace(self._part, self.path)
+
+    def __enter__(self) -> RcgWriter:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()
+
+
+def _side(ref: PlayerRef) -> int:
+    """The server's side sign: +1 left, -1 right."""
+    return 1 if ref.team == LEFT else -1
+
+
+def _checked_players(players: tuple[PlayerRef, ...]) -> frozenset[PlayerRef]:
+    """`players` as a set, checked: left or right, numbers 1..11, none twice."""
+    for ref in players:
+        if ref.team not in (LEFT, RIGHT):
+            raise ValueError(f"player {ref}: the log has only the teams {LEFT!r} and {RIGHT!r}")
+        if not 1 <= ref.number <= MAX_PLAYERS_PER_TEAM:
+            raise ValueError(
+                f"player {ref}: the log players take numbers 1 to {MAX_PLAYERS_PER_TEAM}"
+            )
+    if len(set(players)) != len(players):
+        raise ValueError(f"players listed twice in {players!r}")
+    return frozenset(players)
+
+
+def _cxx_number(value: float | int) -> str:
+    """A number as rcssserver prints it (``%g``), or exactly where ``%g`` would round it."""
+    if isinstance(value, bool):
+        return "1" if value else "0"  # C++ streams print bools as 0/1 without boolalpha
+    if isinstance(value, int):
+        return str(value)
+    if not math.isfinite(value):
+        raise ValueError(f"parameter value {value!r} is not finite")
+    short = f"{value:g}"
+    return short if float(short) == value else repr(float(value))
+
+
+def _server_params(given: Mapping[str, float | int | str], dt_s: float) -> dict[str, str]:
+    """The ``server_param`` entries as text, ``simulator_step`` set from `dt_s`."""
+    step_ms = dt_s * 1000.0
+    whole_ms = round(step_ms)
+    step: float | int = whole_ms if abs(step_ms - whole_ms) < 1e-9 * max(1.0, step_ms) else step_ms
+    out: dict[str, str] = {}
+    for name, value in given.items():
+        if _PARAM_NAME.fullmatch(name) is None:
+            raise ValueError(f"server parameter name {name!r} is not a server name")
+        if name == "simulator_step":
+            if not isinstance(value, int | float) or not math.isclose(
+                float(value), step_ms, rel_tol=1e-9
+            ):
+                raise ValueError(
+                    f"server parameter simulator_step {value!r} ms disagrees with dt_s {dt_s!r}"
+                )
+            continue
+        out[name] = _param_text(name, value)
+    out["simulator_step"] = _cxx_number(step)
+    return out
+
+
+def _param_text(name: str, value: float | int | str) -> str:
+    """One parameter's value as the server writes it; strings quoted."""
+    if isinstance(value, str):
+        if '"' in value or "\n" in value or "\r" in value:
+            raise ValueError(f"parameter {name}: value {value!r} holds a quote or a line break")
+        return f'"{value}"'
+    if not isinstance(value, int | float):
+        raise ValueError(f"parameter {name}: value {value!r} is not a number or a string")
+    return _cxx_number(value)
+
+
+def _param_line(kind: str, params: Mapping[str, str]) -> str:
+    return f"({kind} " + "".join(f"({name} {text})" for name, text in params.items()) + ")\n"
+
+
+def _header(server: dict[str, str], player: dict[str, float | int | str]) -> str:
+    """The lines before the first cycle: header, server, player and default-type parameters."""
+    player_text = {}
+    for name, value in player.items():
+        if _PARAM_NAME.fullmatch(name) is None:
+            raise ValueError(f"player parameter name {name!r} is not a server name")
+        player_text[name] = _param_text(name, value)
+    lines = [
+        HEADER + "\n",
+        _param_line("server_param", server),
+        _param_line("player_param", player_text),
+    ]
+    type0 = {name: server[name] for name in _PLAYER_TYPE_FIELDS if name in server}
+    if "effort_init" in server:
+        type0["effort_max"] = server["effort_init"]
+    if "effort_min" in server:
+        type0["effort_min"] = server["effort_min"]
+    if type0:
+        # Without a type line the log players draw type 0 with their own defaults.
+        lines.append(
+            "(player_type (id 0)" + "".join(f"({k} {v})" for k, v in type0.items()) + ")\n"
+        )
+    return "".join(lines)
+
+
+def _show_format(params: Mapping[str, str]) -> str:
+    """The show line as one ``%`` format: tick, ball, then state, x, y, vx, vy, body each."""
+
+    def number(name: str) -> str:
+        text = params.get(name, "")
+        try:
+            float(text)
+        except ValueError:
+            return _cxx_number(_SHOW_DEFAULTS[name])
+        return text
+
+    view = f"(v h {number('visible_angle')})"
+    stamina = (
+        f"(s {number('stamina_max')} {number('effort_init')} {number('recover_init')}"
+        f" {number('stamina_capacity')})"
+    )
+    tail = f" 0 {view} {stamina} (c 0 0 0 0 0 0 0 0 0 0 0))".replace("%", "%%")
+    parts = ["(show %d ((b) %.4f %.4f %.4f %.4f)"]
+    for ref in SLOTS:
+        side = "l" if ref.team == LEFT else "r"
+        parts.append(f" (({side} {ref.number}) 0 %s %.4f %.4f %.4f %.4f %.3f{tail}")
+    parts.append(")\n")
+    return "".join(parts)
+
+
+# ----------------------------------------------------------------------------- reading
+
+
+@dataclass(frozen=True)
+class RcgGame:
+    """What :func:`read_rcg` reads from a game log.
+
+    Attributes:
+        teams: The left and right team names of the first ``team`` line (``("", "")`` where
+            the log has none).
+        server_params: The ``server_param`` line's entries as text, strings unquoted.
+        frames: One frame per ``show`` line, in file order, in our field frame; players a
+            show has disabled (disconnected) are left out of the truth.
+    """
+
+    teams: tuple[str, str]
+    server_params: dict[str, str]
+    frames: list[GameFrame]
+
+
+def is_rcg(path: Path) -> bool:
+    """Whether `path` is a game log: its first line starts with ``ULG`` (gzipped logs: no)."""
+    try:
+        with Path(path).open("rb") as file:
+            return file.read(3) == b"ULG"
+    except (FileNotFoundError, IsADirectoryError, NotADirectoryError):
+        return False
+
+
+def read_rcg(path: Path) -> RcgGame:
+    """Read a text game log (ours or rcssserver's) back into frames in our field frame.
+
+    ``show``, ``playmode``, ``team`` and ``server_param`` lines are read; ``player_param``,
+    ``player_type``, ``msg``, ``team_graphic_*`` and other well-formed lines are passed over.
+    y, vy and the body angle are negated, degrees become radians and per-cycle velocities m/s,
+    with the cycle from ``simulator_step`` (ms), or :data:`DEFAULT_CYCLE_S`. Each frame carries
+    the play mode and score of the last ``playmode`` and ``team`` lines before it.
+
+    Raises:
+        ValueError: Naming the file and line: the first line is not a text header
+            (:data:`READABLE_HEADERS`), or a line is malformed.
+    """
+    path = Path(path)
+    teams: tuple[str, str] | None = None
+    params: dict[str, str] = {}
+    frames: list[GameFrame] = []
+    mode = NO_PLAY_MODE
+    score = (0, 0)
+    dt = DEFAULT_CYCLE_S
+    with path.open(encoding="utf-8", errors="replace", newline=None) as file:
+        header = file.readline().strip()
+        if header not in READABLE_HEADERS:
+            raise ValueError(
+                f"{path}:1: not a text game log: the first line is {header[:40]!r}, "
+                f"expected one of {', '.join(READABLE_HEADERS)}"
+            )
+        for number, raw in enumerate(file, start=2):
+            line = raw.strip()
+            if not line:
+                continue
+            head = _LINE_NAME.match(line)
+            if head is None or line.count("(") != line.count(")"):
+                raise _malformed(path, number, "not one parenthesised record", line)
+            kind = head.group(1)
+            if kind == "show":
+                frames.append(_read_show(path, number, line, mode, score, dt))
+            elif kind == "playmode":
+                found = _PLAYMODE_LINE.fullmatch(line)
+                if found is None:
+                    raise _malformed(path, number, "bad playmode line", line)
+                mode = found.group(2)
+            elif kind == "team":
+                team = _TEAM_LINE.fullmatch(line)
+                if team is None:
+                    raise _malformed(path, number, "bad team line", line)
+                if teams is None:
+                    teams = (team.group(2), team.group(3))
+                score = (int(team.group(4)), int(team.group(5)))
+            elif kind == "server_param":
+                if _SERVER_PARAM_LINE.fullmatch(line) is None:
+                    raise _malformed(path, number, "bad server_param line", line)
+                params.update((m.group(1), m.group(2).strip('"')) for m in _PARAM.finditer(line))
+                dt = _cycle_s(path, number, params.get("simulator_step"), line)
+    return RcgGame(teams=teams or ("", ""), server_params=params, frames=frames)
+
+
+def _cycle_s(path: Path, number: int, step_ms: str | None, line: str) -> float:
+    if step_ms is None:
+        return DEFAULT_CYCLE_S
+    try:
+        dt = float(step_ms) / 1000.0
+    except ValueError:
+        dt = math.nan
+    if not (math.isfinite(dt) and dt > 0.0):
+        raise _malformed(path, number, f"simulator_step {step_ms!r} is not a positive number", line)
+    return dt
+
+
+def _read_show(
+    path: Path, number: int, line: str, mode: str, score: tuple[int, int], dt: float
+) -> GameFrame:
+    """One show line as a frame."""
+    show = _SHOW.match(line)
+    if show is None:
+        raise _malformed(path, number, "bad show line (cycle or ball)", line)
+    rest = line[show.end() :]
+    entries = _PLAYER.findall(rest)
+    if len(entries) != rest.count("(("):
+        raise _malformed(path, number, "bad player in show line", line)
+    tick = int(show.group(1))
+    bx, by, bvx, bvy = (float(v) for v in show.group(2, 3, 4, 5))
+    players: dict[PlayerRef, BodyState] = {}
+    for side, unum, state, x, y, vx, vy, body, _neck in entries:
+        if not int(state, 16) & _STAND:
+            continue  # disabled: a disconnected player's placeholder
+        ref = PlayerRef(LEFT if side == "l" else RIGHT, int(unum))
+        players[ref] = BodyState(
+            float(x),
+            0.0 - float(y),
+            wrap_angle(0.0 - float(body) * _DEG2RAD),
+            float(vx) / dt,
+            0.0 - float(vy) / dt,
+        )
+    ball = BodyState(bx, 0.0 - by, 0.0, bvx / dt, 0.0 - bvy / dt)
+    truth = Truth(tick=tick, time_s=tick * dt, ball=ball, players=players)
+    return GameFrame(truth=truth, play_mode=mode, score=score)
+
+
+def _malformed(path: Path, number: int, reason: str, line: str) -> ValueError:
+    shown = line if len(line) <= 120 else line[:117] + "..."
+    return ValueError(f"{path}:{number}: {reason}: {shown!r}")
