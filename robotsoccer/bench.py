@@ -17,6 +17,12 @@ figure's target beside it (:func:`target_cell`).
   (:mod:`robotsoccer.bench_batch`).
 * ``pass.trials_per_s.<field model>`` — the layer-2 pass drill (random receiver, straight
   interceptors, 12 players) through the pool with 2 workers, sized the same way.
+* ``match.wall_s.<field model>``, ``match.realtime_factor.<field model>`` — one whole match
+  (two halves of 300 s: 6000 cycles on the Soccer Server) between two baseline teams, the
+  field's own size (11 v 11 on an open field, 5 v 5 on the robots' table, with camera, host,
+  link and firmware running) in this process, on one core: wall seconds and simulated seconds
+  per wall second. The baseline needs no model files; the layered team's net and tree are a
+  small share of a decision's cost.
 * ``training.net_1000_saves_s`` — wall seconds to train the paper's 3-4-1 net for 3000 epochs
   on 1000 synthetic saves (torch on the CPU, one thread).
 """
@@ -72,6 +78,18 @@ def pass_trials_per_s(field_model: str, trials: int, workers: int = 2) -> float:
     return trials / (time.perf_counter() - start)
 
 
+def match_wall_s(field_model: str, half_time_s: float, seed: int = 0) -> float:
+    """Wall seconds of one match of two baseline teams (two halves), in this process."""
+    from robotsoccer.runs.runner import run_trial
+
+    spec = TrialSpec(drill="match", field_model=field_model, seed=seed).with_options(
+        left="baseline", right="baseline", half_time_s=half_time_s
+    )
+    start = time.perf_counter()
+    run_trial(spec, 0)
+    return time.perf_counter() - start
+
+
 def training_seconds(saves: int = 1000) -> float:
     """Wall seconds to fit the interception net (default settings) on synthetic saves."""
     from learning.interception import InterceptionModel
@@ -118,6 +136,12 @@ def iter_benchmarks(
         n = _sized(functools.partial(pass_trials_per_s, model), quick)
         measure = functools.partial(pass_trials_per_s, model, n)
         yield f"pass.trials_per_s.{model}", round(median_of(repeats, measure))
+    for model in FIELD_MODELS:
+        say(f"match: {model}")
+        half = 60.0 if quick else 300.0
+        wall = median_of(repeats, functools.partial(match_wall_s, model, half))
+        yield f"match.wall_s.{model}", round(wall, 2)
+        yield f"match.realtime_factor.{model}", round(2.0 * half / wall, 1)
     say("training: the interception net on 1000 saves")
     yield "training.net_1000_saves_s", round(median_of(repeats, training_seconds), 2)
     yield "machine.python", platform.python_version()

@@ -59,6 +59,8 @@ BENCH_TARGETS = {
     "pass.trials_per_s.soccer_server": (">=", 300.0),
     "pass.trials_per_s.robot_physics": (">=", 40.0),
     "training.net_1000_saves_s": ("<=", 5.0),
+    "match.wall_s.soccer_server": ("<=", 60.0),
+    "match.realtime_factor.robot_physics": (">=", 50.0),
 }
 """What ``robotsoccer bench`` checks each figure against."""
 
@@ -100,6 +102,16 @@ def _positive_int(text: str) -> int:
     value = _int(text)
     if value <= 0:
         raise argparse.ArgumentTypeError(f"expected a whole number > 0, got {text!r}")
+    return value
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value) or value <= 0.0:
+        raise argparse.ArgumentTypeError(f"expected a finite number > 0, got {text!r}")
     return value
 
 
@@ -229,8 +241,40 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--json", action="store_true", help="print one JSON object at the end")
     bench.add_argument("--quick", action="store_true", help="one short repeat of each figure")
 
-    replay = command("replay", "open a recording in the rerun viewer, or say how to")
-    replay.add_argument("file", type=Path, help="a .rrd recording")
+    match = command(
+        "match",
+        "play a match (or a series: --games N) between the layered team and the baseline",
+    )
+    _field_options(match)
+    match.add_argument(
+        "--games", type=_positive_int, default=1, help="1: one match; more: a series (sides swap)"
+    )
+    match.add_argument("--left", default="layered", choices=TEAM_KINDS, help="one match: left")
+    match.add_argument("--right", default="baseline", choices=TEAM_KINDS, help="one match: right")
+    match.add_argument(
+        "--models",
+        type=Path,
+        default=None,
+        help="run folder of reproduce/transfer/learn pass with models/<field>/ (default: the "
+        "first of runs/reproduce-seed<S>, runs/transfer-seed<S> that has them)",
+    )
+    match.add_argument("--net", type=Path, default=None, help="layer 1's net (.npz)")
+    match.add_argument("--tree", type=Path, default=None, help="layer 2's tree (.json)")
+    match.add_argument(
+        "--players", type=_index, default=0, help="players a side (0: 11 open field, 5 table)"
+    )
+    match.add_argument("--half-time", type=_positive_float, default=None, help="one half [s] (300)")
+    match.add_argument(
+        "--record",
+        action="store_true",
+        help="rerun recording (and on the server's pitch an .rcg game log) of the first game "
+        "of each side",
+    )
+    match.add_argument("--quiet", action="store_true", help="no progress")
+    _run_options(match)
+
+    replay = command("replay", "open a recording (.rrd, or a .rcg game log) in the rerun viewer")
+    replay.add_argument("file", type=Path, help="a .rrd recording or .rcg game log")
     return parser
 
 
@@ -484,10 +528,106 @@ def _player(text: str) -> PlayerRef:
 
 
 def cmd_replay(args: argparse.Namespace) -> int:
-    """Open (or, headless, verify and explain how to open) a recording."""
+    """Open (or, headless, verify and explain how to open) a recording or a game log."""
     from robotsoccer.replay.recording import replay
 
+    if args.file.suffix == ".rcg":
+        from robotsoccer.replay.game_log import rrd_from_rcg
+
+        return replay(rrd_from_rcg(args.file))
     return replay(args.file)
+
+
+TEAM_KINDS = ("layered", "baseline")
+"""The match drill's team kinds (:class:`robotsoccer.drills.match.TeamKind`)."""
+
+
+def find_layers(args: argparse.Namespace) -> tuple[Path, Path]:
+    """The layered team's net and tree: given, or the newest in a run folder's models.
+
+    Raises:
+        ValueError: None found (the message says how to make them).
+    """
+    if args.net is not None and args.tree is not None:
+        return args.net, args.tree
+    folders = (
+        [args.models]
+        if args.models is not None
+        else [Path("runs") / f"{kind}-seed{args.seed}" for kind in ("reproduce", "transfer")]
+    )
+    for folder in folders:
+        models = folder / "models" / args.field
+        nets = sorted(models.glob("net_*.npz"), key=lambda p: _net_size(p.stem))
+        tree = models / "pass_tree.json"
+        if nets and tree.exists():
+            return args.net or nets[-1], args.tree or tree
+    where = ", ".join(str(f / "models" / args.field) for f in folders)
+    raise ValueError(
+        f"no trained layers for {args.field} in {where}: run `robotsoccer transfer "
+        f"--no-ablations --no-gap-closing` first, or give --net and --tree"
+    )
+
+
+def _net_size(stem: str) -> int:
+    tail = stem.rpartition("_")[2]
+    return int(tail) if tail.isdigit() else -1
+
+
+def cmd_match(args: argparse.Namespace) -> int:
+    """One match, or a series of layered against baseline with its report."""
+    from robotsoccer.experiments.match import run_series, write_report
+
+    preset = args.field_preset or default_preset(args.field)
+    layered = args.games > 1 or "layered" in (args.left, args.right)
+    options: dict[str, Any] = {"players": args.players}
+    if args.half_time is not None:
+        options["half_time_s"] = args.half_time
+    if layered:
+        net, tree = find_layers(args)
+        options |= {"net": str(net), "tree": str(tree)}
+    kind = "series" if args.games > 1 else "match"
+    out = args.out or Path("runs") / f"{kind}-{args.field}-{Path(preset).stem}-seed{args.seed}"
+    record_dir = out / "recordings" if args.record else None
+    base = TrialSpec(
+        drill="match",
+        field_model=args.field,
+        preset=args.field_preset,
+        seed=args.seed,
+        field=FieldOptions(perfect_perception=args.perfect_perception, ball_noise=args.ball_noise),
+        record_dir=str(record_dir) if record_dir else None,
+        record_trials=1 if args.record else 0,
+    ).with_options(**options)
+    if args.games > 1:
+        check_spec(base)
+        prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
+        start = time.perf_counter()
+        try:
+            games = run_series(
+                base, args.games, out, workers=args.workers or default_workers(),
+                resume=args.resume, progress=not args.quiet,
+            )  # fmt: skip
+        except KeyboardInterrupt:
+            return _fail(EXIT_INTERRUPTED, f"interrupted; finished games are kept in {out}")
+        title = f"Layered vs baseline on {args.field} ({Path(preset).stem}), seed {args.seed}"
+        write_report(games, out, title, print)
+        print(f"\n{len(games)} games in {time.perf_counter() - start:.1f} s; report: {out}")
+    else:
+        spec = base.with_options(left=args.left, right=args.right)
+        check_spec(spec)
+        prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
+        start = time.perf_counter()
+        (result,) = run_trials(
+            spec, 1, workers=1, results_path=out / "results.csv", resume=args.resume,
+            progress=not args.quiet,
+        )  # fmt: skip
+        wall = time.perf_counter() - start
+        print(f"{result.label}: {result.reason} ({result.time_s:.0f} simulated s in "
+              f"{wall:.1f} s)")  # fmt: skip
+        for name, value in result.measures:
+            print(f"  {name} = {value:g}")
+    if record_dir is not None:
+        print(f"recordings: {record_dir}/ (open with: robotsoccer replay FILE)")
+    return 0
 
 
 def cmd_learn(args: argparse.Namespace) -> int:
@@ -745,6 +885,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "transfer": cmd_transfer,
     "bench": cmd_bench,
     "replay": cmd_replay,
+    "match": cmd_match,
 }
 """Each command's function, by name."""
 
