@@ -24,8 +24,9 @@ Speed (notes/tooling.md §1.4): ``rr.log`` costs ~100 µs per call, so the recor
 in the simulation loop. It appends plain floats to per-entity buffers and sends them with
 ``send_columns`` in chunks of ``chunk_frames`` recorded ticks, which costs a few µs per tick.
 
-This is the only module of the project that imports ``rerun``, and it does so inside functions,
-so ``import robotsoccer`` (and importing this module) never loads the 800 MB SDK.
+This module and :mod:`~robotsoccer.replay.match_recording` (whole matches, built on
+:class:`TrialRecorder`) are the only modules of the project that import ``rerun``, and they do
+so inside functions, so ``import robotsoccer`` (and importing them) never loads the 800 MB SDK.
 
 Entity layout (paths are what :func:`read_entity_positions` takes)::
 
@@ -299,9 +300,28 @@ _GLYPHS: dict[str, str] = {
     "Y": "062346 2320",
     "Z": "06460040",
     "-": "1333",
+    # Digits and the colon, for the score of a match (match_recording.py).
+    "0": "100105163645413010",
+    "1": "152620 1030",
+    "2": "05163645440040",
+    "3": "0516364544334241301001 1333",
+    "4": "30360242",
+    "5": "4606033342413000",
+    "6": "4536160501103041423303",
+    "7": "064610",
+    "8": "13040516364544331302011030414233",
+    "9": "0110304145361605041343",
+    ":": "2122 2425",
 }
 _GLYPH_WIDTH, _GLYPH_HEIGHT = 4, 6  # the grid
 _GLYPH_ADVANCE = _GLYPH_WIDTH + 2  # from one letter to the next: a letter and a gap
+
+
+def text_width(text: str, height_m: float) -> float:
+    """Width of `text` in the stroke letters of :func:`text_strokes` of height `height_m` [m]."""
+    if not text:
+        return 0.0
+    return ((len(text) - 1) * _GLYPH_ADVANCE + _GLYPH_WIDTH) * height_m / _GLYPH_HEIGHT
 
 
 def text_strokes(
@@ -309,15 +329,15 @@ def text_strokes(
 ) -> list[np.ndarray]:
     """`text` in large stroke letters, centred on x = centre_x_m above y = base_y_m [m].
 
-    Capital letters and ``-`` are drawn (lower case as capitals); other characters leave a
-    gap. Used for the outcome, which must read at a glance.
+    Capital letters, digits, ``-`` and ``:`` are drawn (lower case as capitals); other
+    characters leave a gap. Used for the outcome and a match's score, which must read at a
+    glance.
 
     Returns:
         One (K, 2) line strip per stroke, in the field frame.
     """
     unit = height_m / _GLYPH_HEIGHT
-    width = ((len(text) - 1) * _GLYPH_ADVANCE + _GLYPH_WIDTH) * unit if text else 0.0
-    x0 = centre_x_m - 0.5 * width
+    x0 = centre_x_m - 0.5 * text_width(text, height_m)
     strips: list[np.ndarray] = []
     for i, char in enumerate(text.upper()):
         for stroke in _GLYPHS.get(char, "").split():
@@ -352,7 +372,7 @@ def recording_name(index: int, label: str) -> str:
 
     ``trial_0007_GOAL.rrd``: the label is made safe for a file name.
     """
-    return f"trial_{index:04d}_{_entity_name(label)}.rrd"
+    return f"trial_{index:04d}_{entity_name(label)}.rrd"
 
 
 def _lighter(colour: tuple[int, int, int], amount: float = 0.45) -> tuple[int, int, int]:
@@ -373,12 +393,12 @@ def _seen_label(team: str | None, number: int | None) -> str:
     return f"{team if team is not None else '?'}{number if number is not None else '?'}"
 
 
-def _entity_name(text: str) -> str:
+def entity_name(text: str) -> str:
     """Make `text` safe as one entity-path part."""
     return _ENTITY_UNSAFE.sub("_", text) or "_"
 
 
-def _time_indexes(ticks: Sequence[int], dt_s: float) -> list[Any]:
+def time_indexes(ticks: Sequence[int], dt_s: float) -> list[Any]:
     """The ``sim_time`` (ns from integer ticks, never accumulated) and ``tick`` index columns."""
     import rerun as rr
 
@@ -386,6 +406,30 @@ def _time_indexes(ticks: Sequence[int], dt_s: float) -> list[Any]:
     # Rounded to whole ns per tick, so 1/240 s ticks do not truncate to ...666 ns.
     ns = np.rint(tick_arr * (dt_s * 1e9)).astype(np.int64).astype("timedelta64[ns]")
     return [rr.TimeColumn(SIM_TIME, duration=ns), rr.TimeColumn(TICK, sequence=tick_arr)]
+
+
+def text_log_view(name: str, origin: str, *, entity_column: bool = True) -> rrb.TextLogView:
+    """A text-log view of `origin` that shows each line's body first, then its entity.
+
+    By default rerun 0.41 puts the entity path and level first, and in a narrow view the body
+    is cut off (``rrb.TextLogColumns``, blueprint/archetypes/text_log_columns). Without
+    `entity_column` the entity path is hidden too (where the body names its channel).
+    """
+    import rerun.blueprint as rrb
+
+    return rrb.TextLogView(
+        name=name,
+        origin=origin,
+        columns=rrb.TextLogColumns(
+            timeline_columns=[rrb.encodings.TimelineColumn(SIM_TIME)],
+            text_log_columns=[
+                rrb.encodings.TextLogColumn("body"),
+                rrb.encodings.TextLogColumn("entitypath", visible=entity_column),
+                rrb.encodings.TextLogColumn("loglevel", visible=False),
+            ],
+        ),
+        format_options=rrb.TextLogFormat(monospace_body=False),
+    )
 
 
 # ----------------------------------------------------------------------------- buffers
@@ -466,6 +510,10 @@ class TrialRecorder:
             sensor_period_s.
     """
 
+    _circle_outlines = True
+    """Whether round players get an outline too (a subclass may leave it out: the outlines
+    are most of a recording's bytes, and a circle's outline says nothing of its heading)."""
+
     def __init__(
         self,
         path: Path,
@@ -489,7 +537,7 @@ class TrialRecorder:
             raise ValueError(f"chunk_frames must be >= 1, got {chunk_frames}")
         if sensor_period_s is not None and not sensor_period_s > 0.0:
             raise ValueError(f"sensor_period_s must be > 0, got {sensor_period_s}")
-        self.sizes = draw_sizes(pitch)
+        self.sizes = self._draw_sizes(pitch)
         self._template = outline_template(player_shape, self.sizes.player_m)
         self.path = Path(path)
         self.pitch = pitch
@@ -511,7 +559,7 @@ class TrialRecorder:
             team: np.array([i for i, p in enumerate(self.players) if p.team == team])
             for team in self._teams
         }
-        self._labels = np.array([str(p) for p in self.players])
+        self._labels = np.array([self._player_label(p) for p in self.players])
         self._ticks: list[int] = []
         self._ball_xy: list[float] = []
         self._poses: list[float] = []  # x, y, heading per player per recorded tick (NaN: absent)
@@ -532,6 +580,14 @@ class TrialRecorder:
 
     # --- setup ---------------------------------------------------------------------------
 
+    def _draw_sizes(self, pitch: Pitch) -> DrawSizes:
+        """How large things are drawn (:func:`draw_sizes`); a subclass may draw larger."""
+        return draw_sizes(pitch)
+
+    def _player_label(self, player: PlayerRef) -> str:
+        """The label drawn above `player` (and stored with its disc): its id, ``left1``."""
+        return str(player)
+
     def _view_bounds(self) -> tuple[list[float], list[float]]:
         """The field view's x and y ranges, in the view's (flipped) frame.
 
@@ -548,8 +604,7 @@ class TrialRecorder:
 
         The field view's origin is the root, so the ``field`` entity's flip applies to what it
         shows (a view's own origin transform would not). The events view shows the message
-        body first: by default rerun 0.41 puts the entity path and level first, and at this
-        width the body is cut off (``rrb.TextLogColumns``, blueprint/archetypes/text_log_columns).
+        body first (:func:`text_log_view`).
         """
         import rerun.blueprint as rrb
 
@@ -562,19 +617,7 @@ class TrialRecorder:
             visual_bounds=rrb.VisualBounds2D(x_range=x_range, y_range=y_range),
         )
         legend = rrb.TextDocumentView(name="legend", origin="/legend")
-        events = rrb.TextLogView(
-            name="events",
-            origin="/events",
-            columns=rrb.TextLogColumns(
-                timeline_columns=[rrb.encodings.TimelineColumn(SIM_TIME)],
-                text_log_columns=[
-                    rrb.encodings.TextLogColumn("body"),
-                    rrb.encodings.TextLogColumn("entitypath"),
-                    rrb.encodings.TextLogColumn("loglevel", visible=False),
-                ],
-            ),
-            format_options=rrb.TextLogFormat(monospace_body=False),
-        )
+        events = text_log_view("events", "/events")
         return rrb.Blueprint(
             rrb.Horizontal(
                 field_view,
@@ -644,7 +687,7 @@ class TrialRecorder:
         )
         for team in self._teams:
             colour = team_colour(team, self._teams)
-            base = f"field/players/{_entity_name(team)}"
+            base = f"field/players/{entity_name(team)}"
             # The discs keep the ids as labels (hover, read-back) but do not show them: rerun
             # draws a point's label over the point. The ids show on anchors above the players.
             rec.log(
@@ -695,7 +738,7 @@ class TrialRecorder:
         import rerun as rr
 
         colour = self._percept_colour(observer)
-        base = f"field/perceived/{_entity_name(str(observer))}"
+        base = f"field/perceived/{entity_name(str(observer))}"
         for entity in (f"{base}/ball", f"{base}/players"):
             self._rec.log(
                 entity,
@@ -756,7 +799,7 @@ class TrialRecorder:
 
         self._rec.send_columns(
             "legend",
-            indexes=_time_indexes([tick], self.dt_s),
+            indexes=time_indexes([tick], self.dt_s),
             columns=rr.TextDocument.columns(
                 text=[self.legend(outcome)], media_type=["text/markdown"]
             ),
@@ -840,7 +883,7 @@ class TrialRecorder:
             # first, and a decision and the command it became read alike without it.
             who = "" if event.player is None else f"{event.player}: "
             text = f"[{event.channel}] {who}{event.text}"
-            self._add_text(f"events/{_entity_name(event.channel)}", event.tick, text, "INFO")
+            self._add_text(f"events/{entity_name(event.channel)}", event.tick, text, "INFO")
 
     def log_label(self, tick: int, label: str, detail: str = "") -> None:
         """Record the trial's outcome (e.g. ``"GOAL"``, ``"SUCCESS"``) and why, at `tick`.
@@ -941,7 +984,7 @@ class TrialRecorder:
         import rerun as rr
 
         rec = self._rec
-        indexes = _time_indexes(self._ticks, self.dt_s)
+        indexes = time_indexes(self._ticks, self.dt_s)
         n_rows = len(self._ticks)
         ball = np.asarray(self._ball_xy, dtype=np.float64).reshape(n_rows, 2)
         rec.send_columns("field/ball", indexes=indexes, columns=rr.Points2D.columns(positions=ball))
@@ -957,7 +1000,7 @@ class TrialRecorder:
             flat = team_poses[present]  # row-major: time order, then player order
             labels = np.broadcast_to(self._labels[idx], present.shape)[present].tolist()
             headings = np.column_stack([np.cos(flat[:, 2]), np.sin(flat[:, 2])])
-            base = f"field/players/{_entity_name(team)}"
+            base = f"field/players/{entity_name(team)}"
             rec.send_columns(
                 base,
                 indexes=indexes,
@@ -972,13 +1015,14 @@ class TrialRecorder:
                     positions=flat[:, :2] + (0.0, name_above), labels=labels
                 ).partition(lengths),
             )
-            rec.send_columns(
-                f"{base}/outline",
-                indexes=indexes,
-                columns=rr.LineStrips2D.columns(
-                    strips=place_outlines(self._template, flat)
-                ).partition(lengths),
-            )
+            if self._player_shape == "square" or self._circle_outlines:
+                rec.send_columns(
+                    f"{base}/outline",
+                    indexes=indexes,
+                    columns=rr.LineStrips2D.columns(
+                        strips=place_outlines(self._template, flat)
+                    ).partition(lengths),
+                )
             rec.send_columns(
                 f"{base}/heading",
                 indexes=indexes,
@@ -1001,8 +1045,8 @@ class TrialRecorder:
         for observer, buf in self._percepts.items():
             if not buf.ticks:
                 continue
-            indexes = _time_indexes(buf.ticks, self.dt_s)
-            base = f"field/perceived/{_entity_name(str(observer))}"
+            indexes = time_indexes(buf.ticks, self.dt_s)
+            base = f"field/perceived/{entity_name(str(observer))}"
             ball = np.asarray(buf.ball_xy, dtype=np.float64).reshape(-1, 2)
             self._rec.send_columns(
                 f"{base}/ball",
@@ -1032,7 +1076,7 @@ class TrialRecorder:
                 continue
             self._rec.send_columns(
                 entity,
-                indexes=_time_indexes(buf.ticks, self.dt_s),
+                indexes=time_indexes(buf.ticks, self.dt_s),
                 columns=rr.TextLog.columns(text=buf.texts, level=buf.levels),
             )
             self._texts[entity] = _TextBuffer()

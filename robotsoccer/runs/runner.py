@@ -360,7 +360,8 @@ def _play_match_recorded(
     The game log (:mod:`robotsoccer.replay.rcg`) is written only on a field drawn in Soccer
     Server metres (``unit_m`` 1): the format's tools draw the server's pitch. Both files
     are written under part names and renamed once the match is over
-    (``match_<index>_<LABEL>.rrd`` / ``.rcg``). Left 1's percepts are drawn beside the truth.
+    (``match_<index>_<LABEL>.rrd`` / ``.rcg``). The left team's last player's percepts are
+    drawn beside the truth.
     """
     from robotsoccer.replay.match_recording import MatchRecorder  # rerun loads late
     from robotsoccer.replay.rcg import RcgWriter
@@ -371,7 +372,7 @@ def _play_match_recorded(
     folder.mkdir(parents=True, exist_ok=True)
     stem = f"match_{index:04d}"
     teams = match.team_names()
-    selected = arena.players[0]
+    selected = arena.players[len(arena.players) // 2 - 1]  # the left team's last: a forward
     every = max(1, round(1.0 / 30.0 / facts.dt_s))  # draw at <= 30 Hz: enough to watch
     recorder = MatchRecorder(
         folder / f"{stem}.rrd.part",
