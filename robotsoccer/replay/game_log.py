@@ -45,7 +45,9 @@ def pitch_of(params: dict[str, str]) -> Pitch:
 
 
 def rrd_from_rcg(path: Path, out: Path | None = None) -> Path:
-    """Write the recording of game log `path` (default: beside it, ``.rrd``) and return it.
+    """Write the recording of game log `path` (default: beside it, ``<name>.rcg.rrd``).
+
+    The default name keeps a match's own ``.rrd`` (written beside its ``.rcg``) untouched.
 
     Raises:
         ValueError: The game log is malformed (the message names the file and line).
@@ -58,7 +60,7 @@ def rrd_from_rcg(path: Path, out: Path | None = None) -> Path:
         raise ValueError(f"{path}: the game log has no show line")
     players: list[PlayerRef] = sorted({ref for f in frames for ref in f.truth.players})
     dt_s = float(game.server_params.get("simulator_step", "100")) / 1000.0
-    target = out or path.with_suffix(".rrd")
+    target = out or path.with_name(path.name + ".rrd")
     with MatchRecorder(
         target,
         pitch=pitch_of(game.server_params),

@@ -390,11 +390,20 @@ def _play_match_recorded(
     )
     server_pitch = math.isclose(facts.unit_m, 1.0)
     rcg = folder / f"{stem}.rcg"
-    writer = (
-        RcgWriter(rcg, players=arena.players, teams=teams, dt_s=facts.dt_s)
-        if server_pitch
-        else None
-    )
+    writer = None
+    if server_pitch:
+        pitch = facts.pitch
+        params: dict[str, float | int | str] = {
+            "goal_width": pitch.goal_width_m,
+            "ball_size": pitch.ball_radius_m,
+            "player_size": pitch.player_radius_m,
+            "ball_decay": facts.ball.decay_per_tick,
+        }
+        if facts.kick is not None:
+            params["kickable_margin"] = facts.kick.reach_m - facts.touch_distance_m
+        writer = RcgWriter(
+            rcg, players=arena.players, teams=teams, dt_s=facts.dt_s, server_params=params
+        )
 
     def observe(a: Arena, percepts: list[Percept]) -> None:
         frame = match.game_frame(a)
