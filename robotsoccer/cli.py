@@ -600,6 +600,9 @@ def cmd_match(args: argparse.Namespace) -> int:
     if args.games > 1:
         check_spec(base)
         prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
+        config = {"command": "robotsoccer match", "games": args.games, "field": args.field,
+                  "preset": preset, "seed": args.seed, "options": options}  # fmt: skip
+        (out / "config.json").write_text(json.dumps(config, indent=2) + "\n")
         start = time.perf_counter()
         try:
             games = run_series(
