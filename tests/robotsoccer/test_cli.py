@@ -75,3 +75,38 @@ def test_demo_with_record_writes_a_recording_that_replays(tmp_path, monkeypatch,
     assert len(files) == 1
     assert main(["replay", str(files[0])]) == 0
     assert main(["replay", str(tmp_path / "absent.rrd")]) == 2
+
+
+def test_match_plays_one_game_and_prints_the_score(tmp_path, capsys) -> None:
+    out = tmp_path / "m"
+    args = ["match", "--field", "soccer_server", "--left", "baseline", "--right", "baseline"]
+    code = main([*args, "--half-time", "1", "--out", str(out), "--quiet"])
+    assert code == 0
+    text = capsys.readouterr().out
+    assert "baseline" in text and "goals_l" in text
+    assert (out / "results.csv").exists()
+
+
+def test_a_series_without_trained_layers_says_how_to_make_them(tmp_path, capsys) -> None:
+    args = ["match", "--games", "2", "--models", str(tmp_path), "--out", str(tmp_path / "s")]
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "no trained layers" in err[0] and "--net" in err[0]
+
+
+def test_a_series_reports_wins_draws_and_losses(tmp_path, capsys) -> None:
+    from tests.robotsoccer.drills.test_passing import _tree_file
+    from tests.robotsoccer.skills.test_intercept import net_file
+
+    net = net_file(tmp_path / "net.npz", preset="soccer_server_1996")
+    tree = _tree_file(tmp_path, "soccer_server")
+    out = tmp_path / "s"
+    args = ["match", "--field", "soccer_server", "--games", "3", "--half-time", "1"]
+    args += ["--net", str(net), "--tree", str(tree), "--workers", "1", "--out", str(out)]
+    assert main([*args, "--quiet"]) == 0
+    report = (out / "report.md").read_text()
+    rows = [
+        line for line in report.splitlines() if line.startswith(("| wins", "| draws", "| loss"))
+    ]
+    assert sum(int(row.split("|")[2]) for row in rows) == 3
+    assert main([*args, "--quiet", "--overwrite"]) == 0  # a series folder is a run folder
