@@ -273,6 +273,23 @@ def build_parser() -> argparse.ArgumentParser:
     match.add_argument("--quiet", action="store_true", help="no progress")
     _run_options(match)
 
+    setplay = command(
+        "setplay", "the set play of Figure 15 on both field models: layered and baseline minds"
+    )
+    setplay.add_argument(
+        "--plays", type=_positive_int, default=1000, help="plays per field model and condition"
+    )
+    setplay.add_argument(
+        "--models",
+        type=Path,
+        default=None,
+        help="run folder of reproduce/transfer with models/<field>/net_750.npz and "
+        "pass_tree.json (default: runs/transfer-seed<S>); without them only the baseline runs",
+    )
+    setplay.add_argument("--quick", action="store_true", help="40 plays per condition")
+    setplay.add_argument("--seed", type=_index, default=0, help="experiment seed")
+    _run_options(setplay)
+
     replay = command("replay", "open a recording (.rrd, or a .rcg game log) in the rerun viewer")
     replay.add_argument("file", type=Path, help="a .rrd recording or .rcg game log")
     return parser
@@ -633,6 +650,32 @@ def cmd_match(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_setplay(args: argparse.Namespace) -> int:
+    """The set play on both field models, layered and baseline minds, with its report."""
+    from robotsoccer.experiments.setplay import run_setplay_study
+
+    folder = args.models or Path("runs") / f"transfer-seed{args.seed}"
+    models: Path | None = folder / "models"
+    if not all(
+        (folder / "models" / m / f).exists()
+        for m in PAPER_MODELS
+        for f in ("net_750.npz", "pass_tree.json")
+    ):
+        if args.models is not None:
+            raise UsageError(f"{folder}/models lacks a field's net_750.npz or pass_tree.json")
+        print(f"no trained layers in {folder}/models: the baseline minds only", file=sys.stderr)
+        models = None
+    out = args.out or Path("runs") / f"setplay{'-quick' if args.quick else ''}-seed{args.seed}"
+    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
+    fields = [(m, default_preset(m)) for m in PAPER_MODELS]
+    report = run_setplay_study(
+        out, fields=fields, models=models, plays=args.plays, seed=args.seed,
+        workers=args.workers or default_workers(), quick=args.quick, progress=True,
+    )  # fmt: skip
+    print(f"report: {report}")
+    return 0
+
+
 def cmd_learn(args: argparse.Namespace) -> int:
     """``learn intercept`` / ``learn pass``: one layer on one field model."""
     if args.target == "pass":
@@ -889,6 +932,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "bench": cmd_bench,
     "replay": cmd_replay,
     "match": cmd_match,
+    "setplay": cmd_setplay,
 }
 """Each command's function, by name."""
 

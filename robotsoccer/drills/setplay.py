@@ -5,25 +5,50 @@ attacking the goal at +x. The paper shows the play in a figure without numbers, 
 are ours (:data:`SPOTS`); each player is moved by up to :data:`JITTER_UNITS` in x and y from
 the trial's ``"placement"`` stream and faces the ball:
 
-* the starter (left 1) behind the ball at (-5, 0);
-* two receivers (left 2, 3) ahead on either side, each with a defender beside it;
-* a defender (right 1) in the starter's path;
+* the starter (left 1) behind the ball at (-5, 0), the ball at rest;
+* a defender (right 1) in the starter's path, and two receivers (left 2, 3) ahead on either
+  side, each with a defender (right 2, 3) beside it, a little nearer the goal. The receivers
+  lie within 40° of straight ahead from where the starter stops, so it can see both at once
+  (the server's view cone is 45° each side), and no defender is within layer 1's trigger
+  distance of the ball while the starter asks (they start for the ball when it comes within
+  14 units, §5);
 * the winger (left 4) up the left wing, uncovered, with a defender (right 4) in its path to
-  goal;
-* two last receivers (left 5, 6) near the goal, each with a defender beside it, and a goalie
-  (right 7).
+  goal, far enough that the winger collects and dribbles before it sees it within
+  :data:`BLOCKED_UNITS`;
+* two last receivers (left 5, 6) near the goal, each with a defender (right 5, 6) beside it,
+  and a goalie (right 7) in front of the goal.
 
 **The play** (:mod:`robotsoccer.skills.setplay`): the starter dribbles toward the goal until it
-sees an opponent within :data:`BLOCKED_UNITS` in its path, then passes by the tree to one of its
-two nearest teammates (left 2, 3) after the say/hear exchange of layer 2. The chosen receiver
-intercepts with the layer-1 net and kicks to the winger; the winger collects the ball, dribbles
-the same way and passes by the tree to left 5 or 6; that receiver intercepts and shoots.
-Defenders and goalie are layer 1's interception (the same net), triggered by the ball's
-distance as in the drill of §5.
+sees an opponent within :data:`BLOCKED_UNITS` in its path (the paper's "predetermined
+distance"), stops the ball, turns until both its receivers (left 2, 3) are in view and passes
+by the tree to one of them after the say/hear exchange of layer 2. The chosen receiver
+intercepts with layer 1 and at once kicks to the winger (who calls for the ball from the
+announcement on, so the receiver knows where it is without looking); the winger collects the
+ball with layer 1, dribbles the same way and passes by the tree to left 5 or 6; that receiver
+intercepts and shoots. Defenders and goalie are layer 1's interception (the same behaviour
+and net), triggered by the ball's distance as in the drill of §5.
 
-**The coach.** At every tick the first player within control distance of the ball (kick
-reach, or touching plus a quarter unit without a kick) holds it. An attacker other than the
-last one to hold it completes a pass. The play ends:
+**Speeds.** A dribble kick sends the ball :data:`DRIBBLE_UNITS` in :data:`DRIBBLE_PERIODS`
+sensor periods, but no faster than half the speed a player comes up to the ball at; that
+speed is the one it can stop from, after seeing the ball its sensor latency late, within half
+its kick margin (:func:`stop_speed`; it matters on the robots, whose wheels brake slowly
+and whose camera lags). Passes are layer 1's launch, shots full power.
+
+**Kicks.** Where the players have an aimable kick (the Soccer Server), they kick. Where they
+do not (the 1997 robots pushed the ball), the coach stands in for the kicker, as layer 1 and
+layer 2's drills launch the ball on that field: a ``Kick`` a set-play attacker sends is not
+passed to the robot but carried out by the coach in the same tick, if that player is then
+within kick reach of the ball: the ball's velocity gains the kick's speed (its power times
+:attr:`~robotsoccer.drills.intercept.LaunchPlan.launch_speed_mps` / the plan's power, layer
+1's launch at full power) along the player's heading plus the kick's direction, as the
+server's kick adds to the ball's velocity. The kick reach there is touching plus
+:data:`KICK_MARGIN_UNITS` (the server's ``kickable_margin``, 1 unit). Defenders keep the
+field's own behaviour (robots without a kicker block).
+
+**The coach.** At every tick the player nearest the ball, if within kick reach, holds it. The
+play's passes are completed in order (:data:`STAGES`): the first when a first receiver (left 2
+or 3) holds the ball, the second when the winger then holds it, the third when a last receiver
+(left 5 or 6) then holds it; other attackers touching the ball count no pass. The play ends:
 
 * GOAL: the left team scores;
 * SHOT: a shot was kicked and did not score (the goalie or a defender took it, it went out,
@@ -34,7 +59,7 @@ last one to hold it completes a pass. The play ends:
   times layer 1's arrival time on the field).
 
 **Measures** per play: ``passes`` completed (0–3), ``shot`` and ``goal`` (0 or 1), and the
-first pass's receiver.
+first pass's receiver (0 without a pass).
 """
 
 from __future__ import annotations
@@ -42,14 +67,13 @@ from __future__ import annotations
 import math
 
 from field_models.arena import Arena, FieldFacts
-from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef
+from field_models.protocol import LEFT, RIGHT, Action, Crossing, Kick, Mind, Percept, PlayerRef
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import GoalWatch, Verdict
 from robotsoccer.drills.intercept import LaunchPlan
 from robotsoccer.drills.passing import (
     STOPPED_SPEED_PER_LENGTH,
     LayeredDrill,
-    control_reach,
     load_evaluator,
 )
 from robotsoccer.options import choice, flag
@@ -61,7 +85,7 @@ from robotsoccer.skills.intercept import (
     transfer_distance_factor,
 )
 from robotsoccer.skills.passing import Chooser, PasserMind, ReceiverMind
-from robotsoccer.skills.setplay import CarrierMind, KickPowers, SetPlayReceiverMind
+from robotsoccer.skills.setplay import BallSense, CarrierMind, KickPowers, SetPlayReceiverMind
 
 STARTER = PlayerRef(LEFT, 1)
 FIRST_RECEIVERS = (PlayerRef(LEFT, 2), PlayerRef(LEFT, 3))
@@ -71,32 +95,41 @@ DEFENDERS = tuple(PlayerRef(RIGHT, n) for n in range(1, 8))
 GOALIE = DEFENDERS[-1]
 SPOTS: dict[PlayerRef, tuple[float, float]] = {
     STARTER: (-5.0, 0.0),
-    FIRST_RECEIVERS[0]: (20.0, 12.0),
-    FIRST_RECEIVERS[1]: (20.0, -12.0),
-    WINGER: (28.0, 22.0),
-    LAST_RECEIVERS[0]: (42.0, 12.0),
-    LAST_RECEIVERS[1]: (44.0, 2.0),
-    DEFENDERS[0]: (28.0, 0.0),
-    DEFENDERS[1]: (25.0, 6.0),
-    DEFENDERS[2]: (25.0, -6.0),
-    DEFENDERS[3]: (38.0, 16.0),
-    DEFENDERS[4]: (46.0, 8.0),
-    DEFENDERS[5]: (47.0, -3.0),
+    FIRST_RECEIVERS[0]: (22.0, 11.0),
+    FIRST_RECEIVERS[1]: (22.0, -11.0),
+    WINGER: (32.0, 25.0),
+    LAST_RECEIVERS[0]: (43.0, 15.0),
+    LAST_RECEIVERS[1]: (41.0, 3.0),
+    DEFENDERS[0]: (29.0, 0.0),
+    DEFENDERS[1]: (27.0, 6.0),
+    DEFENDERS[2]: (27.0, -6.0),
+    DEFENDERS[3]: (46.0, 11.0),
+    DEFENDERS[4]: (47.0, 18.0),
+    DEFENDERS[5]: (45.0, -1.0),
     GOALIE: (50.5, 0.0),
 }
 """Where each player stands before its jitter [units] (module docstring; ours)."""
 PLAYERS = tuple(SPOTS)
+STAGES = (FIRST_RECEIVERS, (WINGER,), LAST_RECEIVERS)
+"""Who completes the play's first, second and third pass."""
 JITTER_UNITS = 2.0
 BALL_AHEAD_UNITS = 1.0
 """The ball starts this far beyond the starter's touching distance, toward +x."""
 BLOCKED_UNITS = 22.0
-"""An opponent this close in the path ends a dribble (the paper's "predetermined distance")."""
+"""An opponent this close in the path ends a dribble (the paper's "predetermined distance");
+more than layer 1's trigger distance (14 units), so the one in the path does not start for the
+ball while the carrier asks."""
 DRIBBLE_UNITS = 4.0
-DRIBBLE_TIME_S = 2.0
-"""A dribble kick sends the ball this far in this time (on a field with an aimable kick)."""
+DRIBBLE_PERIODS = 8.0
+"""A dribble kick sends the ball this far in this many sensor periods (2 s on the server)."""
+KICK_MARGIN_UNITS = 1.0
+"""Kick reach beyond touching where the coach kicks for the players (the server's margin)."""
 TIME_LIMIT_ARRIVALS = 40.0
+RECALL_PERIODS = 2
+"""A ball the sensor misses is taken to be where it was last seen for this many periods."""
 SAFE_REACH_SHARE = 0.85
-"""The players kick when the ball seems within this share of their reach (sensor noise)."""
+"""The players kick when the ball seems within this share of their kick margin beyond
+touching (sensor noise)."""
 
 
 class SetPlayDrill(LayeredDrill):
@@ -150,8 +183,9 @@ class SetPlayDrill(LayeredDrill):
         """Place the ball and the players (module docstring)."""
         facts = arena.facts
         self._check_origins(facts)
+        plan = self.plan(facts)
         if self._max_time_s is None:
-            self.max_time_s = TIME_LIMIT_ARRIVALS * self.plan(facts).arrival_time_s
+            self.max_time_s = TIME_LIMIT_ARRIVALS * plan.arrival_time_s
         unit = facts.unit_m
         pitch = facts.pitch
         rng = rngs["placement"]
@@ -169,7 +203,7 @@ class SetPlayDrill(LayeredDrill):
         for ref, (x, y) in spots.items():
             heading = 0.0 if ref == STARTER else math.atan2(sy - y, bx - x)
             arena.place_player(ref, x, y, heading)
-        self._judge = _SetPlayJudge(arena, (bx, sy))
+        self._judge = _SetPlayJudge(arena, (bx, sy), coach_kicks(facts, plan))
 
     def minds(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
         """Every player's mind (module docstring)."""
@@ -177,9 +211,8 @@ class SetPlayDrill(LayeredDrill):
         plan = self.plan(facts)
         rng = rngs["policy"]
         tree = load_evaluator(self.model)[0] if self.model else None
-        # Minds kick inside a safe share of the reach: a sensor's distance may read short.
-        reach = SAFE_REACH_SHARE * control_reach(facts)
-        powers = _powers(facts, plan)
+        sense = ball_sense(facts, plan)
+        powers = kick_powers(facts, plan)
         factor = 1.0
         if self.transfer and self.net and self.interceptor is Behaviour.NET:
             factor = transfer_distance_factor(self.net, facts)
@@ -200,7 +233,7 @@ class SetPlayDrill(LayeredDrill):
                 unit_m=facts.unit_m,
                 sensor_period_s=facts.sensor_period_s,
                 dt_s=facts.dt_s,
-                kick_power=powers.passing,
+                kick_power=None,  # the carrier kicks the pass itself (skills module docstring)
                 tree=tree,
             )
 
@@ -221,20 +254,22 @@ class SetPlayDrill(LayeredDrill):
             return CarrierMind(
                 passer(receivers),
                 collect,
+                sense=sense,
                 attack_right=True,
-                reach_m=reach,
                 blocked_distance_m=blocked,
                 powers=powers,
+                calls_after=() if collect is None else tuple(r.number for r in FIRST_RECEIVERS),
             )
 
         def kicker(ref: PlayerRef, slot: int, to: int | None) -> SetPlayReceiverMind:
             return SetPlayReceiverMind(
                 receiver(ref, slot),
                 to,
+                sense=sense,
                 attack_right=True,
-                reach_m=reach,
                 powers=powers,
                 armed=to is not None,
+                goal_half_width_m=0.5 * facts.pitch.goal_width_m,
             )
 
         minds: dict[PlayerRef, Mind] = {
@@ -249,7 +284,10 @@ class SetPlayDrill(LayeredDrill):
         for ref in DEFENDERS:
             minds[ref] = interceptor(kickable)
         assert self._judge is not None
-        self._judge.minds = minds
+        self._judge.minds = dict(minds)
+        if self._judge.kicks is not None:
+            for ref in (STARTER, WINGER, *FIRST_RECEIVERS, *LAST_RECEIVERS):
+                minds[ref] = _CoachKickRelay(minds[ref], ref, self._judge.kicks)
         return minds
 
     def judge(self, arena: Arena) -> Verdict | None:
@@ -282,31 +320,147 @@ class SetPlayDrill(LayeredDrill):
         }
 
 
-def _powers(facts: FieldFacts, plan: LaunchPlan) -> KickPowers:
-    """Dribble, pass and shot powers: layer 1's launch for passes and shots."""
+def kick_reach(facts: FieldFacts) -> float:
+    """Kick reach: the field's kick, else touching plus :data:`KICK_MARGIN_UNITS` [m]."""
+    if facts.kick is not None:
+        return facts.kick.reach_m
+    return facts.touch_distance_m + KICK_MARGIN_UNITS * facts.unit_m
+
+
+def coach_kicks(facts: FieldFacts, plan: LaunchPlan) -> CoachKicks | None:
+    """The coach's kicks for the attackers where they have no aimable kick; else None."""
+    if facts.kick is not None and facts.kick.aimable:
+        return None
+    return CoachKicks(plan.launch_speed_mps / plan.kick_power, facts.ball_max_speed_mps)
+
+
+def ball_sense(facts: FieldFacts, plan: LaunchPlan) -> BallSense:
+    """What the attackers know of the ball and their kick (the coach's kick where they lack one)."""
     kick = facts.kick
-    full = 100.0
-    if kick is None or not kick.aimable:
-        return KickPowers(dribble=40.0, passing=full, shot=full)
-    speed = facts.ball.speed_to_cover(DRIBBLE_UNITS * facts.unit_m, DRIBBLE_TIME_S)
-    power = kick.power_for(speed) if speed is not None else None
-    if power is None:
+    if kick is not None and kick.aimable:
+        per_power = kick.speed_per_power_mps
+    else:
+        per_power = plan.launch_speed_mps / plan.kick_power
+    touch = facts.touch_distance_m
+    reach = touch + SAFE_REACH_SHARE * (kick_reach(facts) - touch)
+    period_ticks = round(facts.sensor_period_s / facts.dt_s)
+    # A server command runs in the next cycle; a robot's turn runs over about a camera
+    # period after the link (the host's timed turn, §2), so it shows a period later.
+    settle = 1 if facts.sensor_latency_s is None else 1 + period_ticks
+    margin = kick_reach(facts) - touch
+    top = facts.player_top_speed_mps
+    return BallSense(
+        facts.ball,
+        per_power,
+        100.0,
+        touch,
+        reach,
+        facts.sensor_period_s,
+        top_speed_mps=top,
+        approach_power=100.0 * min(1.0, stop_speed(facts, margin) / top),
+        turn_settle_ticks=settle,
+        recall_ticks=RECALL_PERIODS * period_ticks,
+    )
+
+
+def stop_speed(facts: FieldFacts, distance_m: float) -> float:
+    """The speed [m/s] a player can stop from within half of `distance_m`.
+
+    It sees the ball the sensor latency late and then brakes at its acceleration a: the
+    speed v with v·latency + v²/(2a) = distance / 2.
+    """
+    a, lag = facts.player_accel_mps2, facts.sensor_latency_s or 0.0
+    return a * (math.sqrt(lag * lag + distance_m / a) - lag)
+
+
+def kick_powers(facts: FieldFacts, plan: LaunchPlan) -> KickPowers:
+    """Dribble, pass and shot powers: layer 1's launch for passes, full power for shots.
+
+    Raises:
+        ValueError: No kick sends the ball :data:`DRIBBLE_UNITS` in the dribble's time.
+    """
+    sense = ball_sense(facts, plan)
+    time_s = DRIBBLE_PERIODS * facts.sensor_period_s
+    speed = facts.ball.speed_to_cover(DRIBBLE_UNITS * facts.unit_m, time_s)
+    if speed is None or speed > sense.speed(sense.max_power):
         raise ValueError(f"{facts.preset}: no kick sends the ball {DRIBBLE_UNITS:g} units")
-    return KickPowers(dribble=power, passing=plan.kick_power, shot=full)
+    # A carrier must catch up with its ball at its last approach speed, from which it can stop
+    # beside it (the robots' slow wheels): half that speed at most.
+    speed = min(speed, 0.5 * stop_speed(facts, sense.reach_m - sense.touch_m))
+    return KickPowers(
+        dribble=speed / sense.speed_per_power_mps, passing=plan.kick_power, shot=sense.max_power
+    )
+
+
+class CoachKicks:
+    """Kicks the coach carries out for players without an aimable kick (module docstring).
+
+    Args:
+        speed_per_power_mps: Ball speed a kick adds per unit of power [m/s].
+        max_speed_mps: The ball's top speed [m/s].
+    """
+
+    def __init__(self, speed_per_power_mps: float, max_speed_mps: float) -> None:
+        self.speed_per_power_mps = speed_per_power_mps
+        self.max_speed_mps = max_speed_mps
+        self.pending: list[tuple[PlayerRef, Kick]] = []
+
+    def apply(self, arena: Arena, reach_m: float) -> None:
+        """Carry out this tick's kicks of players within `reach_m` of the ball."""
+        for ref, kick in self.pending:
+            x, y, _, vx, vy = arena.ball_state()
+            p = arena.player_state(ref)
+            if (p.x - x) ** 2 + (p.y - y) ** 2 > reach_m * reach_m:
+                continue  # a kick that misses the ball, as on the server
+            speed = max(0.0, min(100.0, kick.power)) * self.speed_per_power_mps
+            direction = p.heading + kick.direction_rad
+            vx += speed * math.cos(direction)
+            vy += speed * math.sin(direction)
+            top = math.hypot(vx, vy)
+            if top > self.max_speed_mps:
+                vx, vy = vx * self.max_speed_mps / top, vy * self.max_speed_mps / top
+            arena.place_ball(x, y, vx, vy)
+        self.pending.clear()
+
+
+class _CoachKickRelay:
+    """A mind whose kicks go to the coach (:class:`CoachKicks`) instead of its robot."""
+
+    def __init__(self, mind: Mind, ref: PlayerRef, kicks: CoachKicks) -> None:
+        self.mind = mind
+        self.ref = ref
+        self.kicks = kicks
+
+    @property
+    def done(self) -> bool:
+        """The wrapped mind's ``done``."""
+        return bool(getattr(self.mind, "done", False))
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """The mind's actions without its kicks, which are handed to the coach."""
+        actions = self.mind.act(percept)
+        kept: list[Action] = []
+        for action in actions:
+            if isinstance(action, Kick):
+                self.kicks.pending.append((self.ref, action))
+            else:
+                kept.append(action)
+        return tuple(kept)
 
 
 class _SetPlayJudge:
     """The coach's rule for one play (module docstring)."""
 
-    def __init__(self, arena: Arena, ball: tuple[float, float]) -> None:
+    def __init__(self, arena: Arena, ball: tuple[float, float], kicks: CoachKicks | None) -> None:
         facts = arena.facts
         pitch = facts.pitch
-        reach = control_reach(facts)
-        self.reach2 = reach * reach
+        self.reach = kick_reach(facts)
+        self.reach2 = self.reach * self.reach
         self.half_length = pitch.half_length_m
         self.half_width = pitch.half_width_m
         self.eps2 = (STOPPED_SPEED_PER_LENGTH * pitch.length_m) ** 2
         self.goals = GoalWatch(arena, ball)
+        self.kicks = kicks
         self.minds: dict[PlayerRef, Mind] = {}
         self.holder: PlayerRef | None = STARTER
         self.passes = 0
@@ -323,6 +477,8 @@ class _SetPlayJudge:
 
     def judge(self, arena: Arena) -> Verdict | None:
         """The verdict of this tick, or None."""
+        if self.kicks is not None and self.kicks.pending:
+            self.kicks.apply(arena, self.reach)
         x, y, _, vx, vy = arena.ball_state()
         crossing = self.goals.step(arena, x, y)
         if self.shot_tick is None:
@@ -335,8 +491,8 @@ class _SetPlayJudge:
             if taken.team == RIGHT:
                 label = "SHOT" if self.shot_tick is not None else "INTERCEPTED"
                 return Verdict(label, f"{taken} took the ball after {self.passes} passes")
-            if self.holder is not None and self.holder.team == LEFT:
-                self.passes += 1
+            if self.passes < len(STAGES) and taken in STAGES[self.passes]:
+                self.passes += 1  # the play's next pass (module docstring)
                 if self.passes == 1:
                     self.first_receiver = taken.number
             self.holder = taken
@@ -348,9 +504,11 @@ class _SetPlayJudge:
         return None
 
     def _holder(self, arena: Arena, x: float, y: float) -> PlayerRef | None:
-        """The first player (in :data:`PLAYERS` order) within control distance, or None."""
+        """The player nearest the ball among those within kick reach, or None."""
+        best, best_d2 = None, self.reach2
         for ref in PLAYERS:
             p = arena.player_state(ref)
-            if (p.x - x) ** 2 + (p.y - y) ** 2 <= self.reach2:
-                return ref
-        return None
+            d2 = (p.x - x) ** 2 + (p.y - y) ** 2
+            if d2 <= best_d2:
+                best, best_d2 = ref, d2
+        return best

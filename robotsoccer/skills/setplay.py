@@ -1,60 +1,128 @@
 """Skills built on the two learned layers, and the minds of the set play (paper §7, Figure 15).
 
 Every mind reads percepts only and acts with the field model's actions, so the same code runs on
-the Soccer Server model and on the robots (whose host turns a ``Kick`` into a push when the
-robot has no kicker, :mod:`field_models.robot_physics.host`).
+the Soccer Server model and on the robots. (On a field whose players have no aimable kick, the
+set-play drill's coach carries out the ``Kick`` a mind sends, as layers 1 and 2's drills
+launch the ball there: :mod:`robotsoccer.drills.setplay`.)
+
+**Ball sense.** A kick *adds* to the ball's velocity (the Soccer Server's kick, §2.3 of
+``specs/soccer_server.md``), so a player that kicks a rolling ball where it wants it must know
+how the ball is rolling. The 1996 server reports no distance or direction changes, so each
+player keeps a :class:`BallTracker`: a dead-reckoned estimate of the ball's velocity in its
+own body frame, from what it knows happened to the ball — at rest at the start of the play;
+a teammate's pass announced toward it (the ball then runs along the line from where it sees
+it, at the field's pass speed, slowing by the field's ball law); its own kicks; its own turns
+(which rotate its frame); the ball arriving at its body (stopped). Every kick the minds make
+is then *compensated*: the kick that turns the estimated velocity into the wanted one
+(:meth:`BallTracker.kick_to`), within the kick's top power. A kick whose path would run back
+through the kicker's own body (a ball stopped in front, a target behind) is preceded by a tap
+that moves the ball aside (:meth:`BallTracker.aim`): the server would bounce it off the body.
+
+**Percepts that lag** (the robots' camera, §2: 50 ms). Each mind views its percept through a
+:class:`Heading` (the turns it commanded that the percept cannot show yet; a ball the camera
+missed for a frame or two is recalled where it was) and its tracker (the ball moved on by its
+estimated velocity over the latency, :meth:`BallTracker.project`), and does not kick again
+until a percept shows its last kick (:meth:`BallTracker.fresh`). It comes up to the ball
+slowly enough to stop beside it, and stands with a dash of no power (:data:`STAND`): a robot
+would otherwise drive on into the ball. On the Soccer Server (no latency) these change nothing.
 
 Skills, each a small function of one percept:
 
 * :func:`chase` — face the ball and run at it (the approach of a dribble);
+* :func:`approach` — the same, slowing down near the ball so as not to run into it;
 * :func:`dribble` — with the ball within reach, kick it a short way toward a direction; else
   chase it;
 * :func:`shoot` — kick at full power toward the opponents' goal (the landmark ``"g r"`` for the
   left team); turn to look for it while it is out of view;
-* :func:`kick_to` — kick toward a seen teammate at pass power (the receiver's kick to the
-  winger).
+* :func:`kick_to` — kick toward a seen teammate at pass power;
+* :func:`receive` — get to a ball passed to the player: layer 1's interception, then stand in
+  its path and let it come (:func:`arrives`);
+* :func:`shot_direction` — where in the goal mouth to shoot, away from the goalie.
 
 Minds of the play (the drill :mod:`robotsoccer.drills.setplay` places them):
 
 * :class:`CarrierMind` — the player that starts with the ball, and the winger. It dribbles
   toward the goal until it sees an opponent within :attr:`CarrierMind.blocked_distance_m` in
-  its path, then hands over to layer 2's :class:`~robotsoccer.skills.passing.PasserMind`
-  (intention, the two nearest teammates' reports, the tree's choice, the announced kick). The
-  winger first waits for the cue :data:`WINGER_CUE` and intercepts the ball with layer 1's net.
+  its path (Figure 15's "predetermined distance"). Then, as §7 says, it *stops dribbling and
+  considers its options*: it stops the ball (a kick against its motion), turns until it sees
+  both its receivers (they may be outside its 90° view cone, §4), and only then hands over to
+  layer 2's :class:`~robotsoccer.skills.passing.PasserMind` (intention, the two nearest
+  teammates' reports, the tree's choice, the announcement); standing by a ball at rest, it
+  cannot lose it while they talk (if it rolls off all the same, it follows and stops it
+  again). It kicks the pass itself, compensated. The winger first
+  waits, calling :data:`WINGER_CALL` from the first pass's announcement on, and collects the
+  pass with layer 1's interception once it hears the cue :data:`WINGER_CUE`.
 * :class:`SetPlayReceiverMind` — layer 2's :class:`~robotsoccer.skills.passing.ReceiverMind`
-  (face the ball, report, intercept with layer 1's net once chosen); once it holds the ball it
-  kicks on: to the winger (saying the cue), or at the goal (the last receivers shoot). The last
-  receivers listen only from the cue on, so the first pass's conversation is not theirs.
+  (face the ball, report, intercept with layer 1 once chosen); once the ball is in reach it
+  kicks on at once, as the paper's receiver does: a first receiver to the winger (saying the
+  cue), toward the winger as seen or else as last heard calling; a last receiver at the goal,
+  as seen or else where it saw the goal before the play reached it (it looks for the goal
+  while it waits, then turns with the ball to see it before shooting), on the side of the
+  goal mouth away from the goalie (:func:`shot_direction`). The last receivers
+  listen only from the winger's call (or cue) on, so the first pass's conversation is not
+  theirs.
+
+Headings are reckoned from the player's own turns (as the interception defender does,
+:mod:`robotsoccer.skills.intercept`); angles are radians, left positive; distances metres.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Iterable
+from dataclasses import dataclass, replace
 
-from field_models.protocol import Action, Dash, Kick, Percept, Say, SeenPlayer, Turn, wrap_angle
+from field_models.arena import BallLaw
+from field_models.protocol import (
+    Action,
+    Dash,
+    Kick,
+    Percept,
+    Say,
+    SeenBall,
+    SeenPlayer,
+    Turn,
+    wrap_angle,
+)
 from robotsoccer.skills.intercept import DefenderMind
-from robotsoccer.skills.passing import PasserMind, ReceiverMind
+from robotsoccer.skills.passing import PasserMind, ReceiverMind, announced_number
 
 WINGER_CUE = "wing"
 """What the first receiver says as it kicks to the winger (the winger and last receivers wake)."""
+WINGER_CALL = "open"
+"""What the winger says at each percept from the first pass's announcement until the cue: the
+receiver holding the ball hears from which direction (the server's hear carries it, §2.6)."""
+STAND: tuple[Action, ...] = (Dash(0.0),)
+"""Stand still: a dash of no power (on the robots the host stops the wheels; a robot would
+otherwise keep driving on its last dash for a while, and push the ball)."""
 SEARCH_TURN_RAD = math.radians(60.0)
 """A player looking for the ball or the goal turns this far per decision."""
 FACING_RAD = math.radians(10.0)
 """Within this of the heading, a player runs instead of turning."""
 PATH_HALF_ANGLE_RAD = math.radians(30.0)
 """An opponent within this of the direction of play is "in the path" (Figure 15)."""
-KEEP_REACH_SHARE = 0.6
-"""While its pass is being decided, a carrier keeps the ball within this share of its reach."""
-KEEP_DASH_POWER = 60.0
-"""Dash power for following the ball then: slow, so as not to knock it on."""
-GONE_REACHES = 3.0
-"""A ball this many reaches away after the pass decision has been passed (or lost)."""
+VIEW_HALF_ANGLE_RAD = math.radians(40.0)
+"""A carrier turns so that its receivers lie within this of its heading: inside the Soccer
+Server's 45° half view cone (§4), with a margin for their jitter and the quantised directions."""
+LOOK_DECISIONS = 4
+"""A carrier turns at most this many times looking for its receivers, then asks anyway."""
+SLOW_ZONE_REACHES = 2.0
+"""An approaching player slows down from this many kick reaches from the ball."""
+STILL_SHARE = 0.05
+"""A ball slower than this share of the pass speed counts as at rest (no stopping kick)."""
+RECEIVE_PERIODS = 2.0
+"""A receiver stops running when the ball will reach it within this many sensor periods."""
+BLOCK_MARGIN_SHARE = 0.15
+"""A ball seen within touching distance plus this share of the kick margin has met the body."""
+CLEAR_MARGIN_SHARE = 0.3
+"""A kick's path clears the body by touching distance plus this share of the kick margin."""
+SHOT_AIM_SHARE = 0.6
+"""A shot aims this share of the goal's half width off its centre, away from the goalie."""
 
 
 @dataclass(frozen=True)
 class KickPowers:
-    """Kick powers of one field (server units; the robots' host maps them to pushes).
+    """Kick powers of one field (server units; a coach kick on a field without an aimable kick).
 
     Attributes:
         dribble: A short kick ahead, a few units.
@@ -65,6 +133,309 @@ class KickPowers:
     dribble: float
     passing: float
     shot: float
+
+
+@dataclass(frozen=True, slots=True)
+class BallSense:
+    """What a player knows of its field's ball and kick (the field's facts; no truth).
+
+    Attributes:
+        law: How a free ball slows down.
+        speed_per_power_mps: Ball speed a kick of one unit of power adds [m/s].
+        max_power: The strongest kick [server units].
+        touch_m: Centre distance at which the ball touches the player's body [m].
+        reach_m: The distance within which the mind kicks [m] (inside the kick's reach).
+        sensor_period_s: Time between two percepts [s].
+        turn_settle_ticks: A turn (or a kick) shows in percepts observed this many ticks after
+            it was commanded (:class:`Heading`, :meth:`BallTracker.fresh`).
+        top_speed_mps: The player's own top speed [m/s] (to keep pace with a rolling ball).
+        approach_power: The dash power a player comes up to the ball with at the last, slow
+            enough to stop within its kick reach.
+        recall_ticks: A ball the sensor missed is recalled this long after its last sighting.
+    """
+
+    law: BallLaw
+    speed_per_power_mps: float
+    max_power: float
+    touch_m: float
+    reach_m: float
+    sensor_period_s: float
+    top_speed_mps: float = math.inf
+    approach_power: float = 40.0
+    turn_settle_ticks: int = 1
+    recall_ticks: int = 0
+
+    def heading(self) -> Heading:
+        """A fresh heading reckoner with this field's settle and recall times."""
+        return Heading(self.turn_settle_ticks, self.recall_ticks)
+
+    def speed(self, power: float) -> float:
+        """Ball speed [m/s] a kick of `power` adds."""
+        return power * self.speed_per_power_mps
+
+
+Vector = tuple[float, float]
+
+
+class BallTracker:
+    """The ball's velocity as one player reckons it, in its body frame (module docstring).
+
+    Args:
+        sense: The field's ball and kick.
+
+    Attributes:
+        known: Whether the estimate stands on something (else it is taken as at rest).
+    """
+
+    def __init__(self, sense: BallSense) -> None:
+        self.sense = sense
+        self.vx = 0.0
+        self.vy = 0.0
+        self.known = False
+        self._tick: int | None = None
+        self.kicked_tick = -1
+
+    def fresh(self, percept: Percept) -> bool:
+        """Whether `percept` was sampled after the player's last kick showed (its settle time).
+
+        On a field with sensor latency (the robots' camera) a percept may show the ball as it
+        lay before the kick: the player neither kicks again on it nor takes the ball for
+        stopped at its body.
+        """
+        return percept.observed_tick >= self.kicked_tick + self.sense.turn_settle_ticks
+
+    def project(self, percept: Percept) -> Percept:
+        """`percept` with its ball moved on to where it is now, by the estimated velocity.
+
+        A percept reaches the player its sensor latency after it was sampled (the robots'
+        camera: 50 ms, in which a pass runs 2 units); the player's own motion in that time is
+        not reckoned.
+        """
+        ball = percept.ball
+        lag = (percept.tick - percept.observed_tick) * self.sense.law.dt_s
+        if ball is None or lag <= 0.0 or not self.known:
+            return percept
+        self._advance(percept.tick)
+        x = ball.distance_m * math.cos(ball.angle_rad) + self.vx * lag
+        y = ball.distance_m * math.sin(ball.angle_rad) + self.vy * lag
+        return replace(percept, ball=SeenBall(math.hypot(x, y), math.atan2(y, x)))
+
+    def rest(self, tick: int) -> None:
+        """The ball is at rest at `tick` (the start of a set play)."""
+        self.vx = self.vy = 0.0
+        self.known, self._tick = True, tick
+
+    def launched(self, percept: Percept, speed_mps: float, kick_tick: int) -> None:
+        """A teammate kicked the ball toward this player at `kick_tick` with `speed_mps`.
+
+        The ball runs from where the player sees it toward the player (the passer aimed at it).
+        """
+        ball = percept.ball
+        if ball is None:
+            return
+        heading = ball.angle_rad + math.pi
+        self.vx, self.vy = speed_mps * math.cos(heading), speed_mps * math.sin(heading)
+        self.known, self._tick = True, kick_tick
+        self._advance(percept.tick)
+
+    def velocity(self, percept: Percept) -> Vector:
+        """The estimate at this percept [m/s, body frame]; a ball at the body has stopped."""
+        self._advance(percept.tick)
+        ball = percept.ball
+        if ball is not None and self._at_body(ball.distance_m) and self.fresh(percept):
+            self.vx = self.vy = 0.0  # it met the body (a block, or the player ran into it)
+        return self.vx, self.vy
+
+    def note(self, actions: Iterable[Action], tick: int) -> None:
+        """Account for the actions the player sends at `tick`: kicks add, turns rotate."""
+        for action in actions:
+            if isinstance(action, Kick):
+                self.kicked_tick = tick
+                speed = self.sense.speed(action.power)
+                self.vx += speed * math.cos(action.direction_rad)
+                self.vy += speed * math.sin(action.direction_rad)
+            elif isinstance(action, Turn):
+                cos, sin = math.cos(-action.angle_rad), math.sin(-action.angle_rad)
+                self.vx, self.vy = cos * self.vx - sin * self.vy, sin * self.vx + cos * self.vy
+
+    def aim(
+        self, percept: Percept, speed_mps: float, direction_rad: float
+    ) -> tuple[Kick | None, bool]:
+        """The kick toward `direction_rad` at `speed_mps`, and whether it is that kick.
+
+        A ball kicked from where it lies would run through the player's own body when the
+        direction points back past it (the server then bounces it off the body, §4). The
+        player then first taps the ball aside, out of that path, and kicks at its next
+        percept: (tap, False).
+        """
+        if not self.fresh(percept):
+            return None, False  # the last kick does not show yet: wait for a percept that does
+        ball = percept.ball
+        if ball is not None:
+            side = self._blocking_side(ball.distance_m, ball.angle_rad, direction_rad)
+            if side is not None:
+                return self._tap(percept, side, direction_rad), False
+        return self.kick_to(percept, speed_mps, direction_rad), True
+
+    def _blocking_side(
+        self, distance_m: float, angle_rad: float, direction_rad: float
+    ) -> float | None:
+        """The ball's lateral offset from a path through the body [m], or None if it is clear."""
+        bx, by = distance_m * math.cos(angle_rad), distance_m * math.sin(angle_rad)
+        ux, uy = math.cos(direction_rad), math.sin(direction_rad)
+        if bx * ux + by * uy >= 0.0:
+            return None  # it runs away from the body
+        lateral = -bx * uy + by * ux
+        return lateral if abs(lateral) < self._clearance() else None
+
+    def _clearance(self) -> float:
+        sense = self.sense
+        return sense.touch_m + CLEAR_MARGIN_SHARE * (sense.reach_m - sense.touch_m)
+
+    def _tap(self, percept: Percept, lateral: float, direction_rad: float) -> Kick | None:
+        """Move the ball aside, clear of the path through the body, by the next percept."""
+        sign = 1.0 if lateral >= 0.0 else -1.0
+        shift = 1.5 * self._clearance() - abs(lateral)
+        speed = shift / self.sense.sensor_period_s
+        nx, ny = -math.sin(direction_rad) * sign, math.cos(direction_rad) * sign
+        return self.kick_velocity(percept, speed * nx, speed * ny)
+
+    def kick_velocity(self, percept: Percept, wx: float, wy: float) -> Kick | None:
+        """The kick that gives the ball the velocity (wx, wy) [m/s, body frame], within power."""
+        speed = math.hypot(wx, wy)
+        if speed <= 0.0:
+            return self.stop(percept, 0.0)
+        return self.kick_to(percept, speed, math.atan2(wy, wx))
+
+    def kick_to(self, percept: Percept, speed_mps: float, direction_rad: float) -> Kick | None:
+        """The kick that sends the ball at `speed_mps` toward `direction_rad` (relative).
+
+        Where that needs more than the top power, the fastest ball along the direction that
+        the top power can give; where no kick can send it that way, the kick that stops it.
+        None: nothing to kick (the ball already moves so).
+        """
+        vx, vy = self.velocity(percept)
+        ux, uy = math.cos(direction_rad), math.sin(direction_rad)
+        dx, dy = speed_mps * ux - vx, speed_mps * uy - vy
+        top = self.sense.speed(self.sense.max_power)
+        if math.hypot(dx, dy) > top:
+            along = vx * ux + vy * uy
+            disc = along * along - (vx * vx + vy * vy) + top * top
+            if disc < 0.0 or along + math.sqrt(disc) <= 0.0:
+                return self._stop_kick(vx, vy)
+            reach = along + math.sqrt(disc)
+            dx, dy = reach * ux - vx, reach * uy - vy
+        return self._kick(dx, dy)
+
+    def stop(self, percept: Percept, still_mps: float) -> Kick | None:
+        """The kick against the ball's motion that stops it; None when it is slower than still."""
+        vx, vy = self.velocity(percept)
+        if math.hypot(vx, vy) <= still_mps or not self.fresh(percept):
+            return None
+        return self._stop_kick(vx, vy)
+
+    def _stop_kick(self, vx: float, vy: float) -> Kick | None:
+        top = self.sense.speed(self.sense.max_power)
+        speed = math.hypot(vx, vy)
+        scale = min(1.0, top / speed) if speed > 0.0 else 0.0
+        return self._kick(-vx * scale, -vy * scale)
+
+    def _kick(self, dx: float, dy: float) -> Kick | None:
+        speed = math.hypot(dx, dy)
+        if speed <= 0.0:
+            return None
+        power = min(self.sense.max_power, speed / self.sense.speed_per_power_mps)
+        return Kick(power, math.atan2(dy, dx))
+
+    def _at_body(self, distance_m: float) -> bool:
+        sense = self.sense
+        return distance_m <= sense.touch_m + BLOCK_MARGIN_SHARE * (sense.reach_m - sense.touch_m)
+
+    def _advance(self, tick: int) -> None:
+        """Slow the estimate down by the field's ball law from its tick to `tick`."""
+        if self._tick is None or tick <= self._tick:
+            self._tick = tick if self._tick is None else self._tick
+            return
+        law, elapsed = self.sense.law, (tick - self._tick) * self.sense.law.dt_s
+        self._tick = tick
+        speed = math.hypot(self.vx, self.vy)
+        if speed <= 0.0:
+            return
+        if law.kind == "constant":
+            factor = max(0.0, speed - law.decel_mps2 * elapsed) / speed
+        else:
+            factor = law.decay_per_tick ** (elapsed / law.dt_s)
+        self.vx *= factor
+        self.vy *= factor
+
+
+class Heading:
+    """A player's heading reckoned from its own turns, and bearings remembered in that frame.
+
+    A percept may have been sampled before the player's latest turns took effect (the robots'
+    camera latency, §2): :meth:`view` turns such a percept into the frame the player now
+    reckons it faces, as the interception defender does (:mod:`robotsoccer.skills.intercept`):
+    a turn counts from the first percept observed after the tick it was commanded on.
+    """
+
+    def __init__(self, settle_ticks: int = 1, recall_ticks: int = 0) -> None:
+        self.settle_ticks = settle_ticks
+        self.recall_ticks = recall_ticks
+        self.rad = 0.0
+        self.bearings: dict[str, float] = {}
+        self._turns: list[tuple[int, float]] = []  # (tick commanded, angle), maybe not seen yet
+        self._ball: tuple[int, float, float] | None = None  # (tick, distance, bearing)
+
+    def note(self, actions: Iterable[Action], tick: int) -> None:
+        """Add the turns the player sends at `tick`."""
+        for action in actions:
+            if isinstance(action, Turn):
+                self.rad = wrap_angle(self.rad + action.angle_rad)
+                self._turns.append((tick, action.angle_rad))
+
+    def view(self, percept: Percept) -> Percept:
+        """`percept` in the frame of the turns commanded so far, its ball recalled if missed.
+
+        A turn shows in percepts observed :attr:`settle_ticks` after it was commanded. A ball
+        the sensor missed but that was seen within :attr:`recall_ticks` is put back where it
+        was last seen (a missed camera detection is not a ball gone out of sight).
+        """
+        turns = self._turns
+        while turns and turns[0][0] + self.settle_ticks <= percept.observed_tick:
+            turns.pop(0)
+        unseen = sum(angle for _, angle in turns)
+        view = percept if unseen == 0.0 else rotated(percept, -unseen)
+        ball = view.ball
+        if ball is not None:
+            self._ball = (percept.tick, ball.distance_m, wrap_angle(self.rad + ball.angle_rad))
+            return view
+        last = self._ball
+        if last is None or percept.tick - last[0] > self.recall_ticks:
+            return view
+        return replace(view, ball=SeenBall(last[1], wrap_angle(last[2] - self.rad)))
+
+    def remember(self, name: str, angle_rad: float) -> None:
+        """Something called `name` is seen at `angle_rad` from the heading now."""
+        self.bearings[name] = wrap_angle(self.rad + angle_rad)
+
+    def relative(self, name: str) -> float | None:
+        """Where `name` was last seen, relative to the heading now; None if never seen."""
+        bearing = self.bearings.get(name)
+        return None if bearing is None else wrap_angle(bearing - self.rad)
+
+
+def rotated(percept: Percept, angle_rad: float) -> Percept:
+    """`percept` with every direction turned by `angle_rad` (a turn of the viewer by -angle)."""
+    ball = percept.ball
+    if ball is not None:
+        ball = replace(ball, angle_rad=wrap_angle(ball.angle_rad + angle_rad))
+    players = tuple(
+        replace(s, angle_rad=wrap_angle(s.angle_rad + angle_rad)) for s in percept.players
+    )
+    marks = tuple(
+        replace(m, angle_rad=wrap_angle(m.angle_rad + angle_rad)) for m in percept.landmarks
+    )
+    return replace(percept, ball=ball, players=players, landmarks=marks)
 
 
 def goal_bearing(percept: Percept, attack_right: bool) -> tuple[float, float] | None:
@@ -81,6 +452,22 @@ def chase(percept: Percept, *, dash: float = 100.0) -> tuple[Action, ...]:
     if abs(ball.angle_rad) > FACING_RAD:
         return (Turn(ball.angle_rad),)
     return (Dash(dash),)
+
+
+def approach(percept: Percept, reach_m: float, slow: float = 40.0) -> tuple[Action, ...]:
+    """Chase the ball, slowing down within :data:`SLOW_ZONE_REACHES` reaches of it.
+
+    A player that runs into a rolling ball knocks it away (the server's collisions, the robots'
+    push), so it comes up to the ball gently, at dash power `slow` at the last, and stands
+    where it can kick it.
+    """
+    ball = percept.ball
+    if ball is None or ball.distance_m > SLOW_ZONE_REACHES * reach_m:
+        return chase(percept)
+    if ball.distance_m <= reach_m:
+        return STAND
+    gap = (ball.distance_m - reach_m) / ((SLOW_ZONE_REACHES - 1.0) * reach_m)
+    return chase(percept, dash=max(slow, 100.0 * min(1.0, gap)))
 
 
 def dribble(
@@ -107,6 +494,37 @@ def shoot(percept: Percept, attack_right: bool, reach_m: float, power: float) ->
     return (Kick(power, goal[1]),)
 
 
+def shot_direction(percept: Percept, goal: tuple[float, float], half_width_m: float) -> float:
+    """Where to shoot: inside the goal mouth, on the side away from the opponent nearest it.
+
+    The goal is seen as (distance, angle) of its centre; the aim is :data:`SHOT_AIM_SHARE` of
+    the half width from the centre, taken as across the line of sight (the goalie stands on
+    the centre line, and a shot at it is a shot at the goalie). 0 half width: the centre.
+    """
+    distance, angle = goal
+    if half_width_m <= 0.0 or distance <= 0.0:
+        return angle
+    offset = math.atan2(SHOT_AIM_SHARE * half_width_m, distance)
+    own = percept.player.team
+    keeper = min(
+        (s for s in percept.players if s.team not in (own, None)),
+        key=lambda s: abs(wrap_angle(s.angle_rad - angle)) + abs(s.distance_m - distance),
+        default=None,
+    )
+    if keeper is None:
+        return angle
+    side = -1.0 if wrap_angle(keeper.angle_rad - angle) > 0.0 else 1.0
+    return wrap_angle(angle + side * offset)
+
+
+def kick_to(percept: Percept, number: int, power: float) -> tuple[Action, ...]:
+    """Kick toward the teammate `number` when it is in view; else turn to look for it."""
+    mate = find_teammate(percept, number)
+    if mate is None:
+        return (Turn(SEARCH_TURN_RAD),)
+    return (Kick(power, mate.angle_rad),)
+
+
 def find_teammate(percept: Percept, number: int) -> SeenPlayer | None:
     """The teammate with uniform `number` in view (its number seen), or None."""
     own = percept.player.team
@@ -127,21 +545,92 @@ def opponent_in_path(percept: Percept, direction_rad: float, within_m: float) ->
     return False
 
 
+def heard_text(percept: Percept, text: str) -> bool:
+    """Whether `text` was heard since the previous percept."""
+    return any(h.text == text for h in percept.heard)
+
+
+def _face_ball(percept: Percept) -> tuple[Action, ...]:
+    """Turn to the ball if it is off the heading; else stand."""
+    ball = percept.ball
+    if ball is not None and abs(ball.angle_rad) > FACING_RAD:
+        return (Turn(ball.angle_rad),)
+    return STAND
+
+
+def _heard_tick(percept: Percept, texts: Iterable[str]) -> int:
+    """The tick a message in `texts` was said (its hear tick), else the percept's tick - 1."""
+    wanted = set(texts)
+    for heard in percept.heard:
+        if heard.text in wanted and heard.tick:
+            return heard.tick
+    return percept.tick - 1
+
+
+def receive(
+    percept: Percept, raw: Percept, tracker: BallTracker, interceptor: DefenderMind
+) -> tuple[Action, ...]:
+    """Get to a ball passed to this player: layer 1's interception, then let it come.
+
+    * The ball out of view (it ran past): turn to look for it.
+    * The ball behind (it got past): go after it (:func:`approach`).
+    * The ball will pass within reach before the next percept but one (:func:`arrives`):
+      face it and stand. Running on at it would double the closing speed and halve the time
+      it is in reach, and the player acts on discrete percepts.
+    * Otherwise layer 1's interception (§5) takes the player into the ball's path; it gets
+      the percept as it came (`raw`), `percept` being the player's reckoned view of it.
+    """
+    ball = percept.ball
+    if ball is None:
+        return (Turn(SEARCH_TURN_RAD),)
+    if abs(ball.angle_rad) > 0.5 * math.pi:
+        return approach(percept, tracker.sense.reach_m, tracker.sense.approach_power)
+    if arrives(percept, tracker):
+        return _face_ball(percept)
+    return interceptor.act(raw)
+
+
+def arrives(percept: Percept, tracker: BallTracker) -> bool:
+    """Whether the ball, as the tracker reckons its motion, will pass within reach soon.
+
+    Soon: within :data:`RECEIVE_PERIODS` sensor periods.
+    """
+    ball = percept.ball
+    if ball is None or not tracker.known:
+        return False
+    vx, vy = tracker.velocity(percept)
+    speed2 = vx * vx + vy * vy
+    if speed2 <= 0.0:
+        return False
+    rx = ball.distance_m * math.cos(ball.angle_rad)
+    ry = ball.distance_m * math.sin(ball.angle_rad)
+    t = -(rx * vx + ry * vy) / speed2  # time of the closest approach [s]
+    if t < 0.0:
+        return False
+    miss = abs(rx * vy - ry * vx) / math.sqrt(speed2)
+    sense = tracker.sense
+    return miss <= sense.reach_m and t <= RECEIVE_PERIODS * sense.sensor_period_s
+
+
 class CarrierMind:
-    """Dribble toward the goal, then pass by the tree (module docstring).
+    """Dribble toward the goal, stop the ball, look, then pass by the tree (module docstring).
 
     Args:
-        passer: Layer 2's passer, to hand over to (its receivers are the two nearest).
+        passer: Layer 2's passer, to hand over to (its receivers are the two nearest). It is
+            built without a kick power: this mind kicks the pass itself.
         interceptor: Layer 1's interception, for a winger collecting the ball; None: the
-            player starts with the ball.
+            player starts with the ball (at rest).
+        sense: The field's ball and kick.
         attack_right: It attacks the goal at +x (``"g r"``).
-        reach_m: Kick reach (touch distance plus a margin on a field without a kick) [m].
         blocked_distance_m: An opponent this close in the path ends the dribble [m].
         powers: The field's kick powers.
+        calls_after: The receivers of the pass before this player's (a winger calls from their
+            announcement on); empty: it never calls.
 
     Attributes:
-        phase: ``"wait"``, ``"collect"``, ``"dribble"``, ``"pass"`` or ``"done"``.
-        passed_tick: The tick of its pass decision, or None.
+        phase: ``"wait"``, ``"collect"``, ``"dribble"``, ``"look"``, ``"pass"``, ``"deliver"``
+            or ``"done"``.
+        passed_tick: The tick of its pass kick, or None.
     """
 
     def __init__(
@@ -149,85 +638,174 @@ class CarrierMind:
         passer: PasserMind,
         interceptor: DefenderMind | None,
         *,
+        sense: BallSense,
         attack_right: bool,
-        reach_m: float,
         blocked_distance_m: float,
         powers: KickPowers,
+        calls_after: tuple[int, ...] = (),
     ) -> None:
         self.passer = passer
         self.interceptor = interceptor
+        self.sense = sense
+        self.reach_m = sense.reach_m
         self.attack_right = attack_right
-        self.reach_m = reach_m
         self.blocked_distance_m = blocked_distance_m
         self.powers = powers
+        self.calls_after = calls_after
         self.phase = "dribble" if interceptor is None else "wait"
         self.passed_tick: int | None = None
-        self._goal_rad: float | None = None
+        self.tracker = BallTracker(sense)
+        self.heading = sense.heading()
+        self._raw: Percept | None = None
+        self.calling = False
+        self.looks = 0
         self.done = False
 
+    @property
+    def raw(self) -> Percept:
+        """The percept of the decision under way, as it came (for layer 1 and layer 2's minds)."""
+        assert self._raw is not None, "act() first"
+        return self._raw
+
+    @property
+    def pass_speed_mps(self) -> float:
+        """The ball's speed as a pass leaves [m/s]."""
+        return self.sense.speed(self.powers.passing)
+
     def act(self, percept: Percept) -> tuple[Action, ...]:
-        """One decision (module docstring)."""
+        """One decision (module docstring).
+
+        Layer 1 and layer 2's minds get the percept as it came; this mind's own skills see it
+        in its reckoned frame (:meth:`Heading.view`).
+        """
+        if not self.tracker.known and self.interceptor is None:
+            self.tracker.rest(percept.tick)  # a set play starts with the ball at rest
+        self._raw = percept
+        view = self.tracker.project(self.heading.view(percept))
+        self._see(view)
+        actions = self._decide(view)
+        self.tracker.note(actions, percept.tick)
+        self.heading.note(actions, percept.tick)
+        return actions
+
+    def _see(self, percept: Percept) -> None:
+        """Remember where the receivers and the goal were seen."""
+        own = percept.player.team
+        for seen in percept.players:
+            if seen.team == own and seen.number in self.passer.receivers:
+                self.heading.remember(f"mate{seen.number}", seen.angle_rad)
+
+    def _decide(self, percept: Percept) -> tuple[Action, ...]:
         if self.phase == "wait":
-            if not any(h.text == WINGER_CUE for h in percept.heard):
-                return _face_ball(percept)
-            self.phase = "collect"
+            return self._wait(percept)
         if self.phase == "collect":
-            ball = percept.ball
-            if ball is None or ball.distance_m > self.reach_m:
+            if not self._in_reach(percept):
                 assert self.interceptor is not None
-                return self.interceptor.act(percept)
+                return receive(percept, self.raw, self.tracker, self.interceptor)
             self.phase = "dribble"
         if self.phase == "dribble":
             return self._dribble(percept)
+        if self.phase == "look":
+            return self._look(percept)
         if self.phase == "pass":
-            actions = self.passer.act(percept)
-            if self.passer.chosen is not None:
-                self.passed_tick = self.passer.decided_tick
-                self.phase = "done"
-                return actions
-            return actions + self._keep_ball(percept)
-        return self._follow_through(percept)
+            return self._pass(percept)
+        if self.phase == "deliver":
+            return self._deliver(percept)
+        return ()
 
-    def _keep_ball(self, percept: Percept) -> tuple[Action, ...]:
-        """While the passer talks: stay with a ball that rolls out of reach."""
+    def _wait(self, percept: Percept) -> tuple[Action, ...]:
+        """A winger: face the ball, call from the first pass on, wake on the cue."""
+        if heard_text(percept, WINGER_CUE):
+            kick_tick = _heard_tick(percept, (WINGER_CUE,))
+            self.tracker.launched(percept, self.pass_speed_mps, kick_tick)
+            self.phase = "collect"
+            self.calling = False
+            return self._decide(percept)
+        for heard in percept.heard:
+            if announced_number(heard.text) in self.calls_after:
+                self.calling = True
+        actions = _face_ball(percept)
+        return (*actions, Say(WINGER_CALL)) if self.calling else actions
+
+    def _in_reach(self, percept: Percept) -> bool:
         ball = percept.ball
-        if ball is not None and ball.distance_m <= KEEP_REACH_SHARE * self.reach_m:
-            return ()
-        return chase(percept, dash=KEEP_DASH_POWER)
+        return ball is not None and ball.distance_m <= self.reach_m
 
     def _dribble(self, percept: Percept) -> tuple[Action, ...]:
         goal = goal_bearing(percept, self.attack_right)
-        if goal is not None:
-            self._goal_rad = goal[1]
-        ball = percept.ball
-        if goal is None and ball is not None and ball.distance_m <= self.reach_m:
-            return (Turn(SEARCH_TURN_RAD),)  # hold the ball and look for the goal
-        direction = 0.0 if self._goal_rad is None else self._goal_rad
-        if (
-            ball is not None
-            and ball.distance_m <= self.reach_m
-            and opponent_in_path(percept, direction, self.blocked_distance_m)
-        ):
+        if not self._in_reach(percept):
+            return approach(percept, self.reach_m, self.sense.approach_power)
+        if goal is None:
+            return self._hold(percept, (Turn(SEARCH_TURN_RAD),))  # look for the goal
+        direction = goal[1]
+        if opponent_in_path(percept, direction, self.blocked_distance_m):
+            self.phase = "look"  # §7: it stops dribbling and considers its options
+            return self._hold(percept, ())
+        kick, _ = self.tracker.aim(percept, self.sense.speed(self.powers.dribble), direction)
+        return self._follow(percept) if kick is None else (kick,)
+
+    def _follow(self, percept: Percept) -> tuple[Action, ...]:
+        """The ball rolls as wanted: keep up with it at its pace."""
+        vx, vy = self.tracker.velocity(percept)
+        power = 100.0 * min(1.0, math.hypot(vx, vy) / self.sense.top_speed_mps)
+        return chase(percept, dash=power)
+
+    def _hold(self, percept: Percept, then: tuple[Action, ...]) -> tuple[Action, ...]:
+        """Stand, stop the ball (a kick against its motion) if it rolls, then `then`."""
+        kick = self.tracker.stop(percept, STILL_SHARE * self.pass_speed_mps)
+        then = then or STAND
+        return then if kick is None else (kick, *then)
+
+    def _look(self, percept: Percept) -> tuple[Action, ...]:
+        """Turn until both receivers are in view (or give up looking), then ask."""
+        if not self._in_reach(percept):
+            return approach(percept, self.reach_m, self.sense.approach_power)
+        turn = self._turn_to_receivers(percept)
+        if turn is None or self.looks >= LOOK_DECISIONS:
             self.phase = "pass"
-            return self.passer.act(percept)
-        return dribble(percept, direction, self.reach_m, self.powers.dribble)
+            return self._pass(percept)
+        self.looks += 1
+        return self._hold(percept, (Turn(turn),))
 
-    def _follow_through(self, percept: Percept) -> tuple[Action, ...]:
-        """After the decision: keep kicking toward the receiver while the ball is in reach.
+    def _turn_to_receivers(self, percept: Percept) -> float | None:
+        """The turn that brings every receiver into view; None when they are in view now."""
+        bearings = [self.heading.relative(f"mate{n}") for n in self.passer.receivers]
+        seen = {s.number for s in percept.players if s.team == percept.player.team}
+        if all(n in seen for n in self.passer.receivers) and all(
+            b is not None and abs(b) <= VIEW_HALF_ANGLE_RAD for b in bearings
+        ):
+            return None
+        known = [b for b in bearings if b is not None]
+        if len(known) < len(bearings):
+            return SEARCH_TURN_RAD if not known else known[0]
+        mid = math.atan2(sum(math.sin(b) for b in known), sum(math.cos(b) for b in known))
+        return None if abs(mid) < math.radians(2.0) else mid
 
-        A kicker's first kick sends the ball; a robot without one needs a few pushes, and its
-        host turns it first. The receiver is re-found by number in each percept.
-        """
-        ball, chosen = percept.ball, self.passer.chosen
-        if ball is None or chosen is None or ball.distance_m > GONE_REACHES * self.reach_m:
-            self.done = ball is not None
-            return ()
-        if ball.distance_m > self.reach_m:
-            return chase(percept)  # the kick missed (the ball had rolled away): go after it
+    def _pass(self, percept: Percept) -> tuple[Action, ...]:
+        """Layer 2's exchange beside the ball; then the pass, kicked here (compensated)."""
+        actions = self.passer.act(self.raw)
+        if self.passer.chosen is None:
+            if not self._in_reach(percept):
+                return actions + approach(percept, self.reach_m, self.sense.approach_power)
+            return actions + self._hold(percept, ())
+        self.phase = "deliver"
+        direction = self.passer.pass_direction_rad or 0.0
+        self.heading.remember("target", direction)
+        return actions + self._deliver(percept)
+
+    def _deliver(self, percept: Percept) -> tuple[Action, ...]:
+        """Kick the pass once the ball is in reach, toward the receiver as seen or remembered."""
+        chosen = self.passer.chosen
+        if not self._in_reach(percept) or chosen is None:
+            return approach(percept, self.reach_m, self.sense.approach_power)
         target = find_teammate(percept, chosen)
-        if target is None:
-            return (Turn(SEARCH_TURN_RAD),)
-        return (Kick(self.powers.passing, target.angle_rad),)
+        direction = target.angle_rad if target is not None else self.heading.relative("target")
+        kick, passed = self.tracker.aim(percept, self.pass_speed_mps, direction or 0.0)
+        if passed:
+            self.passed_tick = percept.tick
+            self.phase = "done"
+            self.done = True
+        return () if kick is None else (kick,)
 
 
 class SetPlayReceiverMind:
@@ -236,10 +814,13 @@ class SetPlayReceiverMind:
     Args:
         receiver: Layer 2's receiver (reports; intercepts with layer 1's net once chosen).
         next_teammate: The winger's number (the first receivers kick to it); None: shoot.
+        sense: The field's ball and kick.
         attack_right: It attacks the goal at +x.
-        reach_m: Kick reach [m].
         powers: The field's kick powers.
-        armed: It listens from the start (the first receivers); False: from the cue on.
+        armed: It listens from the start (the first receivers); False: from the winger's call
+            or cue on, looking for the goal meanwhile.
+        goal_half_width_m: Half the goal's width [m] (a shot aims inside it, away from the
+            goalie: :func:`shot_direction`); 0: at the centre.
 
     Attributes:
         kicked_tick: The tick of its kick on (to the winger, or the shot), or None.
@@ -250,19 +831,31 @@ class SetPlayReceiverMind:
         receiver: ReceiverMind,
         next_teammate: int | None,
         *,
+        sense: BallSense,
         attack_right: bool,
-        reach_m: float,
         powers: KickPowers,
         armed: bool = True,
+        goal_half_width_m: float = 0.0,
     ) -> None:
         self.receiver = receiver
+        self.goal_half_width_m = goal_half_width_m
         self.next_teammate = next_teammate
+        self.sense = sense
+        self.reach_m = sense.reach_m
         self.attack_right = attack_right
-        self.reach_m = reach_m
         self.powers = powers
         self.armed = armed
         self.kicked_tick: int | None = None
+        self.tracker = BallTracker(sense)
+        self.heading = sense.heading()
+        self._raw: Percept | None = None
         self.done = False
+
+    @property
+    def raw(self) -> Percept:
+        """The percept of the decision under way, as it came (for layer 1 and layer 2's minds)."""
+        assert self._raw is not None, "act() first"
+        return self._raw
 
     @property
     def shoots(self) -> bool:
@@ -270,39 +863,88 @@ class SetPlayReceiverMind:
         return self.next_teammate is None
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
-        """Report and intercept as layer 2's receiver; holding the ball, kick on."""
+        """Report and intercept as layer 2's receiver; holding the ball, kick on.
+
+        Layer 1 and layer 2's minds get the percept as it came; this mind's own skills see it
+        in its reckoned frame (:meth:`Heading.view`).
+        """
+        self._raw = percept
+        view = self.tracker.project(self.heading.view(percept))
+        self._see(view)
+        actions = self._decide(view)
+        self.tracker.note(actions, percept.tick)
+        self.heading.note(actions, percept.tick)
+        return actions
+
+    def _see(self, percept: Percept) -> None:
+        goal = goal_bearing(percept, self.attack_right)
+        if goal is not None:
+            self.heading.remember("goal", goal[1])
+        for heard in percept.heard:
+            if heard.text == WINGER_CALL and heard.direction_rad is not None:
+                self.heading.remember("call", heard.direction_rad)
+        if self.next_teammate is not None:
+            mate = find_teammate(percept, self.next_teammate)
+            if mate is not None:
+                self.heading.remember("call", mate.angle_rad)
+
+    def _decide(self, percept: Percept) -> tuple[Action, ...]:
         if not self.armed:
-            if not any(h.text == WINGER_CUE for h in percept.heard):
-                return _face_ball(percept)
+            if not (heard_text(percept, WINGER_CUE) or heard_text(percept, WINGER_CALL)):
+                return self._look_for_goal(percept)
             self.armed = True
         if self.receiver.chosen is not True:
-            actions = self.receiver.act(percept)
+            actions = self.receiver.act(self.raw)
+            if self.receiver.chosen is True:
+                self._pass_announced(percept)
             self.done = self.receiver.done
             return actions
+        if self.kicked_tick is not None:
+            self.done = True
+            return ()
         ball = percept.ball
-        if ball is None or ball.distance_m > self.reach_m:
-            if self.kicked_tick is not None:
-                return ()  # the ball is on its way
-            return self.receiver.act(percept)
-        return self._kick_on(percept)
+        if ball is not None and ball.distance_m <= self.reach_m:
+            return self._kick_on(percept)
+        return receive(percept, self.raw, self.tracker, self.receiver.interceptor)
+
+    def _look_for_goal(self, percept: Percept) -> tuple[Action, ...]:
+        """A last receiver, before the play reaches it: find the goal once, then face the ball."""
+        if self.shoots and self.heading.relative("goal") is None:
+            return (Turn(SEARCH_TURN_RAD),)
+        return _face_ball(percept)
+
+    def _pass_announced(self, percept: Percept) -> None:
+        """The pass to it was just announced: the ball comes at the pass speed."""
+        texts = [h.text for h in percept.heard if announced_number(h.text) is not None]
+        kick_tick = _heard_tick(percept, texts)
+        self.tracker.launched(percept, self.sense.speed(self.powers.passing), kick_tick)
 
     def _kick_on(self, percept: Percept) -> tuple[Action, ...]:
         if self.next_teammate is None:
-            shot = shoot(percept, self.attack_right, self.reach_m, self.powers.shot)
-            if self.kicked_tick is None and any(isinstance(a, Kick) for a in shot):
-                self.kicked_tick = percept.tick
-            return shot
+            return self._shoot(percept)
         winger = find_teammate(percept, self.next_teammate)
-        if winger is None:
-            return (Turn(SEARCH_TURN_RAD),)  # hold the ball and look for the winger
-        first = self.kicked_tick is None
-        self.kicked_tick = percept.tick if first else self.kicked_tick
-        kick = Kick(self.powers.passing, winger.angle_rad)
-        return (Say(WINGER_CUE), kick) if first else (kick,)
+        direction = winger.angle_rad if winger is not None else self.heading.relative("call")
+        if direction is None:  # never seen nor heard: hold the ball and look
+            return self._stop_then(percept, (Turn(SEARCH_TURN_RAD),))
+        kick, kicked = self.tracker.aim(percept, self.sense.speed(self.powers.passing), direction)
+        if not kicked:
+            return () if kick is None else (kick,)
+        self.kicked_tick = percept.tick
+        return (Say(WINGER_CUE),) if kick is None else (Say(WINGER_CUE), kick)
 
+    def _shoot(self, percept: Percept) -> tuple[Action, ...]:
+        """Shoot at the goal in view; else stop the ball and turn to where the goal was seen."""
+        goal = goal_bearing(percept, self.attack_right)
+        if goal is None:
+            remembered = self.heading.relative("goal")
+            turn = SEARCH_TURN_RAD if remembered is None else remembered
+            return self._stop_then(percept, (Turn(turn),))
+        direction = shot_direction(percept, goal, self.goal_half_width_m)
+        kick, kicked = self.tracker.aim(percept, self.sense.speed(self.powers.shot), direction)
+        if kicked:
+            self.kicked_tick = percept.tick
+        return () if kick is None else (kick,)
 
-def _face_ball(percept: Percept) -> tuple[Action, ...]:
-    ball = percept.ball
-    if ball is not None and abs(ball.angle_rad) > FACING_RAD:
-        return (Turn(ball.angle_rad),)
-    return ()
+    def _stop_then(self, percept: Percept, then: tuple[Action, ...]) -> tuple[Action, ...]:
+        kick = self.tracker.stop(percept, STILL_SHARE * self.sense.speed(self.powers.passing))
+        return then if kick is None else (kick, *then)

@@ -110,3 +110,9 @@ def test_a_series_reports_wins_draws_and_losses(tmp_path, capsys) -> None:
     ]
     assert sum(int(row.split("|")[2]) for row in rows) == 3
     assert main([*args, "--quiet", "--overwrite"]) == 0  # a series folder is a run folder
+
+
+def test_setplay_with_a_models_folder_that_lacks_them_fails_in_one_line(tmp_path, capsys) -> None:
+    assert main(["setplay", "--models", str(tmp_path), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "pass_tree.json" in err[0]
