@@ -755,7 +755,7 @@ def run_layer1(
         "models": [list(m) for m in named],
         "code_version": code_version(),
     }
-    _claim_folder(out, header)
+    claim_folder(out, header)
     start = time.perf_counter()
     sections, conditions = [], {}
     for field_model, preset in named:
@@ -783,8 +783,12 @@ def run_layer1(
     return report, sections
 
 
-def _claim_folder(out: Path, header: dict[str, Any]) -> None:
-    """Refuse a folder holding another run's results; mark it as this run's."""
+def claim_folder(out: Path, header: dict[str, Any]) -> None:
+    """Refuse a folder holding another run's results; mark it as this run's.
+
+    Raises:
+        PipelineError: ``config.json`` there differs in what defines the run.
+    """
     path = out / "config.json"
     if path.exists():
         try:

@@ -35,7 +35,7 @@ from pathlib import Path
 from typing import Any
 
 from robotsoccer.drills.setplay import SetPlayDrill
-from robotsoccer.experiments.layer1 import Field, Log, PipelineError
+from robotsoccer.experiments.layer1 import Field, Log, PipelineError, claim_folder
 from robotsoccer.experiments.report import paired_difference, percent_cell
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.provenance import code_version
@@ -185,29 +185,6 @@ def study_header(
         },
         "code_version": code_version(),
     }
-
-
-def claim_folder(out: Path, header: dict[str, Any]) -> None:
-    """Refuse a folder holding another study's run; mark it as this one's.
-
-    Raises:
-        PipelineError: ``config.json`` there differs in what defines the run.
-    """
-    path = out / "config.json"
-    if path.exists():
-        try:
-            old = json.loads(path.read_text())
-        except ValueError:
-            old = {}
-        new = json.loads(json.dumps(header))
-        differ = [key for key in new if old.get(key) != new[key]]
-        if differ:
-            raise PipelineError(
-                f"{out} holds a run with another {', '.join(d.replace('_', ' ') for d in differ)};"
-                " choose another --out or remove it"
-            )
-    out.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(header, indent=2) + "\n")
 
 
 def record_plays(cond: PlayCondition, folder: Path, log: Log) -> list[Path]:
