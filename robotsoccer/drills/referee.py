@@ -172,7 +172,7 @@ class Referee:
             self._kick_off(arena, RIGHT)
             return
         if self._restart_team is not None:
-            self._during_restart(arena, vx, vy)
+            self._during_restart(arena, x, y, vx, vy)
             return
         if not self.walled:
             self._outs(arena, x, y, crossing)
@@ -193,13 +193,13 @@ class Referee:
         if best is not None:
             self.last_touch = best
 
-    def _during_restart(self, arena: Arena, vx: float, vy: float) -> None:
+    def _during_restart(self, arena: Arena, x: float, y: float, vx: float, vy: float) -> None:
         team = self._restart_team
         assert team is not None
         tick = arena.tick
         if vx * vx + vy * vy > self._moved2:
             self._restart_team = None
-            self._stuck_anchor = (*arena.ball_state()[:2], tick)
+            self._stuck_anchor = (x, y, tick)
             self._call(tick, PLAY_ON)
             return
         if tick - self._restart_tick >= self._drop_ticks:
