@@ -142,7 +142,6 @@ class MatchDrill(LayeredDrill):
         self._checked: FieldFacts | None = None
         self.referee: Referee | None = None
         self.minds_by_ref: dict[PlayerRef, TeamMind] = {}
-        self._holder: PlayerRef | None = None
         self._possession = {LEFT: 0, RIGHT: 0}
         self._passes = {LEFT: 0, RIGHT: 0}
         self._events: list[ArenaEvent] = []

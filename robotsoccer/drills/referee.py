@@ -99,7 +99,6 @@ class Referee:
         control_m: float,
     ) -> None:
         facts = arena.facts
-        self.facts = facts
         self.pitch = facts.pitch
         self.unit = facts.unit_m
         self.walled = facts.walled
