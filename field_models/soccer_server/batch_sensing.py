@@ -15,6 +15,9 @@ operations in the same order (shared `specs/soccer_server.md` §3):
 * directions in the server's integer degrees (truncated or rounded by protocol), turned into
   our counter-clockwise radians as :mod:`~field_models.soccer_server.percepts` does.
 
+Angles and logarithms come from :mod:`field_models.fpmath`, in its array forms, as the scalar
+see takes them in its float forms: numpy's own ``arctan2`` and ``log`` round by CPU feature.
+
 What it leaves out, and why that is exact for the callers: a see's random draws decide only
 whether distance/direction changes and a player's team and number are shown. The batched
 drills' minds read none of those, and the sensing stream feeds nothing else, so the batch
@@ -28,6 +31,7 @@ import math
 import numpy as np
 import numpy.typing as npt
 
+from field_models import fpmath
 from field_models.protocol import wrap_angle
 from field_models.soccer_server.sensing import EPS, quantised_distance_for_index
 from field_models.soccer_server.sensing_params import SensingParams
@@ -58,7 +62,7 @@ def see_object(
     tx, ty = target
     # Server frame (y down, angles clockwise), negations exact, as sensing.observe does.
     dx, dy = tx - ox, -ty - -oy
-    ang = wrap_angle(np.arctan2(dy, dx) - -heading)
+    ang = wrap_angle(fpmath.atan2_array(dy, dx) - -heading)
     d2 = dx * dx + dy * dy
     in_cone = (-params.half_angle_rad < ang) & (ang < params.half_angle_rad)
     high = params.view_quality == "high"
@@ -76,7 +80,7 @@ def see_object(
 def quantised_distances(params: SensingParams, distance_m: Array) -> Array:
     """The see's quantised ball/player distances (step ``quantize_step``) for an array."""
     step = params.quantize_step
-    index = np.rint(np.log(distance_m + EPS) / step).astype(np.int64)
+    index = np.rint(fpmath.log_array(distance_m + EPS) / step).astype(np.int64)
     low, high = int(index.min(initial=0)), int(index.max(initial=0))
     table = np.array([quantised_distance_for_index(params, m, step) for m in range(low, high + 1)])
     out: Array = table[index - low]

@@ -55,6 +55,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal, NamedTuple
 
+from field_models import fpmath
 from field_models.protocol import PlayerRef, wrap_angle
 from field_models.seeding import Rng
 from field_models.soccer_server.landmarks import (
@@ -172,7 +173,7 @@ def quantize_distance(distance_m: float, log_step: float, resolution_m: float = 
     The result is the double nearest to the decimal the server prints, e.g. 11.18 m gives 11.0
     with ``log_step`` 0.1 (ball, players) and 11.1 with 0.01 (flags).
     """
-    k = round(math.exp(round(math.log(distance_m + EPS) / log_step) * log_step) / resolution_m)
+    k = round(math.exp(round(fpmath.log(distance_m + EPS) / log_step) * log_step) / resolution_m)
     return round(k * resolution_m, _decimals(resolution_m))
 
 
@@ -386,7 +387,7 @@ def _quant(c: _Consts, d: float, step: float) -> float:
     if c.perfect:
         return d
     table = c.table_l if step == c.q_l else c.table
-    m = round(math.log(d + EPS) / step)
+    m = round(fpmath.log(d + EPS) / step)
     qd = table.get(m)
     if qd is None:
         qd = table[m] = _from_log_index(c, m, step)
@@ -450,7 +451,7 @@ def _see_flags(
     half, trunc, high, q_l, vis2 = c.half_angle, c.truncate, c.high, c.q_l, c.vis_dist2
     table = c.table_l
     far, too_far = c.unum_far, c.unum_too_far
-    pi, two_pi, atan2, sqrt, log = math.pi, _TWO_PI, math.atan2, math.sqrt, math.log
+    pi, two_pi, atan2, sqrt, log = math.pi, _TWO_PI, fpmath.atan2, math.sqrt, fpmath.log
     new = tuple.__new__
     draws = rng.random(len(c.flags)).tolist() if c.changes and high else None
     for i, fx, fy, name, close in rows:
@@ -506,7 +507,7 @@ def _see_flags_exact(
         rng.random(len(c.flags))  # the draws of a normal see, so the stream stays the same
     for _, fx, fy, name, close in rows:
         dx, dy = fx - ox, fy - oy
-        ang = wrap_angle(math.atan2(dy, dx) - oth)
+        ang = wrap_angle(fpmath.atan2(dy, dx) - oth)
         direction = ang * _RAD2DEG
         d = math.sqrt(dx * dx + dy * dy)
         if -c.half_angle < ang < c.half_angle:
@@ -537,7 +538,7 @@ def _see_ball(
 ) -> SeenObject | None:
     """The ball (``sendHighBall`` / ``sendLowBall``)."""
     dx, dy = bx - ox, by - oy
-    ang = wrap_angle(math.atan2(dy, dx) - oth)
+    ang = wrap_angle(fpmath.atan2(dy, dx) - oth)
     d2 = dx * dx + dy * dy
     if -c.half_angle < ang < c.half_angle:
         direction = _direction(c, ang)
@@ -569,7 +570,7 @@ def _see_player(
     ox, oy, ovx, ovy, oth = me
     px, py, pvx, pvy, pth = it
     dx, dy = px - ox, py - oy
-    ang = wrap_angle(math.atan2(dy, dx) - oth)
+    ang = wrap_angle(fpmath.atan2(dy, dx) - oth)
     d2 = dx * dx + dy * dy
     if not -c.half_angle < ang < c.half_angle:
         if d2 <= c.vis_dist2:
@@ -847,7 +848,7 @@ def _player_hear(
     if not full:
         return HearInfo(time, "player", None, None, team, number) if protocol >= 8 else None
     # Direction from the listener's body, server sign: negate our CCW angle.
-    rel = wrap_angle(-(math.atan2(y[speaker] - y[row], x[speaker] - x[row]) - heading[row]))
+    rel = wrap_angle(-(fpmath.atan2(y[speaker] - y[row], x[speaker] - x[row]) - heading[row]))
     return HearInfo(time, "player", text, degrees(rel, trunc), team, number)
 
 
