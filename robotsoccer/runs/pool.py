@@ -35,7 +35,7 @@ from typing import Any, TextIO
 from field_models.registry import preload_modules
 from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept_batch import DEFAULT_BATCH, batch_reason, run_intercept_batch
-from robotsoccer.runs.provenance import code_version, file_digest
+from robotsoccer.runs.provenance import code_version, file_digest, machine
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 
 
@@ -223,13 +223,18 @@ def _warn(message: str) -> None:
 
 
 def manifest(spec: TrialSpec) -> dict[str, Any]:
-    """What makes a run's results: its spec, the code version and its input files' digests."""
+    """What makes a run's results: its spec, the code version and its input files' digests.
+
+    It also records the machine (CPU, numpy's SIMD dispatch, versions); a resume does not
+    compare it, since results do not depend on it.
+    """
     inputs = make_drill(spec.drill, dict(spec.drill_options)).inputs()
     recorded = dataclasses.replace(spec, record_dir=None, record_trials=0)
     return {
         "spec": json.loads(json.dumps(dataclasses.asdict(recorded), default=str)),
         "code_version": code_version(),
         "inputs": {path: file_digest(path) for path in inputs},
+        "machine": machine(),
     }
 
 

@@ -3,12 +3,20 @@
 from __future__ import annotations
 
 import dataclasses
+from pathlib import Path
 
+import numpy as np
 import pytest
 
 import robotsoccer.runs.pool as pool
 from learning.lookup import LookupTable
-from robotsoccer.runs.pool import ResumeError, manifest_path, read_results, run_trials
+from robotsoccer.runs.pool import (
+    ResumeError,
+    manifest,
+    manifest_path,
+    read_results,
+    run_trials,
+)
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 
 SPEC = TrialSpec(drill="shootout", field_model="robot_physics", seed=11)
@@ -118,3 +126,13 @@ def test_a_damaged_row_in_the_middle_is_refused(tmp_path) -> None:
     path.write_text("\n".join(lines) + "\n")
     with pytest.raises(ResumeError, match="line 3 is not a result row"):
         read_results(path)
+
+
+def test_a_manifest_records_the_cpu_and_numpys_simd_dispatch(tmp_path: Path) -> None:
+    import numpy._core._multiarray_umath as umath
+
+    spec = TrialSpec(drill="intercept", field_model="soccer_server", seed=1)
+    recorded = manifest(spec)["machine"]
+    assert recorded["cpu"] and recorded["numpy_simd_baseline"] == list(umath.__cpu_baseline__)
+    assert set(recorded["numpy_simd_dispatched"]) <= set(umath.__cpu_dispatch__)
+    assert recorded["packages"]["numpy"] == np.__version__
