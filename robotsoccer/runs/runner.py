@@ -320,7 +320,7 @@ def _play_recorded(
 
     def decide(percept: Percept, actions: tuple[Action, ...]) -> None:
         event = ArenaEvent(percept.tick, "decision", describe_decision(actions), percept.player)
-        recorder.log_events([event])
+        recorder.log_decision(event, actions)  # routine ones go where the layout hides them
 
     with recorder:
         recorder.log_truth(arena.truth())
@@ -418,7 +418,8 @@ def _play_match_recorded(
     def decide(percept: Percept, actions: tuple[Action, ...]) -> None:
         if percept.player == selected:
             text = describe_decision(actions)
-            recorder.log_events([ArenaEvent(percept.tick, "decision", text, percept.player)])
+            event = ArenaEvent(percept.tick, "decision", text, percept.player)
+            recorder.log_decision(event, actions)  # routine ones go where the layout hides them
 
     with recorder:
         first = match.game_frame(arena)

@@ -11,12 +11,13 @@ from robotsoccer.replay.game_log import rrd_from_rcg
 from robotsoccer.replay.rcg import read_rcg
 from robotsoccer.replay.recording import read_entity_positions, verify_recording
 from robotsoccer.runs.runner import TrialSpec, run_trial
+from tests.robotsoccer.replay.test_match_recording import blueprint_values, read_chunks
 
 
-def recorded(field: str, folder: Path) -> tuple[Path, ...]:
+def recorded(field: str, folder: Path, half_time_s: float = 1.0) -> tuple[Path, ...]:
     spec = TrialSpec(
         drill="match", field_model=field, seed=1, record_dir=str(folder), record_trials=1
-    ).with_options(left="baseline", right="baseline", half_time_s=1.0)
+    ).with_options(left="baseline", right="baseline", half_time_s=half_time_s)
     result = run_trial(spec, 0)
     return tuple(sorted(folder.glob(f"match_0000_{result.label}.*")))
 
@@ -44,3 +45,34 @@ def test_a_robot_match_has_no_game_log(tmp_path: Path) -> None:
     files = recorded("robot_physics", tmp_path)
     assert [f.suffix for f in files] == [".rrd"]
     assert verify_recording(files[0])[0]
+
+
+def event_lines(rrd: Path) -> dict[str, list[str]]:
+    """Every text line under /events, by entity."""
+    out: dict[str, list[str]] = {}
+    for chunk in read_chunks(rrd):
+        batch = chunk.to_record_batch()
+        if chunk.entity_path.startswith("/events") and "TextLog:text" in batch.schema.names:
+            rows = batch.column("TextLog:text").to_pylist()
+            out.setdefault(chunk.entity_path, []).extend(t for row in rows for t in row)
+    return out
+
+
+def test_a_robot_matchs_default_event_log_holds_events_not_routine(tmp_path: Path) -> None:
+    (rrd,) = recorded("robot_physics", tmp_path, half_time_s=5.0)
+    lines = event_lines(rrd)
+    hidden = [
+        q[len("- ") :].removesuffix("/**")
+        for q in blueprint_values(rrd, "ViewContents:query")
+        if q.startswith("- /events")
+    ]
+    assert hidden == ["/events/routine"]
+    shown = {entity: texts for entity, texts in lines.items() if entity not in hidden}
+    # The followed player decides at every camera frame; those routine lines are recorded but
+    # out of the default view, which keeps the referee's calls and the decisions that kick.
+    assert any(t.endswith(": nothing") for t in lines["/events/routine"])
+    assert all(not t.endswith("nothing") for texts in shown.values() for t in texts)
+    assert all(t.startswith("[decision] ") for t in lines["/events/routine"])
+    assert "[referee] kick_off_l" in shown["/events/referee"]
+    kicks = [t for t in shown.get("/events/decision", []) if "(kick " in t or " -> " in t]
+    assert kicks == shown.get("/events/decision", [])  # only kicks and passes remain there
