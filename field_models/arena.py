@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, fields
-from typing import Literal, Protocol
+from typing import Literal, Protocol, runtime_checkable
 
 from field_models.protocol import Action, BodyState, Percept, Pitch, PlayerRef, Truth
 
@@ -336,4 +336,52 @@ class Arena(Protocol):
         Only kept when the arena was built with ``keep_events`` (or ``trace``: then every see
         and hear a client gets is an event too, in the Soccer Server's text form).
         """
+        ...
+
+
+# ----------------------------------------------------------------------------- command counts
+
+COMMAND_COUNTERS = (
+    "kick",
+    "dash",
+    "turn",
+    "catch",
+    "move",
+    "turn_neck",
+    "change_view",
+    "say",
+    "tackle",
+    "pointto",
+    "attentionto",
+)
+"""The commands a Soccer Server counts for each player, in the order its monitors and game logs
+list them (rcssserver 19's ``(c ...)`` of a show: ``Player``'s counters)."""
+
+
+@dataclass(frozen=True, slots=True)
+class CommandTally:
+    """One player's commands as a Soccer Server counts them, and what the last tick's kick did.
+
+    Attributes:
+        counts: How many of each command the server carried out since the trial began, one
+            per :data:`COMMAND_COUNTERS` (a command the field model has no action for stays 0).
+        kicked: A kick took effect in the last tick (the ball was within the kickable area).
+        kick_missed: A kick was carried out in the last tick with the ball out of reach.
+    """
+
+    counts: tuple[int, ...]
+    kicked: bool = False
+    kick_missed: bool = False
+
+
+@runtime_checkable
+class CountsCommands(Protocol):
+    """An arena that counts its players' commands as a Soccer Server does (an optional extra).
+
+    Game logs in the server's format carry these counts; a field model without them is logged
+    with zeros.
+    """
+
+    def command_tally(self) -> dict[PlayerRef, CommandTally]:
+        """Every player's counts after the last tick."""
         ...

@@ -16,6 +16,11 @@ One tick is one 100 ms server cycle (shared `specs/soccer_server.md` §1):
 mind may return several body actions: they run in order, one per cycle, and a new decision
 replaces whatever is left of the previous one. Says go out at once.
 
+**Counts.** Like rcssserver, the arena counts each player's commands as the server carries them
+out (:meth:`SoccerServerArena.command_tally`): a body action when its cycle comes (one left in
+a replaced decision was never sent, so it is not counted), a say when the server accepts it
+(not one longer than ``say_msg_size``), and whether the cycle's kick reached the ball.
+
 **Text.** With ``trace=True`` every see and hear is also rendered in the server's text format
 (Figure 4) into the event log, and the percept is taken from the *parsed text*, so a trace shows
 exactly what the client acted on. Commands are logged (``keep_events``) in the client's command
@@ -27,9 +32,26 @@ from __future__ import annotations
 from collections import deque
 from functools import lru_cache
 
-from field_models.arena import ArenaEvent, EventChannel, FieldFacts
+from field_models.arena import (
+    COMMAND_COUNTERS,
+    ArenaEvent,
+    CommandTally,
+    EventChannel,
+    FieldFacts,
+)
 from field_models.commands import render_command
-from field_models.protocol import Action, BodyState, Heard, Percept, PlayerRef, Say, Truth
+from field_models.protocol import (
+    Action,
+    BodyState,
+    Dash,
+    Heard,
+    Kick,
+    Percept,
+    PlayerRef,
+    Say,
+    Truth,
+    Turn,
+)
 from field_models.seeding import TrialRngs
 from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.messages import parse_see, render_hear, render_see
@@ -88,6 +110,8 @@ class SoccerServerArena:
         self._plans: list[deque[Action]] = [deque() for _ in players]
         self._heard: list[list[Heard]] = [[] for _ in players]
         self._events: list[ArenaEvent] = []
+        self._counts = [[0] * len(COMMAND_COUNTERS) for _ in players]
+        self._kick_tick = [-1] * len(players)  # the tick whose cycle carried out a kick
 
     @property
     def tick(self) -> int:
@@ -128,10 +152,17 @@ class SoccerServerArena:
         model = self.model
         for i, plan in enumerate(self._plans):
             if plan:
-                model.command(i + 1, plan.popleft())
+                action = plan.popleft()
+                if model.command(i + 1, action):
+                    kind = _COUNTER[type(action)]
+                    self._counts[i][kind] += 1
+                    if kind == _KICK:
+                        self._kick_tick[i] = model.cycle + 1
         referee = model.step()
         cycle = model.cycle
         says = model.said()
+        for row, _ in says:
+            self._counts[row - 1][_SAY] += 1
         if says or referee:
             self._hear(says, referee, cycle)
         schedule = self._see_schedule
@@ -202,12 +233,37 @@ class SoccerServerArena:
         events, self._events = self._events, []
         return events
 
+    def command_tally(self) -> dict[PlayerRef, CommandTally]:
+        """Every player's commands as the server counted them, and the last cycle's kicks.
+
+        Counts are of commands carried out (module docstring, "Counts"); `kicked` marks a kick
+        in the cycle just stepped that reached the ball, `kick_missed` one that did not.
+        """
+        tick, took = self.tick, self.model.kicked_at
+        return {
+            ref: CommandTally(
+                tuple(self._counts[i]),
+                kicked=took[i + 1] == tick,
+                kick_missed=self._kick_tick[i] == tick and took[i + 1] != tick,
+            )
+            for i, ref in enumerate(self.players)
+        }
+
     def _log(
         self, tick: int, channel: EventChannel, text: str, ref: PlayerRef | None = None
     ) -> None:
         if self.keep_events:
             self._events.append(ArenaEvent(tick, channel, text, ref))
 
+
+_COUNTER = {
+    Kick: COMMAND_COUNTERS.index("kick"),
+    Dash: COMMAND_COUNTERS.index("dash"),
+    Turn: COMMAND_COUNTERS.index("turn"),
+    Say: COMMAND_COUNTERS.index("say"),
+}
+_KICK = _COUNTER[Kick]
+_SAY = _COUNTER[Say]
 
 SCHEDULE_CYCLES = 6000
 """Cycles (10 simulated minutes) whose see timing is computed once per preset."""

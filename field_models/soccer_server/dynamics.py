@@ -266,6 +266,9 @@ class SoccerServerModel:
         score_left, score_right: Goals of each team.
         x, y: Positions per row [m]. vx, vy: stored velocities per row [m/cycle].
         heading: Body angle per row [rad], counter-clockwise; 0 for the ball.
+        kicked_at: Per row, the cycle count (``cycle`` after the step) of the last step whose
+            kick took effect; -1 before any. rcssserver flags such a player's ``KICK`` state in
+            that cycle's show (monitors and game logs read it).
 
     The ball starts at rest on the centre mark, the players at rest off the pitch (3 m apart
     below the bottom touchline) until the coach places them.
@@ -305,6 +308,7 @@ class SoccerServerModel:
         self._straight_dash = p.min_dash_angle_rad <= 0.0 <= p.max_dash_angle_rad
         self._pairs = _collision_pairs(self._size)
         self._kind = [NO_COMMAND] * n
+        self.kicked_at = [-1] * n
         self._arg1 = [0.0] * n
         self._arg2 = [0.0] * n
         self._pending: list[int] = []
@@ -507,8 +511,9 @@ class SoccerServerModel:
                 self._do_dash(i, self._arg1[i], self._arg2[i])
             elif kind == TURN:
                 self._do_turn(i, self._arg1[i], self._noise[2][r][i - 1])
-            elif kind == KICK:
-                kicked |= self._do_kick(i, self._arg1[i], self._arg2[i], r)
+            elif kind == KICK and self._do_kick(i, self._arg1[i], self._arg2[i], r):
+                kicked = True
+                self.kicked_at[i] = self.cycle + 1
             self._kind[i] = NO_COMMAND
         self._pending.clear()
         if kicked and self.play_mode in RESTART_MODES and self.params.referee:

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from enum import StrEnum
 
-from field_models.arena import Arena, ArenaEvent, FieldFacts
+from field_models.arena import Arena, ArenaEvent, CountsCommands, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
@@ -66,6 +66,7 @@ FORMATIONS: dict[int, dict[int, tuple[float, float]]] = {
 KICKER = {11: 10, 5: 4}
 """Who kicks off."""
 GOALIE = 1
+"""Who keeps goal: number 1 of every formation."""
 BLOCKED_UNITS = 8.0
 """An opponent this close in the path ends a dribble [units]."""
 SHOOT_RANGE_UNITS = 25.0
@@ -299,8 +300,8 @@ class MatchDrill(LayeredDrill):
         assert referee is not None
         left, right = referee.score
         label = "LEFT_WIN" if left > right else "RIGHT_WIN" if right > left else "DRAW"
-        kinds = f"{self.kinds[LEFT].value} {left}-{right} {self.kinds[RIGHT].value}"
-        return Verdict(label, kinds)
+        names = self.team_names()
+        return Verdict(label, f"{names[0]} {left}-{right} {names[1]}")
 
     def data(self) -> tuple[float, ...]:
         """Nothing to learn from."""
@@ -326,11 +327,12 @@ class MatchDrill(LayeredDrill):
     # ------------------------------------------------------------------ recordings
 
     def game_frame(self, arena: Arena) -> GameFrame:
-        """This tick as a match recording keeps it."""
+        """This tick as a match recording keeps it (with the commands where the field counts)."""
         referee = self.referee
         assert referee is not None
         score = (referee.score[0], referee.score[1])
-        return GameFrame(arena.truth(), referee.play_mode, score)
+        commands = arena.command_tally() if isinstance(arena, CountsCommands) else None
+        return GameFrame(arena.truth(), referee.play_mode, score, commands)
 
     def drain_events(self) -> list[ArenaEvent]:
         """Referee calls and completed passes since the last call."""
@@ -341,8 +343,20 @@ class MatchDrill(LayeredDrill):
         return events
 
     def team_names(self) -> tuple[str, str]:
-        """The teams' names as recordings and game logs show them."""
-        return (self.kinds[LEFT].value, self.kinds[RIGHT].value)
+        """The teams' names as recordings, game logs and results show them.
+
+        A team's kind, and its side too when both teams are of one kind (``baseline (left)``
+        and ``baseline (right)``): a legend or a score line that names one team twice does not
+        say who scored.
+        """
+        left, right = self.kinds[LEFT].value, self.kinds[RIGHT].value
+        if left == right:
+            return (f"{left} (left)", f"{right} (right)")
+        return (left, right)
+
+    def goalies(self) -> tuple[PlayerRef, ...]:
+        """Each team's goalkeeper (number :data:`GOALIE`), left then right."""
+        return (PlayerRef(LEFT, GOALIE), PlayerRef(RIGHT, GOALIE))
 
 
 def kick_powers(facts: FieldFacts, pass_power: float) -> KickPowers:

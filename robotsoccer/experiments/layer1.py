@@ -836,13 +836,19 @@ def intro_lines(
         "",
         "Calibrated settings (chosen to match the paper, not reproduced): the defender stops "
         "the ball with its body instead of kicking it clear, chosen so that the training "
-        "drill's baselines match §5 (rows marked *calibrated*: the still and straight "
-        "defenders at the main noise); the placement sector of ±45° around the defender "
-        "(the paper draws it without a number). Every other row was not tuned.",
+        "drill's baselines match §5 (rows whose setting reads *calibrated*: the still and "
+        "straight defenders at the main noise on the paper's field); the placement sector of "
+        "±45° around the defender (the paper draws it without a number). Every other row was "
+        "not tuned.",
         "",
         "Percentages are of all trials (misses count in n); each carries its 95% Wilson "
         "interval in brackets; Saves/(Goals+Saves) is a share of the shots on goal, with its "
-        "own n. The paper's number sits in the column beside ours.",
+        "own n. The paper's number sits in the column beside ours. **setting** says how the "
+        "row was run: the paper's setting, *calibrated* to a paper number (and to which), or "
+        "another field's own setting. **vs paper** says `agrees` where the paper's figure "
+        "lies inside our 95% interval, otherwise whether ours is `above` or `below` it and by "
+        "how many points (ours minus the paper's); a row with several paper figures gives "
+        "each in column order (saves / goals / saves of the shots on goal), unless all agree.",
         "",
         *training_lines(plan, sections),
     ]

@@ -42,7 +42,14 @@ from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
 from learning.pass_tree import LABELS, PassTree, fit_pass_tree, save_pass_tree
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
-from robotsoccer.experiments.report import StageTiming, paired_difference, percent_cell
+from robotsoccer.experiments.report import (
+    StageTiming,
+    field_setting,
+    paired_difference,
+    percent_cell,
+    versus_cell,
+    versus_paper,
+)
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import reliability
 
@@ -335,6 +342,13 @@ def in_bin(results: Sequence[TrialResult], low: float, high: float) -> list[Tria
     return [r for r in results if low <= confidence_of(r) < high]
 
 
+def versus_labels(results: Sequence[TrialResult], ref: dict[str, float]) -> str:
+    """The vs-paper cell of SUCCESS / FAILURE / MISS against the paper's percentages."""
+    counts = Counter(r.label for r in results)
+    n = len(results)
+    return versus_cell([versus_paper(counts[label], n, ref.get(label)) for label in LABELS])
+
+
 def table2_lines(section: Layer2Section) -> list[str]:
     """Table 2: the tree forced to pass, overall and by confidence bin, beside the paper."""
     tree = section.results.get("tree", [])
@@ -343,19 +357,20 @@ def table2_lines(section: Layer2Section) -> list[str]:
         key = f".{round(10 * low)}-.{round(10 * high)}"
         rows.append((key, in_bin(tree, low, high), paper.TABLE_2[key]))
     others = [r for r in tree if not 0.6 <= confidence_of(r) < 0.9]
+    setting = field_setting(section.field_model, section.preset)
     lines = [
         "| confidence | SUCCESS (%) | paper | FAILURE (%) | paper | MISS (%) | paper | n "
-        "| paper n |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| paper n | setting | vs paper |",
+        "|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for key, results, ref in rows:
         s, f, m, n = label_cells(results)
         lines.append(
             f"| {key} | {s} | {ref['SUCCESS']:g} | {f} | {ref['FAILURE']:g} | {m} | "
-            f"{ref['MISS']:g} | {n} | {ref['n']:g} |"
+            f"{ref['MISS']:g} | {n} | {ref['n']:g} | {setting} | {versus_labels(results, ref)} |"
         )
     s, f, m, n = label_cells(others)
-    lines.append(f"| outside .6-.9 | {s} | — | {f} | — | {m} | — | {n} | 280 |")
+    lines.append(f"| outside .6-.9 | {s} | — | {f} | — | {m} | — | {n} | 280 | — | — |")
     return lines
 
 
@@ -381,13 +396,22 @@ def comparison_lines(section: Layer2Section, plan: Layer2Plan) -> list[str]:
         ("gradient-boosted trees (ours)", res.get("boost", []), None),
         ("analytic: can a defender reach the path first? (ours)", res.get("analytic", []), None),
     ]
+    setting = field_setting(section.field_model, section.preset)
+    # The paper's figure with defenders is for none at all; ours stand still on the field.
+    settings = {"DT, defenders still": f"{setting}; defenders still (paper: no defenders)"}
     lines = [
-        "| receiver chosen by | SUCCESS (%) | paper | FAILURE (%) | MISS (%) | n |",
-        "|---|---|---|---|---|---|",
+        "| receiver chosen by | SUCCESS (%) | paper | FAILURE (%) | MISS (%) | n | setting "
+        "| vs paper |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for name, results, ref in rows:
         s, f, m, n = label_cells(results)
-        lines.append(f"| {name} | {s} | {'—' if ref is None else f'{ref:g}'} | {f} | {m} | {n} |")
+        theirs = ("—", "—", "—")  # paper, setting, vs paper: none without a paper figure
+        if ref is not None:
+            k = sum(r.label == "SUCCESS" for r in results)
+            theirs = (f"{ref:g}", settings.get(name, setting), versus_paper(k, len(results), ref))
+        ref_cell, setting_cell, versus = theirs
+        lines.append(f"| {name} | {s} | {ref_cell} | {f} | {m} | {n} | {setting_cell} | {versus} |")
     return lines
 
 

@@ -12,8 +12,18 @@ This module only renders: :mod:`robotsoccer.experiments.layer1` runs the trials 
 run's counts and per-trial measures, and the field's facts (its configuration). The "Where we
 differ from the paper" section states, for every row with a paper number, where the paper's
 value lies outside our interval, checks the paper's claims on every field model, and gives the
-measurements behind each difference (:func:`why_lines`). Rows whose setting was chosen to match
-the paper are marked *calibrated* (:data:`~robotsoccer.experiments.paper.CALIBRATED`).
+measurements behind each difference (:func:`why_lines`).
+
+Every row with a paper number ends in two columns that state facts (:func:`setting_of`,
+:func:`versus_paper`):
+
+* **setting**: the paper's own setting (:data:`PAPER_SETTING`), a setting of ours calibrated to
+  a paper number (*calibrated* to what, :data:`~robotsoccer.experiments.paper.CALIBRATED`), or
+  another field's own setting (:data:`OWN_SETTING`);
+* **vs paper**: ``agrees`` when the paper's figure lies inside our 95% interval, otherwise
+  ``above`` or ``below`` (our figure against the paper's) with the difference in points.
+
+Rows without a paper number show a dash in both.
 """
 
 from __future__ import annotations
@@ -57,6 +67,15 @@ NEAR_100_PCT = 95.0
 NET_LEAD_POINTS = 20.0
 """The issue's claim: at ball noise .05 the net saves at least this many points more."""
 
+PAPER_SETTING = "the paper's setting"
+"""Setting cell of a row run as the paper ran it, on the paper's own field."""
+OWN_SETTING = "our field's own setting"
+"""Setting cell of a row on another field: the drill carried there, nothing tuned to the paper."""
+SWEPT_SETTING = "our variant: swept collisions"
+"""Setting cell of the pass-through check's swept rows (a diagnostic preset of ours)."""
+AGREES = "agrees"
+"""The vs-paper word when the paper's figure lies inside our 95% interval."""
+
 
 @dataclass(frozen=True, slots=True)
 class Counts:
@@ -92,12 +111,16 @@ class Counts:
 
 @dataclass(frozen=True, slots=True)
 class Row:
-    """One table row: its key cells, our counts (None: not run) and the paper's row."""
+    """One table row: its key cells, our counts (None: not run), the paper's row, the setting.
+
+    `setting` is the row's setting cell (:func:`setting_of`); it shows only where the row has a
+    paper number.
+    """
 
     keys: tuple[str, ...]
     counts: Counts | None
     paper: PaperRow | None = None
-    calibrated: bool = False
+    setting: str = PAPER_SETTING
 
 
 @dataclass(frozen=True, slots=True)
@@ -187,6 +210,42 @@ def paper_cell(value: float | None) -> str:
     return "—" if value is None else f"{value:g}"
 
 
+def versus_paper(successes: int, trials: int, paper: float | None) -> str:
+    """Our share against the paper's figure: ``agrees``, or ``above``/``below`` by how much.
+
+    ``agrees`` when the paper's figure lies inside our 95% Wilson interval, judged at the
+    printed precision (0.1 points, so a paper 0 beside our ``0.0 [0.0, 1.9]`` agrees);
+    otherwise whether our share lies above or below the paper's, and ours minus the paper's
+    in percentage points. "—" without a paper figure or without trials.
+
+    >>> versus_paper(612, 1000, 86.0)
+    'below (-24.8 pts)'
+    >>> versus_paper(530, 1000, 53.0)
+    'agrees'
+    """
+    if paper is None or trials <= 0:
+        return "—"
+    low, high = (round(100 * v, 1) for v in wilson_interval(successes, trials))
+    if low <= paper <= high:
+        return AGREES
+    diff = 100 * successes / trials - paper
+    return f"{'above' if paper < low else 'below'} ({diff:+.1f} pts)"
+
+
+def versus_cell(verdicts: Sequence[str]) -> str:
+    """One vs-paper cell from a row's verdicts, one per paper column (``—``: no figure).
+
+    ``agrees`` when every figure the paper gives agrees; otherwise each column's verdict in
+    the table's column order, joined by `` / `` (a single figure alone).
+    """
+    given = [v for v in verdicts if v != "—"]
+    if not given:
+        return "—"
+    if all(v == AGREES for v in given):
+        return AGREES
+    return " / ".join(verdicts) if len(given) > 1 else given[0]
+
+
 TABLE_COLUMNS = (
     "Saves (%)",
     "paper",
@@ -195,6 +254,7 @@ TABLE_COLUMNS = (
     "Saves/(Goals+Saves) (%)",
     "paper",
     "n",
+    "setting",
     "vs paper",
 )
 """The value columns of every results table, after the row's key columns."""
@@ -219,10 +279,10 @@ def paper_table(key_headers: Sequence[str], rows: Sequence[Row]) -> str:
 def _value_cells(row: Row) -> tuple[str, ...]:
     paper = row.paper
     ours: tuple[str, str, str, str]
-    if row.counts is None:
+    c = row.counts
+    if c is None:
         ours = ("not run", "—", "—", "—")
     else:
-        c = row.counts
         on_goal = percent_cell(c.saves, c.on_goal)
         ours = (
             percent_cell(c.saves, c.n),
@@ -230,7 +290,17 @@ def _value_cells(row: Row) -> tuple[str, ...]:
             f"{on_goal} of {c.on_goal}" if c.on_goal else on_goal,
             str(c.n),
         )
-    status = "—" if paper is None else "*calibrated*" if row.calibrated else "reproduced"
+    setting, versus = "—", "—"
+    if paper is not None:
+        setting = row.setting
+        if c is not None:
+            versus = versus_cell(
+                (
+                    versus_paper(c.saves, c.n, paper.saves_pct),
+                    versus_paper(c.goals, c.n, paper.goals_pct),
+                    versus_paper(c.saves, c.on_goal, paper.on_goal_saved_pct),
+                )
+            )
     return (
         ours[0],
         paper_cell(paper.saves_pct if paper else None),
@@ -239,7 +309,8 @@ def _value_cells(row: Row) -> tuple[str, ...]:
         ours[2],
         paper_cell(paper.on_goal_saved_pct if paper else None),
         ours[3],
-        status,
+        setting,
+        versus,
     )
 
 
@@ -256,12 +327,30 @@ def is_calibrated(section: ModelSection, behaviour: str, noise: float) -> bool:
     return on_paper_field and (behaviour, round(noise, 4)) in CALIBRATED
 
 
+def setting_of(section: ModelSection, behaviour: str = "", noise: float = math.nan) -> str:
+    """A row's setting cell: calibrated to a paper number (and to which), the paper's, or ours.
+
+    Args:
+        section: The field model the row ran on.
+        behaviour: The row's defender behaviour ("" for rows no setting was tuned for).
+        noise: The row's ball noise.
+    """
+    if is_calibrated(section, behaviour, noise):
+        return f"*calibrated* to {CALIBRATED[(behaviour, round(noise, 4))]}"
+    return field_setting(section.field_model, section.preset)
+
+
+def field_setting(field_model: str, preset: str) -> str:
+    """The setting cell of an untuned row: the paper's on the paper's own field, else ours."""
+    return PAPER_SETTING if (field_model, preset) == PAPER_FIELD else OWN_SETTING
+
+
 def figure7_rows(section: ModelSection) -> list[Row]:
     """Figure 7 rows; the last (all saves) is set beside the paper's 4773-example row."""
     rows = []
     for examples, label, counts in section.figure7:
         paper = FIGURE_7.get(PAPER_ALL_SAVES if label.startswith("all") else examples)
-        rows.append(Row((label,), counts, paper))
+        rows.append(Row((label,), counts, paper, setting_of(section)))
     return rows
 
 
@@ -276,8 +365,8 @@ def figure8_rows(section: ModelSection) -> list[Row]:
                 continue
             label = f"{noise:g}"
             paper = FIGURE_8.get((round(noise, 4), behaviour))
-            calibrated = is_calibrated(section, behaviour, noise)
-            rows.append(Row((label, BEHAVIOUR_NAMES[behaviour]), counts, paper, calibrated))
+            setting = setting_of(section, behaviour, noise)
+            rows.append(Row((label, BEHAVIOUR_NAMES[behaviour]), counts, paper, setting))
     return rows
 
 
@@ -290,12 +379,12 @@ def swept_rows(section: ModelSection) -> list[Row]:
             name = BEHAVIOUR_NAMES[behaviour]
             plain = section.figure8.get((noise, behaviour))
             if plain is not None:
-                calibrated = is_calibrated(section, behaviour, noise)
                 keys = (f"{noise:g}", name, "end of cycle (server)")
-                rows.append(Row(keys, plain, paper, calibrated))
+                rows.append(Row(keys, plain, paper, setting_of(section, behaviour, noise)))
             swept = section.swept.get((noise, behaviour))
             if swept is not None:
-                rows.append(Row((f"{noise:g}", name, "swept"), swept, paper))
+                # The variant preset is ours: a diagnostic, not the paper's server.
+                rows.append(Row((f"{noise:g}", name, "swept"), swept, paper, SWEPT_SETTING))
     return rows
 
 
@@ -308,7 +397,7 @@ def table1_rows(section: ModelSection) -> list[Row]:
             (BEHAVIOUR_NAMES[b],),
             section.table1[b],
             paper.get(b),
-            is_calibrated(section, b, section.noise),
+            setting_of(section, b, section.noise),
         )
         for b in order
         if b in section.table1
@@ -318,7 +407,7 @@ def table1_rows(section: ModelSection) -> list[Row]:
 def wide_rows(section: ModelSection) -> list[Row]:
     """The 4°-wide rows (no noise): NN and Straight."""
     return [
-        Row((BEHAVIOUR_NAMES[b],), section.wide[b], AIM_4_DEG_WIDE.get(b))
+        Row((BEHAVIOUR_NAMES[b],), section.wide[b], AIM_4_DEG_WIDE.get(b), setting_of(section))
         for b in ("net", "straight")
         if b in section.wide
     ]
@@ -337,17 +426,19 @@ def latency_rows(section: ModelSection) -> list[Row]:
 
 def checks_table(section: ModelSection) -> str:
     """The training drill's sanity numbers beside the paper's text (§5)."""
-    lines = ["| Behavior | what | ours | paper | n | vs paper |", "|---|---|---|---|---|---|"]
+    lines = [
+        "| Behavior | what | ours | paper | n | setting | vs paper |",
+        "|---|---|---|---|---|---|---|",
+    ]
     for behaviour, (what, paper) in TRAINING_FACTS.items():
         counts = section.checks.get(behaviour)
         if counts is None:
             continue
         k = check_count(behaviour, counts)
-        calibrated = is_calibrated(section, behaviour, section.noise)
-        status = "*calibrated*" if calibrated else "reproduced"
+        setting = setting_of(section, behaviour, section.noise)
         lines.append(
             f"| {BEHAVIOUR_NAMES[behaviour]} | {what} | {percent_cell(k, counts.n)} "
-            f"| {paper:g} | {counts.n} | {status} |"
+            f"| {paper:g} | {counts.n} | {setting} | {versus_paper(k, counts.n, paper)} |"
         )
     return "\n".join(lines)
 
@@ -469,12 +560,10 @@ def check_count(behaviour: str, counts: Counts) -> int:
 
 def _outside(what: str, k: int, n: int, paper: float | None) -> str:
     """``"goals 48.5 [41.7, 55.4] vs the paper's 35 (above)"``, or "" when inside or unknown."""
-    if paper is None or n == 0:
+    verdict = versus_paper(k, n, paper)
+    if verdict in (AGREES, "—"):
         return ""
-    low, high = (round(100 * v, 1) for v in wilson_interval(k, n))
-    if low <= paper <= high:
-        return ""
-    side = "above" if paper < low else "below"
+    side = verdict.split(" ", 1)[0]
     return f"{what} {percent_cell(k, n)} (n={n}) {side} the paper's {paper:g}"
 
 

@@ -8,9 +8,11 @@ replay of either kind draws the same thing.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
-from field_models.protocol import Truth
+from field_models.arena import CommandTally
+from field_models.protocol import PlayerRef, Truth
 
 TEAM_NAME_CHARS = 16
 """Longest team name the game log carries (rcssserver limits names to 16 characters)."""
@@ -26,11 +28,15 @@ class GameFrame:
             ``kick_off_l``, ``kick_in_r``, ``goal_l``, ...; the robot table's referee uses the
             same names for its restarts).
         score: Goals of the left and the right team so far.
+        commands: Each player's commands as a Soccer Server counts them, and the tick's kicks
+            (:class:`~field_models.arena.CommandTally`), where the field model counts them;
+            None elsewhere (a game log then writes zeros).
     """
 
     truth: Truth
     play_mode: str
     score: tuple[int, int]
+    commands: Mapping[PlayerRef, CommandTally] | None = None
 
     @property
     def tick(self) -> int:

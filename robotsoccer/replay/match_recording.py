@@ -17,9 +17,11 @@ display flip (y up), and adds or changes:
 - a scoreboard above the field in large stroke letters (``LAYERED 2 : 1 BASELINE`` in the
   team colours) and beneath it the play mode and the match clock (``PLAY ON 12:34``);
 - each team's goals as a scalar series, so a time-series view shows when the goals came;
-- referee calls, decisions (passes, shots, a mind's choices) and goals in a text log; the
-  command, see, hear and link channels are dropped: 22 players send a command every tick,
-  which would bury the few lines a person reads and dominate the file.
+- referee calls, decisions (passes, shots, the selected player's kicks) and goals in a text
+  log; the selected player's routine decisions (turns, dashes, nothing) on their own entity,
+  left out of the default layout; the command, see, hear and link channels are dropped: 22
+  players send a command every tick, which would bury the few lines a person reads and
+  dominate the file.
 
 Layout (blueprint): the field on the left; on the right the legend, the goals over time and
 the event log; the time panel collapsed to its scrubber on the ``sim_time`` timeline.
@@ -36,6 +38,8 @@ Entity layout (besides the trial recorder's ``field/...``, ``legend`` and ``even
     field/scoreboard/status              LineStrips2D, play mode and clock
     score/left, score/right              Scalars, goals so far (every recorded tick)
     events/referee, events/decision      TextLog, "[channel] player: text"
+    events/routine                       TextLog, the selected player's routine decisions
+                                         (turns, dashes, nothing); hidden by default
     events/score                         TextLog, "[goal] layered: layered 1 : 0 baseline"
 
 Speed: as in the trial recorder, the per-tick work is appending floats to buffers; the trail,
@@ -60,6 +64,7 @@ from field_models.arena import ArenaEvent, PlayerShape
 from field_models.protocol import LEFT, RIGHT, BodyState, Percept, Pitch, PlayerRef
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.replay.recording import (
+    ROUTINE_DECISIONS,
     SIM_TIME,
     DrawSizes,
     TrialRecorder,
@@ -276,7 +281,9 @@ class MatchRecorder(TrialRecorder):
             axis_x=rrb.TimeAxis(view_range=whole),
         )
         # Each line names its channel ("[referee] ..."): the entity column would only cut it.
-        events = text_log_view("events", "/events", entity_column=False)
+        events = text_log_view(
+            "events", "/events", entity_column=False, hidden=(ROUTINE_DECISIONS,)
+        )
         return rrb.Blueprint(
             rrb.Horizontal(
                 field_view,

@@ -25,6 +25,34 @@ rcsslogplayer and the usual analysis tools replay and read it. The syntax here i
   y = -(68/2 + 3) (``Player::disable`` in ``src/player.cpp``; side +1 left, -1 right), which
   is how this writer writes a slot without a player in the frame.
 
+**What the writer writes as the server does** (``src/types.h`` ``PlayerState``,
+``src/referee.cpp``, ``src/stadium.cpp``):
+
+* **cycles**: the frame's tick, which on a 100 ms field is the server's cycle count. The server
+  logs a cycle after stepping it, so its first show is cycle 1: a frame at tick 0 (the placement
+  before the first step) is refused;
+* **play modes**: each frame's mode, where it changed. A goal is written as the referee calls
+  it: the cycle the score rose in (the frame before the first frame with the new score) reads
+  ``goal_l`` or ``goal_r`` with the new score and the ball still, and is shown
+  :data:`AFTER_GOAL_WAIT` times in all with the clock held (``AFTER_GOAL_WAIT``: the server's
+  pause before the kick-off), the players frozen where they stood, as our models do not play
+  out that pause. (The 1996 preset puts the ball back on the centre spot in the goal's own
+  cycle, as that server did, so its goal scene shows the ball there.) :meth:`RcgWriter.finish`
+  ends the log with ``time_over`` at the last cycle;
+* **state**: ``STAND`` (0x1) for every player on the field, ``GOALIE`` (0x8) for the goalies
+  given, ``KICK`` (0x2) in a cycle whose kick reached the ball and ``KICK_FAULT`` (0x4) in one
+  whose kick did not (from the frame's :class:`~field_models.arena.CommandTally`); our players
+  cannot catch or tackle, so those flags never appear;
+* **counters** ``(c kick dash turn catch move turn_neck change_view say tackle pointto
+  attentionto)``: the frame's counts of the commands the server carried out; zeros where the
+  field model does not count them. Our clients send only kick, dash, turn and say (the
+  coach's kick-off placement is a trainer's move, not the player's), so the others stay 0;
+* **stamina, effort, recovery, capacity** ``(s ...)``: our models do not simulate stamina (the
+  dash uses effort 1), so every show carries the real server's initial values: the given
+  ``stamina_max``, ``effort_init``, ``recover_init`` and ``stamina_capacity``, otherwise
+  rcssserver 19's defaults 8000, 1, 1 and 130600. The neck angle is 0 (our players have no
+  neck) and the view ``(v h visible_angle)``, the server's default view.
+
 Coordinates are the server's: metres, x toward the right goal, **y down**, angles in degrees
 clockwise positive, velocities per cycle. Our field frame has y up, counter-clockwise radians
 and m/s, so the writer writes y, vy and the body angle negated and velocities times the cycle
@@ -43,19 +71,28 @@ exact step.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
 
+from field_models.arena import COMMAND_COUNTERS, CommandTally
 from field_models.protocol import LEFT, RIGHT, BodyState, PlayerRef, Truth, wrap_angle
 from robotsoccer.replay.frames import TEAM_NAME_CHARS, GameFrame
 
 HEADER = "ULG5"
 """First line of the log: text format, version 5."""
+FIRST_CYCLE = 1
+"""The first cycle a server's log shows: it logs each cycle after stepping it."""
+AFTER_GOAL_WAIT = 50
+"""Shows of a goal's cycle, the clock held: rcssserver's pause before the kick-off
+(``AFTER_GOAL_WAIT``, ``src/referee.h``)."""
+TIME_OVER = "time_over"
+"""The play mode of a log's last cycle (:meth:`RcgWriter.finish`)."""
 READABLE_HEADERS = ("ULG4", "ULG5", "ULG6")
 """Headers :func:`read_rcg` accepts: the text versions, whose show lines read alike."""
 MAX_PLAYERS_PER_TEAM = 11
@@ -72,7 +109,13 @@ SLOTS = tuple(
 )
 """Every show line's player slots, in rcssserver's order: left 1..11, then right 1..11."""
 
+# rcssserver's PlayerState bits (src/types.h).
 _STAND = 0x1
+_KICK = 0x2
+_KICK_FAULT = 0x4
+_GOALIE = 0x8
+_NO_COUNTS = (0,) * len(COMMAND_COUNTERS)
+_NO_TALLY = CommandTally(_NO_COUNTS)
 _PITCH_WIDTH_M = 68.0  # rcssserver's compiled ServerParam::PITCH_WIDTH
 _RAD2DEG = 180.0 / math.pi
 _DEG2RAD = math.pi / 180.0
@@ -129,11 +172,14 @@ _LINE_NAME = re.compile(r"\(([A-Za-z_][A-Za-z0-9_]*)[\s)]", re.ASCII)
 
 
 class RcgWriter:
-    """Streams frames to an ``.rcg`` file (no frame kept in memory).
+    """Streams frames to an ``.rcg`` file, one cycle behind (no more kept in memory).
 
-    The log is written under ``<name>.part`` next to `path` and renamed to `path` on
-    :meth:`close`, so a file under the final name is always a whole log. Also a context
-    manager: leaving the ``with`` block closes the writer, also on an exception.
+    A cycle is written when the next frame comes, since only the next frame's score tells
+    whether a goal was scored in it (module docstring); :meth:`finish` writes the last cycle
+    as ``time_over``, :meth:`close` as it is. The log is written under ``<name>.part`` next to
+    `path` and renamed to `path` on closing, so a file under the final name is always a whole
+    log. Also a context manager: leaving the ``with`` block closes the writer, also on an
+    exception.
 
     Args:
         path: Where the finished log goes (``.rcg`` by convention).
@@ -142,7 +188,8 @@ class RcgWriter:
             numbers 1..11. A slot of :data:`SLOTS` whose player a frame lacks is written
             disconnected.
         teams: The left and right team names: letters, digits, ``-`` and ``_``, at most
-            :data:`~robotsoccer.replay.frames.TEAM_NAME_CHARS` characters (rcssserver's rule).
+            :data:`~robotsoccer.replay.frames.TEAM_NAME_CHARS` characters (rcssserver's rule;
+            :func:`log_team_name` turns a display name into one).
         dt_s: One cycle [s]; velocities are written per cycle and ``simulator_step`` from it.
         server_params: Parameters for the ``server_param`` line, in rcssserver's names and
             units (``goal_width``, ``ball_size``, ``player_size``, ``kickable_margin``,
@@ -151,6 +198,7 @@ class RcgWriter:
             ``effort_init``, ``recover_init`` and ``stamina_capacity`` also fill each player's
             ``(v ...)`` and ``(s ...)`` (server defaults otherwise).
         player_params: Parameters for the ``player_param`` line, in rcssserver's names.
+        goalies: The players whose state carries the ``GOALIE`` flag (0x8).
 
     Raises:
         ValueError: On a bad team name, player, cycle or parameter.
@@ -165,6 +213,7 @@ class RcgWriter:
         dt_s: float,
         server_params: Mapping[str, float | int | str] | None = None,
         player_params: Mapping[str, float | int | str] | None = None,
+        goalies: Collection[PlayerRef] = (),
     ) -> None:
         for name in teams:
             if not isinstance(name, str) or _TEAM_NAME.fullmatch(name) is None:
@@ -177,6 +226,9 @@ class RcgWriter:
         if not (math.isfinite(dt_s) and dt_s > 0.0):
             raise ValueError(f"dt_s must be a positive number of seconds, got {dt_s!r}")
         self._players = _checked_players(players)
+        stray = set(goalies) - self._players
+        if stray:
+            raise ValueError(f"goalies {', '.join(map(str, sorted(stray)))} are not in this log")
         self._dt = float(dt_s)
         params = _server_params(server_params or {}, self._dt)
 
@@ -185,6 +237,7 @@ class RcgWriter:
         self._teams = (teams[0], teams[1])
         self._mode: str | None = None
         self._score: tuple[int, int] | None = None
+        self._pending: GameFrame | None = None
         self._show = _show_format(params)
         # rcssserver's show lines carry all 22 player slots (its players exist from the start,
         # and rcssmonitor refuses a show with fewer); a slot without a player is written as the
@@ -192,7 +245,16 @@ class RcgWriter:
         self._slots = tuple(
             (
                 ref,
-                ("0", -3.0 * ref.number * _side(ref), -(0.5 * _PITCH_WIDTH_M + 3.0), 0.0, 0.0, 0.0),
+                _STAND | (_GOALIE if ref in goalies else 0),
+                (
+                    "0",
+                    -3.0 * ref.number * _side(ref),
+                    -(0.5 * _PITCH_WIDTH_M + 3.0),
+                    0.0,
+                    0.0,
+                    0.0,
+                    *_NO_COUNTS,
+                ),
             )
             for ref in SLOTS
         )
@@ -210,53 +272,60 @@ class RcgWriter:
         return self._file.closed
 
     def write(self, frame: GameFrame) -> None:
-        """Append one cycle: playmode and team lines where they changed, then the show line.
+        """Take one cycle's frame; the previous one is written now (a goal's as a goal scene).
 
         Raises:
-            ValueError: If the writer is closed, the play mode is not one word, or the frame
-                holds a player the writer was not given.
+            ValueError: If the writer is closed, the frame's cycle is before
+                :data:`FIRST_CYCLE` or before the previous frame's, its play mode is not one
+                word, or it holds a player the writer was not given.
         """
         if self._file.closed:
             raise ValueError(f"{self._part}: the writer is closed")
-        truth = frame.truth
-        tick = truth.tick
-        if not self._players.issuperset(truth.players):
-            extra = sorted(set(truth.players) - self._players)
+        tick = frame.truth.tick
+        if not self._players.issuperset(frame.truth.players):
+            extra = sorted(set(frame.truth.players) - self._players)
             raise ValueError(
                 f"tick {tick}: players {', '.join(map(str, extra))} are not in this log"
             )
-        write = self._file.write
-        if frame.play_mode != self._mode:
-            if _PLAY_MODE.fullmatch(frame.play_mode) is None:
-                raise ValueError(f"play mode {frame.play_mode!r} is not one word")
-            self._mode = frame.play_mode
-            write(f"(playmode {tick} {frame.play_mode})\n")
-        if frame.score != self._score:
-            left, right = frame.score
-            self._score = (left, right)
-            write(f"(team {tick} {self._teams[0]} {self._teams[1]} {left:d} {right:d})\n")
+        if _PLAY_MODE.fullmatch(frame.play_mode) is None:
+            raise ValueError(f"play mode {frame.play_mode!r} is not one word")
+        if tick < FIRST_CYCLE:
+            raise ValueError(
+                f"tick {tick}: a server's log starts at cycle {FIRST_CYCLE} (it logs a cycle "
+                "after stepping it)"
+            )
+        pending = self._pending
+        if pending is not None:
+            if tick < pending.tick:
+                raise ValueError(f"tick {tick} comes after tick {pending.tick}")
+            self._write_pending(frame.score)
+        self._pending = frame
 
-        dt = self._dt
-        ball = truth.ball
-        values: list[object] = [tick, ball.x, 0.0 - ball.y, ball.vx * dt, 0.0 - ball.vy * dt]
-        get = truth.players.get
-        for ref, absent in self._slots:
-            state = get(ref)
-            if state is None:
-                values.extend(absent)
-                continue
-            x, y, heading, vx, vy = state
-            # 0.0 - v rather than -v: no "-0.0000" for a zero.
-            body = 0.0 - heading * _RAD2DEG
-            if not -180.0 < body <= 180.0:
-                body = 180.0 - (180.0 - body) % 360.0
-            values.extend(("0x1", x, 0.0 - y, vx * dt, 0.0 - vy * dt, body))
-        write(self._show % tuple(values))
+    def finish(self, score: tuple[int, int] | None = None) -> None:
+        """End the match: the last cycle as ``time_over``, then close the log.
+
+        Args:
+            score: The final score, where a goal in the last cycle raised it after its frame
+                (None: the last frame's); that cycle is then written as the goal's scene first.
+        """
+        pending = self._pending
+        if pending is not None and not self._file.closed:
+            self._pending = None
+            side = _scorer(pending.score, score or pending.score)
+            if side is None:
+                self._write_cycle(pending, TIME_OVER, pending.score)
+            else:
+                assert score is not None
+                self._goal_scene(pending, side, score)
+                self._write_cycle(_held(pending), TIME_OVER, score)
+        self.close()
 
     def close(self) -> None:
-        """Flush, close and move the log to its final name; a second call does nothing."""
+        """Write the last cycle as it is, close and move the log to its final name; again: no-op."""
         if self._file.closed:
             return
+        if self._pending is not None:
+            self._write_pending(self._pending.score)
         self._file.close()
         os.replace(self._part, self.path)
 
@@ -270,6 +339,120 @@ class RcgWriter:
         tb: TracebackType | None,
     ) -> None:
         self.close()
+
+    # ------------------------------------------------------------------ cycles
+
+    def _write_pending(self, next_score: tuple[int, int]) -> None:
+        """Write the held-back frame: as a goal's scene when `next_score` shows a goal in it."""
+        frame = self._pending
+        assert frame is not None
+        self._pending = None
+        side = _scorer(frame.score, next_score)
+        if side is None:
+            self._write_cycle(frame, frame.play_mode, frame.score)
+        else:
+            self._goal_scene(frame, side, next_score)
+
+    def _goal_scene(self, frame: GameFrame, side: str, score: tuple[int, int]) -> None:
+        """The goal's cycle as the server logs it: the goal mode and new score, held.
+
+        rcssserver stops the ball when it scores the goal and holds the clock for
+        :data:`AFTER_GOAL_WAIT` shows before the kick-off; our models play no such pause, so
+        the players stay where they stood.
+        """
+        held = _held(frame)
+        self._write_cycle(_ball_still(frame), f"goal_{side}", score)
+        for _ in range(AFTER_GOAL_WAIT - 1):
+            self._write_cycle(held, f"goal_{side}", score)
+
+    def _write_cycle(self, frame: GameFrame, mode: str, score: tuple[int, int]) -> None:
+        """One cycle: playmode and team lines where they changed, then the show line."""
+        write = self._file.write
+        tick = frame.truth.tick
+        if mode != self._mode:
+            self._mode = mode
+            write(f"(playmode {tick} {mode})\n")
+        if score != self._score:
+            left, right = score
+            self._score = (left, right)
+            write(f"(team {tick} {self._teams[0]} {self._teams[1]} {left:d} {right:d})\n")
+        write(self._show % self._show_values(frame))
+
+    def _show_values(self, frame: GameFrame) -> tuple[object, ...]:
+        """The show line's values: the cycle, the ball, then each slot's (:func:`_show_format`)."""
+        dt = self._dt
+        truth = frame.truth
+        ball = truth.ball
+        values: list[object] = [truth.tick, ball.x, 0.0 - ball.y, ball.vx * dt, 0.0 - ball.vy * dt]
+        get = truth.players.get
+        tallies = frame.commands or {}
+        for ref, state_bits, absent in self._slots:
+            state = get(ref)
+            if state is None:
+                values.extend(absent)
+                continue
+            x, y, heading, vx, vy = state
+            # 0.0 - v rather than -v: no "-0.0000" for a zero.
+            body = 0.0 - heading * _RAD2DEG
+            if not -180.0 < body <= 180.0:
+                body = 180.0 - (180.0 - body) % 360.0
+            tally = tallies.get(ref, _NO_TALLY)
+            bits = state_bits
+            if tally.kicked:
+                bits |= _KICK
+            if tally.kick_missed:
+                bits |= _KICK_FAULT
+            values.extend((f"{bits:#x}", x, 0.0 - y, vx * dt, 0.0 - vy * dt, body))
+            values.extend(tally.counts)
+        return tuple(values)
+
+
+def log_team_name(name: str) -> str:
+    """A display name as a game log may carry it: runs of other characters become ``_``.
+
+    >>> log_team_name("baseline (left)")
+    'baseline_left'
+
+    Raises:
+        ValueError: Nothing of the name is left, or more than
+            :data:`~robotsoccer.replay.frames.TEAM_NAME_CHARS` characters are.
+    """
+    text = re.sub(r"[^A-Za-z0-9_-]+", "_", name).strip("_")
+    if _TEAM_NAME.fullmatch(text) is None:
+        raise ValueError(f"team name {name!r} cannot be written in a game log")
+    return text
+
+
+def _scorer(before: tuple[int, int], after: tuple[int, int]) -> str | None:
+    """``"l"`` or ``"r"``: the side whose score rose from `before` to `after`; None: neither."""
+    if after[0] > before[0]:
+        return "l"
+    if after[1] > before[1]:
+        return "r"
+    return None
+
+
+def _ball_still(frame: GameFrame) -> GameFrame:
+    """`frame` with the ball at rest where it is (the server stops the ball at a goal)."""
+    truth = frame.truth
+    ball = truth.ball
+    still = BodyState(ball.x, ball.y, ball.heading, 0.0, 0.0)
+    return dataclasses.replace(frame, truth=dataclasses.replace(truth, ball=still))
+
+
+def _held(frame: GameFrame) -> GameFrame:
+    """`frame` frozen: everything at rest, no kick flags (a held cycle steps nothing)."""
+    truth = frame.truth
+
+    def still(s: BodyState) -> BodyState:
+        return BodyState(s.x, s.y, s.heading, 0.0, 0.0)
+
+    players = {ref: still(state) for ref, state in truth.players.items()}
+    commands = None
+    if frame.commands is not None:
+        commands = {ref: CommandTally(t.counts) for ref, t in frame.commands.items()}
+    held = dataclasses.replace(truth, ball=still(truth.ball), players=players)
+    return dataclasses.replace(frame, truth=held, commands=commands)
 
 
 def _side(ref: PlayerRef) -> int:
@@ -366,7 +549,15 @@ def _header(server: dict[str, str], player: dict[str, float | int | str]) -> str
 
 
 def _show_format(params: Mapping[str, str]) -> str:
-    """The show line as one ``%`` format: tick, ball, then state, x, y, vx, vy, body each."""
+    """The show line as one ``%`` format: the cycle, the ball, then every slot's fields.
+
+    A slot takes its state, x, y, vx, vy, body and the
+    :data:`~field_models.arena.COMMAND_COUNTERS` counts, in rcssserver's order
+    (``SerializerMonitorStdv4::serializeShowPlayer``): ``((side unum) type state x y vx vy
+    body neck (v quality width) (s stamina effort recovery capacity) (c counts...))``. An
+    arm's point and a focus, which our players never have, are left out as the server leaves
+    them out.
+    """
 
     def number(name: str) -> str:
         text = params.get(name, "")
@@ -381,7 +572,8 @@ def _show_format(params: Mapping[str, str]) -> str:
         f"(s {number('stamina_max')} {number('effort_init')} {number('recover_init')}"
         f" {number('stamina_capacity')})"
     )
-    tail = f" 0 {view} {stamina} (c 0 0 0 0 0 0 0 0 0 0 0))".replace("%", "%%")
+    counts = " ".join(["%d"] * len(COMMAND_COUNTERS))
+    tail = f" 0 {view} {stamina}".replace("%", "%%") + f" (c {counts}))"
     parts = ["(show %d ((b) %.4f %.4f %.4f %.4f)"]
     for ref in SLOTS:
         side = "l" if ref.team == LEFT else "r"

@@ -41,6 +41,14 @@ Entity layout (paths are what :func:`read_entity_positions` takes)::
     field/outcome, field/outcome/frame               the label above the field, the boundary
     legend                                           TextDocument (markdown), outcome on top
     events/<channel>, events/label                   TextLog, "[channel] player: text"
+    events/routine                                   TextLog, routine decisions (turns,
+                                                     dashes, nothing); hidden by default
+
+A mind's decision goes to ``events/decision`` when it kicks or says something (a kick, a
+pass, a set play's call) and to ``events/routine`` when it only steers (turns and dashes) or
+does nothing (:meth:`TrialRecorder.log_decision`): a player decides at every percept, and
+those lines would bury the few events a viewer looks for. The default layout leaves
+``events/routine`` out of the events view; the blueprint panel can add it back.
 
 Positions are stored as float32 (rerun's ``Vec2D``).
 """
@@ -62,7 +70,18 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from field_models.arena import ArenaEvent, PlayerShape
-from field_models.protocol import LEFT, RIGHT, BodyState, Percept, Pitch, PlayerRef, Truth
+from field_models.protocol import (
+    LEFT,
+    RIGHT,
+    Action,
+    BodyState,
+    Kick,
+    Percept,
+    Pitch,
+    PlayerRef,
+    Say,
+    Truth,
+)
 
 if TYPE_CHECKING:
     import rerun as rr
@@ -78,6 +97,8 @@ MIN_BALL_FRACTION = 0.006
 """The ball is drawn with a radius of at least this fraction of the pitch length."""
 MIN_PLAYER_FRACTION = 0.007
 """Players are drawn with a half-size of at least this fraction of the pitch length."""
+ROUTINE_DECISIONS = "events/routine"
+"""Entity of routine decisions (turns, dashes, nothing): recorded, hidden by default."""
 
 _TEAM_COLOURS: dict[str, tuple[int, int, int]] = {LEFT: (60, 130, 255), RIGHT: (255, 200, 40)}
 _OTHER_TEAM_COLOURS = ((200, 80, 220), (80, 220, 160), (240, 90, 90))
@@ -408,18 +429,33 @@ def time_indexes(ticks: Sequence[int], dt_s: float) -> list[Any]:
     return [rr.TimeColumn(SIM_TIME, duration=ns), rr.TimeColumn(TICK, sequence=tick_arr)]
 
 
-def text_log_view(name: str, origin: str, *, entity_column: bool = True) -> rrb.TextLogView:
+def is_routine(actions: Sequence[Action]) -> bool:
+    """Whether a decision only steers or waits: turns and dashes, or nothing (no kick, no say).
+
+    >>> from field_models.protocol import Dash, Turn
+    >>> is_routine((Turn(0.5), Dash(100.0))), is_routine(()), is_routine((Kick(80.0, 0.0),))
+    (True, True, False)
+    """
+    return not any(isinstance(action, Kick | Say) for action in actions)
+
+
+def text_log_view(
+    name: str, origin: str, *, entity_column: bool = True, hidden: Sequence[str] = ()
+) -> rrb.TextLogView:
     """A text-log view of `origin` that shows each line's body first, then its entity.
 
     By default rerun 0.41 puts the entity path and level first, and in a narrow view the body
     is cut off (``rrb.TextLogColumns``, blueprint/archetypes/text_log_columns). Without
     `entity_column` the entity path is hidden too (where the body names its channel).
+    Entities in `hidden` (paths without the leading ``/``) are left out of the view's
+    contents: recorded, and shown again by adding them in the blueprint panel.
     """
     import rerun.blueprint as rrb
 
     return rrb.TextLogView(
         name=name,
         origin=origin,
+        contents=["+ $origin/**", *(f"- /{path}/**" for path in hidden)],
         columns=rrb.TextLogColumns(
             timeline_columns=[rrb.encodings.TimelineColumn(SIM_TIME)],
             text_log_columns=[
@@ -617,7 +653,7 @@ class TrialRecorder:
             visual_bounds=rrb.VisualBounds2D(x_range=x_range, y_range=y_range),
         )
         legend = rrb.TextDocumentView(name="legend", origin="/legend")
-        events = text_log_view("events", "/events")
+        events = text_log_view("events", "/events", hidden=(ROUTINE_DECISIONS,))
         return rrb.Blueprint(
             rrb.Horizontal(
                 field_view,
@@ -884,6 +920,24 @@ class TrialRecorder:
             who = "" if event.player is None else f"{event.player}: "
             text = f"[{event.channel}] {who}{event.text}"
             self._add_text(f"events/{entity_name(event.channel)}", event.tick, text, "INFO")
+
+    def log_decision(self, event: ArenaEvent, actions: Sequence[Action]) -> None:
+        """Buffer a mind's decision: kicks and says as events, the rest as routine.
+
+        Args:
+            event: The decision as a ``decision`` event (its text: the commands it became).
+            actions: The actions decided: a decision with a kick or a say is logged like any
+                event (``events/decision``); one of turns and dashes only, or of nothing, goes
+                to :data:`ROUTINE_DECISIONS`, which the default layout hides.
+        """
+        if self._closed:
+            raise RuntimeError("TrialRecorder is closed")
+        if not is_routine(actions):
+            self.log_events([event])
+            return
+        who = "" if event.player is None else f"{event.player}: "
+        text = f"[{event.channel}] {who}{event.text}"
+        self._add_text(ROUTINE_DECISIONS, event.tick, text, "DEBUG")
 
     def log_label(self, tick: int, label: str, detail: str = "") -> None:
         """Record the trial's outcome (e.g. ``"GOAL"``, ``"SUCCESS"``) and why, at `tick`.

@@ -320,7 +320,7 @@ def _play_recorded(
 
     def decide(percept: Percept, actions: tuple[Action, ...]) -> None:
         event = ArenaEvent(percept.tick, "decision", describe_decision(actions), percept.player)
-        recorder.log_events([event])
+        recorder.log_decision(event, actions)  # routine ones go where the layout hides them
 
     with recorder:
         recorder.log_truth(arena.truth())
@@ -346,6 +346,10 @@ class MatchLike(Protocol):
         """The teams' names."""
         ...
 
+    def goalies(self) -> tuple[PlayerRef, ...]:
+        """The goalkeepers (game logs flag them)."""
+        ...
+
 
 def _play_match_recorded(
     arena: Arena,
@@ -358,13 +362,13 @@ def _play_match_recorded(
     """Play match `index` with a rerun recording (and an ``.rcg`` game log on a server pitch).
 
     The game log (:mod:`robotsoccer.replay.rcg`) is written only on a field drawn in Soccer
-    Server metres (``unit_m`` 1): the format's tools draw the server's pitch. Both files
-    are written under part names and renamed once the match is over
-    (``match_<index>_<LABEL>.rrd`` / ``.rcg``). The left team's last player's percepts are
-    drawn beside the truth.
+    Server metres (``unit_m`` 1): the format's tools draw the server's pitch. It starts at
+    cycle 1, as a server's does, and ends with ``time_over``. Both files are written under
+    part names and renamed once the match is over (``match_<index>_<LABEL>.rrd`` / ``.rcg``).
+    The left team's last player's percepts are drawn beside the truth.
     """
     from robotsoccer.replay.match_recording import MatchRecorder  # rerun loads late
-    from robotsoccer.replay.rcg import RcgWriter
+    from robotsoccer.replay.rcg import RcgWriter, log_team_name
 
     assert spec.record_dir is not None
     facts = arena.facts
@@ -402,7 +406,12 @@ def _play_match_recorded(
         if facts.kick is not None:
             params["kickable_margin"] = facts.kick.reach_m - facts.touch_distance_m
         writer = RcgWriter(
-            rcg, players=arena.players, teams=teams, dt_s=facts.dt_s, server_params=params
+            rcg,
+            players=arena.players,
+            teams=(log_team_name(teams[0]), log_team_name(teams[1])),
+            dt_s=facts.dt_s,
+            server_params=params,
+            goalies=match.goalies(),
         )
 
     def observe(a: Arena, percepts: list[Percept]) -> None:
@@ -418,18 +427,18 @@ def _play_match_recorded(
     def decide(percept: Percept, actions: tuple[Action, ...]) -> None:
         if percept.player == selected:
             text = describe_decision(actions)
-            recorder.log_events([ArenaEvent(percept.tick, "decision", text, percept.player)])
+            event = ArenaEvent(percept.tick, "decision", text, percept.player)
+            recorder.log_decision(event, actions)  # routine ones go where the layout hides them
 
     with recorder:
-        first = match.game_frame(arena)
-        recorder.log_frame(first)
-        if writer is not None:
-            writer.write(first)
+        # The kick-off placement before the first cycle: the recording shows it, a server's
+        # log starts at the first cycle stepped.
+        recorder.log_frame(match.game_frame(arena))
         verdict = play(arena, drill, minds, observe, decide)
         recorder.log_events(match.drain_events())
         recorder.log_events([ArenaEvent(arena.tick, "referee", f"time_over: {verdict.reason}")])
     if writer is not None:
-        writer.close()
+        writer.finish(match.game_frame(arena).score)  # a goal in the last cycle counts too
         rcg.replace(folder / f"{stem}_{verdict.label}.rcg")
     (folder / f"{stem}.rrd.part").replace(folder / f"{stem}_{verdict.label}.rrd")
     return verdict

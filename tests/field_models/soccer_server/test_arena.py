@@ -7,7 +7,7 @@ import math
 import pytest
 
 from field_models.benchmarks import ChaseLoad
-from field_models.protocol import LEFT, RIGHT, Dash, Percept, PlayerRef, Say, Turn
+from field_models.protocol import LEFT, RIGHT, Dash, Kick, Percept, PlayerRef, Say, Turn
 from field_models.seeding import TrialRngs
 from field_models.soccer_server import model as server_model
 from field_models.soccer_server.arena import SoccerServerArena
@@ -53,6 +53,36 @@ def test_a_new_decision_replaces_the_rest_of_the_old_one() -> None:
     state = a.player_state(A)
     assert state.heading == pytest.approx(math.radians(20.0))
     assert state.speed == 0.0  # no dash ran
+
+
+def test_the_arena_counts_commands_as_the_server_carries_them_out() -> None:
+    from field_models.arena import COMMAND_COUNTERS, CountsCommands
+
+    a = arena(noise=False)
+    assert isinstance(a, CountsCommands)
+    kick, dash, turn, say = (COMMAND_COUNTERS.index(c) for c in ("kick", "dash", "turn", "say"))
+    a.submit(A, (Turn(math.radians(-20.0)), Dash(100.0), Dash(100.0), Say("hi")))
+    a.step()  # the turn runs; the say goes out
+    a.submit(A, (Turn(math.radians(40.0)),))  # the two dashes are never sent
+    a.step()
+    a.step()
+    counts = a.command_tally()[A].counts
+    assert len(counts) == len(COMMAND_COUNTERS)
+    assert (counts[turn], counts[dash], counts[say], counts[kick]) == (2, 0, 1, 0)
+    assert sum(counts) == 3 and sum(a.command_tally()[B].counts) == 0
+    # A kick with the ball at the feet takes effect, flagged for that tick only; one out of
+    # reach is carried out (and counted) but misses.
+    a.place_ball(-9.5, 0.0)
+    a.submit(A, (Kick(50.0, 0.0),))
+    a.step()
+    tally = a.command_tally()[A]
+    assert (tally.kicked, tally.kick_missed, tally.counts[kick]) == (True, False, 1)
+    a.step()
+    assert not a.command_tally()[A].kicked
+    a.submit(B, (Kick(50.0, 0.0),))
+    a.step()
+    tally = a.command_tally()[B]
+    assert (tally.kicked, tally.kick_missed, tally.counts[kick]) == (False, True, 1)
 
 
 def test_a_say_is_heard_with_the_next_percept_and_the_referee_by_all() -> None:

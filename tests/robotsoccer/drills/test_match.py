@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
-from robotsoccer.drills.match import MatchDrill
+from robotsoccer.drills.match import MatchDrill, TeamKind
 from robotsoccer.drills.referee import RESTART_DISTANCE_UNITS
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.runner import TrialSpec, build_trial, run_trial
@@ -144,3 +144,24 @@ def test_a_layered_team_needs_its_files_and_refuses_another_fields(tmp_path: Pat
     )
     result = run_trial(server, 0)
     assert result.label in MatchDrill.labels
+
+
+def test_teams_of_one_kind_carry_their_side_in_every_output() -> None:
+    drill, _ = started(baseline("soccer_server"))
+    assert drill.team_names() == ("baseline (left)", "baseline (right)")
+    assert drill.goalies() == (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1))
+    result = run_trial(baseline("soccer_server", half=1.0), 0)
+    assert result.reason.startswith("baseline (left) ") and result.reason.endswith(
+        " baseline (right)"
+    )
+    mixed = MatchDrill(left="baseline", right="baseline")
+    mixed.kinds[RIGHT] = TeamKind.LAYERED  # (a layered team's model files are not needed here)
+    assert mixed.team_names() == ("baseline", "layered")  # two kinds: the names suffice
+
+
+def test_a_server_match_frame_carries_the_command_counts() -> None:
+    drill, arena = started(baseline("soccer_server"))
+    frame = drill.game_frame(arena)
+    assert frame.commands is not None and set(frame.commands) == set(arena.players)
+    drill, arena = started(baseline("robot_physics"))
+    assert drill.game_frame(arena).commands is None  # the robots' arena counts none

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -16,10 +17,14 @@ from learning.pass_tree import load_pass_tree
 from robotsoccer.experiments.layer1 import seeds_for
 from robotsoccer.experiments.layer2 import (
     Layer2Plan,
+    Layer2Section,
+    comparison_lines,
     layer2_markdown,
     run_layer2_model,
     table2_lines,
 )
+from robotsoccer.experiments.report import OWN_SETTING, PAPER_SETTING
+from robotsoccer.runs.runner import TrialResult
 
 PLAN = Layer2Plan("test", collect_trials=60, eval_trials=16, tree_depth_shown=2)
 
@@ -117,3 +122,45 @@ def test_learn_pass_refuses_a_net_from_another_field(net: Path, tmp_path: Path) 
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1 and "transfer=true" in done.stderr
     assert not (tmp_path / "x").exists()
+
+
+def _passes(success: int, failure: int, miss: int, confidence: float) -> list[TrialResult]:
+    labels = ["SUCCESS"] * success + ["FAILURE"] * failure + ["MISS"] * miss
+    return [TrialResult(i, label, "", 1, 0.1, (0.0, confidence)) for i, label in enumerate(labels)]
+
+
+def _cells(line: str) -> list[str]:
+    return [cell.strip() for cell in line.strip().strip("|").split("|")]
+
+
+def test_the_layer2_tables_say_how_ours_stands_against_the_paper() -> None:
+    section = Layer2Section("soccer_server", "soccer_server_1996", "net.npz")
+    section.results = {
+        # Forced tree: 65 / 26 / 9 of 1000 beside the paper's 65 / 26 / 8: all agree.
+        "tree": _passes(650, 260, 90, 0.75),
+        "random": _passes(400, 500, 100, math.nan),  # 40.0 [37.0, 43.1] vs 51: below
+        "closest": _passes(700, 250, 50, math.nan),  # 70.0 [67.1, 72.7] vs 64: above
+        "tree_no_defenders": _passes(860, 100, 40, 0.9),  # 86: agrees, setting says still
+    }
+    comparison = {_cells(line)[0]: _cells(line) for line in comparison_lines(section, PLAN)[2:]}
+    header = _cells(comparison_lines(section, PLAN)[0])
+    assert header[-2:] == ["setting", "vs paper"]
+    assert comparison["DT, forced to pass (Table 2)"][-2:] == [PAPER_SETTING, "agrees"]
+    assert comparison["random receiver"][-1] == "below (-11.0 pts)"
+    assert comparison["closest teammate"][-1] == "above (+6.0 pts)"
+    assert comparison["DT, defenders still"][-2:] == [
+        f"{PAPER_SETTING}; defenders still (paper: no defenders)",
+        "agrees",
+    ]
+    # No paper figure: dashes.
+    assert comparison["gradient-boosted trees (ours)"][-2:] == ["—", "—"]
+    table = {_cells(line)[0]: _cells(line) for line in table2_lines(section)[2:]}
+    assert table["overall"][-2:] == [PAPER_SETTING, "agrees"]
+    # Every pass sits in .7-.8 (paper 63 / 29 / 8): 65.0 [62.0, 67.9] agrees, 26.0 [23.4,
+    # 28.8] lies below 29, 9.0 [7.4, 10.9] agrees.
+    assert table[".7-.8"][-1] == "agrees / below (-3.0 pts) / agrees"
+    assert table[".8-.9"][-1] == "—"  # no trials in the bin
+    assert table["outside .6-.9"][-2:] == ["—", "—"]
+    robots = Layer2Section("robot_physics", "small_size_1997", "net.npz")
+    robots.results = section.results
+    assert _cells(table2_lines(robots)[2])[-2] == OWN_SETTING

@@ -486,3 +486,35 @@ def test_closed_recorder_refuses_more(tmp_path: Path) -> None:
         rec.log_frame(GameFrame(truth_at(1), "before_kick_off", (0, 0)))
     with pytest.raises(RuntimeError):
         rec.log_events([ArenaEvent(1, "command", "(dash 100)")])
+
+
+def test_routine_decisions_go_where_the_default_layout_hides_them(tmp_path: Path) -> None:
+    from field_models.protocol import Dash, Kick, Say, Turn
+
+    path = tmp_path / "decisions.rrd"
+    decisions = [
+        ((), "nothing"),
+        ((Turn(0.5), Dash(100.0)), "(turn -28.6) (dash 100)"),
+        ((Kick(80.0, 0.0),), "(kick 80 0)"),
+        ((Say("go"),), "(say go)"),
+    ]
+    with MatchRecorder(
+        path, pitch=PITCH, players=PLAYERS, dt_s=DT_S, player_shape="circle",
+        sensor_period_s=SENSOR_S, teams=TEAMS, selected=SELECTED, title="t", recording_id="d",
+    ) as rec:  # fmt: skip
+        for tick, (actions, text) in enumerate(decisions):
+            rec.log_frame(GameFrame(truth_at(tick), "play_on", (0, 0)))
+            rec.log_decision(ArenaEvent(tick, "decision", text, SELECTED), actions)
+
+    def texts(entity: str) -> list[str]:
+        return [t for _, row in rows(path, entity, "TextLog:text") for t in row]
+
+    assert texts("events/routine") == [
+        "[decision] left9: nothing",
+        "[decision] left9: (turn -28.6) (dash 100)",
+    ]
+    assert texts("events/decision") == [
+        "[decision] left9: (kick 80 0)",
+        "[decision] left9: (say go)",
+    ]
+    assert "- /events/routine/**" in blueprint_values(path, "ViewContents:query")
