@@ -54,6 +54,7 @@ from robotsoccer.experiments.report import Counts, ModelSection, StageTiming
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.provenance import code_version
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
+from robotsoccer.runs.table import iter_results
 from robotsoccer.skills.intercept import TaMode
 
 Log = Callable[[str], None]
@@ -242,10 +243,8 @@ def evaluate(
 
 
 def _rows_in(path: Path) -> int:
-    if not path.exists():
-        return 0
-    lines = path.read_text().splitlines()[1:]
-    return sum(1 for line in lines if line.strip())
+    # rows, not lines: a quoted reason may hold line ends (run_trials warns of a cut-short row)
+    return sum(1 for _ in iter_results(path, warn=lambda _: None))
 
 
 def counts_of(results: Iterable[TrialResult]) -> Counts:

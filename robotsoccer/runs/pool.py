@@ -5,8 +5,9 @@
   a pool starts in milliseconds rather than re-importing numpy and pymunk per worker (and, unlike
   a plain fork, never inherits the threads of a parent that trained a torch model). One worker
   runs the trials in this process, with no pool at all.
-* Each finished chunk is appended to the CSV table and flushed at once, so an interrupted run
-  keeps every trial it finished; a rerun with ``resume=True`` skips them. Beside the table a
+* Each finished chunk is appended to the CSV table (:mod:`robotsoccer.runs.table`) and flushed
+  at once, so an interrupted run keeps every trial it finished; a rerun with ``resume=True``
+  skips them. Beside the table a
   manifest (``<table>.json``) records what made it: the spec, the code version and the digests
   of the files the trials read (:mod:`robotsoccer.runs.provenance`). A resume onto a table made
   by anything else is refused with one line saying what differs; a last row cut short by a
@@ -37,13 +38,8 @@ from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept_batch import DEFAULT_BATCH, batch_reason, run_intercept_batch
 from robotsoccer.runs.provenance import code_version, file_digest
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
-
-
-class ResumeError(ValueError):
-    """A results table cannot be resumed: another run made it, or it is damaged.
-
-    A ValueError, so the CLI reports it as one line.
-    """
+from robotsoccer.runs.table import ResumeError, TableWriter, iter_results
+from robotsoccer.runs.table import read_results as read_results  # where callers found it
 
 
 def default_workers() -> int:
@@ -170,56 +166,6 @@ class Progress:
         """End the bar (a no-op for plain lines)."""
         if self._bar is not None:
             self._bar.close()
-
-
-def read_results(path: Path, warn: Callable[[str], None] | None = None) -> dict[int, TrialResult]:
-    """Results already in a table, by index (:func:`iter_results`); an absent file holds none."""
-    return {result.index: result for result in iter_results(path, warn)}
-
-
-def iter_results(path: Path, warn: Callable[[str], None] | None = None) -> Iterator[TrialResult]:
-    """The results in a table, one at a time (a resumed run of any size reads it in passing).
-
-    A last row without its line end was cut short by a killed write: it is dropped (and the
-    file truncated after the last complete row, so appending goes on cleanly), with a warning.
-
-    Raises:
-        ResumeError: The file does not start with the results header, or a complete row does
-            not parse.
-    """
-    if not path.exists():
-        return
-    _drop_torn_row(path, warn or _warn)
-    with path.open() as table:
-        header = table.readline().rstrip("\n")
-        if header != TrialResult.CSV_HEADER:
-            raise ResumeError(f"{path}: not a results table of this version (header {header!r})")
-        for number, line in enumerate(table, start=2):
-            try:
-                yield TrialResult.from_csv_row(line)
-            except ValueError as exc:
-                raise ResumeError(f"{path}: line {number} is not a result row ({exc})") from None
-
-
-def _drop_torn_row(path: Path, warn: Callable[[str], None]) -> None:
-    """Cut a last row that has no line end (a write killed half-way) off the file."""
-    with path.open("rb+") as table:
-        size = table.seek(0, os.SEEK_END)
-        if size == 0:
-            return
-        table.seek(size - 1)
-        if table.read(1) == b"\n":
-            return
-        block = min(size, 1 << 16)
-        table.seek(size - block)
-        tail = table.read(block)
-        cut = size - block + tail.rfind(b"\n") + 1  # 0 when no line end at all
-        table.truncate(cut)
-    warn(f"{path}: dropped a last row cut short by an interrupted write")
-
-
-def _warn(message: str) -> None:
-    print(f"warning: {message}", file=sys.stderr)
 
 
 def manifest(spec: TrialSpec) -> dict[str, Any]:
@@ -350,51 +296,41 @@ def run_trials(
         if on_result is not None:
             on_result(result)
 
-    resumed = 0
-    if results_path is not None:
-        if resume:
-            check_resumable(results_path, spec)
-            for result in iter_results(results_path):
-                if result.index < n_trials and not finished[result.index]:
-                    record(result)
-                    resumed += 1
-        _write_manifest(results_path, spec)
-    remaining = n_trials - resumed
-    todo = (i for i in range(n_trials) if not finished[i])
-    size = chunk_size or default_chunk_size(spec, remaining, workers)
-    bar = Progress(n_trials, enabled=progress)
-    bar.advance(resumed)
-    sink = _open_sink(results_path, keep_rows=resume and results_path is not None)
-    try:
+    with contextlib.ExitStack() as stack:
+        writer = None
+        resumed = 0
+        if results_path is not None:
+            if resume:
+                check_resumable(results_path, spec)
+                for result in iter_results(results_path, repair=True):
+                    if result.index < n_trials and not finished[result.index]:
+                        record(result)
+                        resumed += 1
+            _write_manifest(results_path, spec)
+            writer = TableWriter(results_path, append=resume)
+            stack.callback(writer.close)
+        remaining = n_trials - resumed
+        todo = (i for i in range(n_trials) if not finished[i])
+        size = chunk_size or default_chunk_size(spec, remaining, workers)
+        bar = Progress(n_trials, enabled=progress)
+        stack.callback(bar.close)
+        bar.advance(resumed)
         for chunk in _execute(spec, chunked(todo, size), workers, backend):
             for result in chunk:
                 record(result)
-                if sink is not None:
-                    sink.write(result.csv_row() + "\n")
-            if sink is not None:
-                sink.flush()
+            if writer is not None:
+                writer.write(chunk)
             bar.advance(len(chunk))
-    finally:
-        bar.close()
-        if sink is not None:
-            sink.close()
     return [kept[i] for i in sorted(kept)]
 
 
 def _write_manifest(results_path: Path, spec: TrialSpec) -> None:
+    """Write the table's manifest whole or not at all (a kill must not leave half of one)."""
     results_path.parent.mkdir(parents=True, exist_ok=True)
-    manifest_path(results_path).write_text(json.dumps(manifest(spec), indent=2) + "\n")
-
-
-def _open_sink(path: Path | None, keep_rows: bool) -> TextIO | None:
-    if path is None:
-        return None
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if keep_rows and path.exists() and path.stat().st_size > 0:
-        return path.open("a")
-    sink = path.open("w")
-    sink.write(TrialResult.CSV_HEADER + "\n")
-    return sink
+    where = manifest_path(results_path)
+    partial = where.with_name(where.name + ".part")
+    partial.write_text(json.dumps(manifest(spec), indent=2) + "\n")
+    partial.replace(where)
 
 
 def _execute(
