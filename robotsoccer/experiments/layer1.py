@@ -51,6 +51,7 @@ from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept import InterceptDrill, launch_plan
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.report import Counts, ModelSection, StageTiming
+from robotsoccer.runs.folders import lock_run_folder
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.provenance import code_version
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
@@ -783,11 +784,17 @@ def run_layer1(
 
 
 def claim_folder(out: Path, header: dict[str, Any]) -> None:
-    """Refuse a folder holding another run's results; mark it as this run's.
+    """Refuse a folder holding another run's results; mark it as this run's and hold it.
+
+    The folder's lock (:func:`~robotsoccer.runs.folders.lock_run_folder`) stays held until the
+    command ends, so no other run writes there meanwhile.
 
     Raises:
         PipelineError: ``config.json`` there differs in what defines the run.
+        FolderInUseError: Another process holds the folder.
     """
+    out.mkdir(parents=True, exist_ok=True)
+    lock_run_folder(out)
     path = out / "config.json"
     if path.exists():
         try:
@@ -801,7 +808,6 @@ def claim_folder(out: Path, header: dict[str, Any]) -> None:
                 f"{out} holds a run with another {', '.join(d.replace('_', ' ') for d in differ)};"
                 " choose another --out or remove it"
             )
-    out.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(header, indent=2) + "\n")
 
 

@@ -7,11 +7,13 @@
   runs the trials in this process, with no pool at all.
 * Each finished chunk is appended to the CSV table (:mod:`robotsoccer.runs.table`) and flushed
   at once, so an interrupted run keeps every trial it finished; a rerun with ``resume=True``
-  skips them. Beside the table a
-  manifest (``<table>.json``) records what made it: the spec, the code version and the digests
-  of the files the trials read (:mod:`robotsoccer.runs.provenance`). A resume onto a table made
-  by anything else is refused with one line saying what differs; a last row cut short by a
-  killed write is dropped with a warning and run again.
+  skips them. Beside the table a manifest (``<table>.json``) records what made it: the spec, the
+  code version and the digests of the files the trials read (:mod:`robotsoccer.runs.provenance`).
+  A resume onto a table made by anything else is refused with one line saying what differs; a
+  last row cut short by a killed write is dropped with a warning and run again.
+* A run holds the lock of the table's folder while it writes (or of the run folder above it
+  that the command holds already: :mod:`robotsoccer.runs.folders`), so two runs can never
+  write one table at once.
 * Results come back sorted by trial index, and each trial depends only on its own seed, so the
   table is identical whatever the worker count (a test checks this).
 """
@@ -36,6 +38,7 @@ from typing import Any, TextIO
 from field_models.registry import preload_modules
 from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept_batch import DEFAULT_BATCH, batch_reason, run_intercept_batch
+from robotsoccer.runs.folders import holding
 from robotsoccer.runs.provenance import code_version, file_digest
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 from robotsoccer.runs.table import ResumeError, TableWriter, iter_results
@@ -300,6 +303,9 @@ def run_trials(
         writer = None
         resumed = 0
         if results_path is not None:
+            results_path.parent.mkdir(parents=True, exist_ok=True)
+            # held until the run ends: no other run may read or append this table meanwhile
+            stack.enter_context(holding(results_path.parent))
             if resume:
                 check_resumable(results_path, spec)
                 for result in iter_results(results_path, repair=True):
@@ -326,7 +332,6 @@ def run_trials(
 
 def _write_manifest(results_path: Path, spec: TrialSpec) -> None:
     """Write the table's manifest whole or not at all (a kill must not leave half of one)."""
-    results_path.parent.mkdir(parents=True, exist_ok=True)
     where = manifest_path(results_path)
     partial = where.with_name(where.name + ".part")
     partial.write_text(json.dumps(manifest(spec), indent=2) + "\n")
