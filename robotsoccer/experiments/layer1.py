@@ -787,7 +787,8 @@ def claim_folder(out: Path, header: dict[str, Any]) -> None:
     """Refuse a folder holding another run's results; mark it as this run's and hold it.
 
     The folder's lock (:func:`~robotsoccer.runs.folders.lock_run_folder`) stays held until the
-    command ends, so no other run writes there meanwhile.
+    command ends, so no other run writes there meanwhile, and the run's manifests store paths
+    relative to it.
 
     Raises:
         PipelineError: ``config.json`` there differs in what defines the run.

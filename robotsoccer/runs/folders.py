@@ -16,7 +16,8 @@ file for as long as it writes there, with its PID in the file; a second run into
 folder is refused with one line naming that PID (:class:`FolderInUseError`), before it reads
 or writes anything. The OS drops the lock when its holder exits, however it exits (``kill -9``
 included), so a lock is never stale. Locks are per process and re-entrant: a run that holds a
-folder may write anywhere below it (:func:`held_folder`).
+folder may write anywhere below it, and that folder is the one its manifests store paths
+relative to (:func:`held_folder`).
 """
 
 from __future__ import annotations

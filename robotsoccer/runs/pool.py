@@ -8,9 +8,10 @@
 * Each finished chunk is appended to the CSV table (:mod:`robotsoccer.runs.table`) and flushed
   at once, so an interrupted run keeps every trial it finished; a rerun with ``resume=True``
   skips them. Beside the table a manifest (``<table>.json``) records what made it: the spec, the
-  code version and the digests of the files the trials read (:mod:`robotsoccer.runs.provenance`).
-  A resume onto a table made by anything else is refused with one line saying what differs; a
-  last row cut short by a killed write is dropped with a warning and run again.
+  code version and the digests of the files the trials read (:mod:`robotsoccer.runs.provenance`),
+  with paths inside the run folder stored relative to it, so a copied or moved folder resumes. A
+  resume onto a table made by anything else is refused with one line saying what differs; a last
+  row cut short by a killed write is dropped with a warning and run again.
 * A run holds the lock of the table's folder while it writes (or of the run folder above it
   that the command holds already: :mod:`robotsoccer.runs.folders`), so two runs can never
   write one table at once.
@@ -171,15 +172,37 @@ class Progress:
             self._bar.close()
 
 
-def manifest(spec: TrialSpec) -> dict[str, Any]:
-    """What makes a run's results: its spec, the code version and its input files' digests."""
+def manifest(spec: TrialSpec, root: Path | None = None) -> dict[str, Any]:
+    """What makes a run's results: its spec, the code version and its input files' digests.
+
+    Args:
+        spec: The run's spec.
+        root: The run folder: absolute paths inside it (model files, presets) are stored
+            relative to it, so a copy of the folder is the same run. None keeps every path.
+    """
+    root = root.resolve() if root is not None else None
     inputs = make_drill(spec.drill, dict(spec.drill_options)).inputs()
     recorded = dataclasses.replace(spec, record_dir=None, record_trials=0)
     return {
-        "spec": json.loads(json.dumps(dataclasses.asdict(recorded), default=str)),
+        "spec": _relative(json.loads(json.dumps(dataclasses.asdict(recorded), default=str)), root),
         "code_version": code_version(),
-        "inputs": {path: file_digest(path) for path in inputs},
+        "inputs": {_relative(path, root): file_digest(path) for path in inputs},
     }
+
+
+def _relative(value: Any, root: Path | None) -> Any:
+    """`value` (JSON data) with every absolute path inside `root` made relative to it."""
+    if root is None:
+        return value
+    if isinstance(value, dict):
+        return {_relative(k, root): _relative(v, root) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_relative(v, root) for v in value]
+    if isinstance(value, str) and os.path.isabs(value):
+        path = Path(value).resolve()
+        if path.is_relative_to(root):
+            return path.relative_to(root).as_posix()
+    return value
 
 
 def manifest_path(results_path: Path) -> Path:
@@ -187,23 +210,32 @@ def manifest_path(results_path: Path) -> Path:
     return results_path.with_suffix(".json")
 
 
-def check_resumable(results_path: Path, spec: TrialSpec) -> None:
+def check_resumable(results_path: Path, spec: TrialSpec, root: Path | None = None) -> None:
     """Refuse to add `spec`'s trials to a table another run made (one line: what differs).
+
+    Args:
+        results_path: The table.
+        spec: What the run now would run.
+        root: The run folder (:func:`manifest`); None: the table's folder. A manifest written
+            with absolute paths (before paths were stored relative) is read the same way.
 
     Raises:
         ResumeError: The table exists but its manifest is missing, unreadable or different.
     """
     if not results_path.exists():
         return
+    root = (root or results_path.parent).resolve()
     where = manifest_path(results_path)
     try:
         old = json.loads(where.read_text())
-    except (OSError, ValueError):
+        old = {**old, "spec": _relative(old.get("spec", {}), root),
+               "inputs": _relative(old.get("inputs"), root)}  # fmt: skip
+    except (OSError, ValueError, AttributeError, TypeError):  # absent, not JSON, not a dict
         raise ResumeError(
             f"{results_path}: no readable record of the run that made it ({where.name}); "
             "--overwrite replaces it, or choose another --out"
         ) from None
-    new = manifest(spec)
+    new = manifest(spec, root)
     differences = _differences(old, new)
     if differences:
         raise ResumeError(
@@ -305,14 +337,14 @@ def run_trials(
         if results_path is not None:
             results_path.parent.mkdir(parents=True, exist_ok=True)
             # held until the run ends: no other run may read or append this table meanwhile
-            stack.enter_context(holding(results_path.parent))
+            root = stack.enter_context(holding(results_path.parent))
             if resume:
-                check_resumable(results_path, spec)
+                check_resumable(results_path, spec, root)
                 for result in iter_results(results_path, repair=True):
                     if result.index < n_trials and not finished[result.index]:
                         record(result)
                         resumed += 1
-            _write_manifest(results_path, spec)
+            _write_manifest(results_path, spec, root)
             writer = TableWriter(results_path, append=resume)
             stack.callback(writer.close)
         remaining = n_trials - resumed
@@ -330,11 +362,11 @@ def run_trials(
     return [kept[i] for i in sorted(kept)]
 
 
-def _write_manifest(results_path: Path, spec: TrialSpec) -> None:
+def _write_manifest(results_path: Path, spec: TrialSpec, root: Path) -> None:
     """Write the table's manifest whole or not at all (a kill must not leave half of one)."""
     where = manifest_path(results_path)
     partial = where.with_name(where.name + ".part")
-    partial.write_text(json.dumps(manifest(spec), indent=2) + "\n")
+    partial.write_text(json.dumps(manifest(spec, root), indent=2) + "\n")
     partial.replace(where)
 
 

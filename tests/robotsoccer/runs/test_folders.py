@@ -1,8 +1,10 @@
-"""Run folders: one writer at a time, and a resume after a kill at any moment."""
+"""Run folders: one writer at a time, a resume after a kill, a copied folder that resumes."""
 
 from __future__ import annotations
 
+import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -11,6 +13,8 @@ from pathlib import Path
 
 import pytest
 
+from learning.lookup import LookupTable
+from robotsoccer.runs import pool
 from robotsoccer.runs.folders import (
     LOCK_NAME,
     FolderInUseError,
@@ -20,7 +24,7 @@ from robotsoccer.runs.folders import (
     release_run_folder,
     release_run_folders,
 )
-from robotsoccer.runs.pool import read_results, run_trials
+from robotsoccer.runs.pool import manifest, manifest_path, read_results, run_trials
 from robotsoccer.runs.runner import TrialSpec
 
 HOLD = (
@@ -167,3 +171,65 @@ def test_a_run_killed_at_any_moment_resumes_to_the_uninterrupted_table(tmp_path)
         status, err = finished(demo(out, n, "--resume"))
         assert status == 0, (moment, err)
         assert (out / "results.csv").read_bytes() == whole, moment  # one worker: same order
+
+
+def lookup_spec(model: Path) -> TrialSpec:
+    """Trials that read a model file (a lookup table made by hand: no origin to check)."""
+    spec = TrialSpec(drill="intercept", field_model="soccer_server", seed=1)
+    return spec.with_options(behaviour="lookup", model=str(model), transfer=True)
+
+
+def test_a_copied_run_folder_resumes(tmp_path, monkeypatch) -> None:
+    # The manifests name the run's own model files relative to the run folder, so a copy
+    # (cp -r RUN RUN2) is the same run; a model file outside the folder keeps its full path.
+    run, copy = tmp_path / "run", tmp_path / "copy"
+    (run / "models").mkdir(parents=True)
+    outside = tmp_path / "elsewhere.json"
+    for model in (run / "models" / "table.json", outside):
+        LookupTable([-0.1, 0.1], [0.0, 0.05]).save(model)
+    prepare_run_folder(run, resume=True, overwrite=False)  # it holds its model already
+    try:
+        spec = lookup_spec(run / "models" / "table.json")
+        run_trials(spec, 3, workers=1, results_path=run / "results.csv", progress=False)
+        elsewhere = lookup_spec(outside)
+        run_trials(elsewhere, 2, workers=1, results_path=run / "o.csv", progress=False)
+    finally:
+        release_run_folders()
+    written = manifest_path(run / "results.csv").read_text()
+    assert str(run) not in written and '"models/table.json"' in written
+    assert str(outside) in manifest_path(run / "o.csv").read_text()  # not the run's: kept whole
+    shutil.copytree(run, copy)
+
+    ran: list[int] = []
+    real_chunk = pool.run_chunk
+
+    def counting(spec, indices):  # type: ignore[no-untyped-def]
+        ran.extend(indices)
+        return real_chunk(spec, indices)
+
+    monkeypatch.setattr(pool, "run_chunk", counting)
+    prepare_run_folder(copy, resume=True, overwrite=False)
+    try:
+        spec = lookup_spec(copy / "models" / "table.json")
+        resumed = run_trials(
+            spec, 5, workers=1, results_path=copy / "results.csv", resume=True, progress=False
+        )
+        run_trials(  # the model outside: the same file, named the same way
+            elsewhere, 3, workers=1, results_path=copy / "o.csv", resume=True, progress=False
+        )
+    finally:
+        release_run_folders()
+    assert ran == [3, 4, 2] and [r.index for r in resumed] == list(range(5))
+
+
+def test_a_manifest_with_absolute_paths_is_still_read(tmp_path) -> None:
+    run = tmp_path / "run"
+    (run / "models").mkdir(parents=True)
+    LookupTable([-0.1, 0.1], [0.0, 0.05]).save(run / "models" / "table.json")
+    spec = lookup_spec(run / "models" / "table.json")
+    path = run / "results.csv"
+    run_trials(spec, 2, workers=1, results_path=path, progress=False)
+    old = manifest(spec)  # no run folder given: every path whole, as manifests used to be
+    assert str(run / "models" / "table.json") in old["inputs"]
+    manifest_path(path).write_text(json.dumps(old))
+    assert len(run_trials(spec, 3, workers=1, results_path=path, resume=True, progress=False)) == 3
