@@ -66,11 +66,12 @@ def prepare_run_folder(out: Path, *, resume: bool, overwrite: bool) -> None:
     if out.exists() and not out.is_dir():
         raise RunFolderError(f"{out} is a file, not a folder: choose another --out")
     _check_contents(out, resume=resume, overwrite=overwrite)  # refuse before leaving a lock file
+    already = held_folder(out) is not None
     try:
         out.mkdir(parents=True, exist_ok=True)
+        lock_run_folder(out)
     except OSError as exc:
         raise RunFolderError(f"cannot write to {out}: {exc.strerror or exc}") from None
-    lock_run_folder(out)
     try:
         # Again under the lock: another run may have written here since the first look
         if _check_contents(out, resume=resume, overwrite=overwrite):
@@ -78,11 +79,11 @@ def prepare_run_folder(out: Path, *, resume: bool, overwrite: bool) -> None:
         probe = out / ".write-test"
         probe.touch()
         probe.unlink()
-    except OSError as exc:
-        release_run_folder(out)
-        raise RunFolderError(f"cannot write to {out}: {exc.strerror or exc}") from None
-    except RunFolderError:
-        release_run_folder(out)
+    except (OSError, RunFolderError) as exc:
+        if not already:
+            release_run_folder(out)
+        if isinstance(exc, OSError):
+            raise RunFolderError(f"cannot write to {out}: {exc.strerror or exc}") from None
         raise
 
 
