@@ -9,6 +9,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -103,7 +104,7 @@ def test_a_second_writer_is_refused_while_the_first_holds_the_folder(tmp_path) -
     assert len(rows(out / "results.csv")) == 2
 
 
-def test_overwrite_waits_for_no_one_and_deletes_nothing_of_a_held_folder(tmp_path) -> None:
+def test_overwrite_of_a_held_folder_is_refused_and_deletes_nothing(tmp_path) -> None:
     out = tmp_path / "run"
     assert finished(demo(out, 2))[0] == 0
     before = (out / "results.csv").read_bytes()
@@ -138,7 +139,7 @@ def test_two_runs_at_once_into_one_folder_leave_each_trial_once(tmp_path, resume
     assert rows(out / "results.csv") == rows(reference / "results.csv")
 
 
-def _wait_for(condition, what: str, process: subprocess.Popen[str]) -> None:  # type: ignore[no-untyped-def]
+def _wait_for(condition: Callable[[], bool], what: str, process: subprocess.Popen[str]) -> None:
     deadline = time.monotonic() + 120
     while not condition():
         assert process.poll() is None, f"the run ended before {what}"
