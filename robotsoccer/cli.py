@@ -35,7 +35,7 @@ from field_models.protocol import PlayerRef
 from field_models.registry import FIELD_MODELS, default_preset
 from robotsoccer import __version__
 from robotsoccer.drills import DRILLS, make_drill
-from robotsoccer.runs.folders import prepare_run_folder
+from robotsoccer.runs.folders import prepare_run_folder, release_run_folders
 from robotsoccer.runs.pool import default_workers, run_trials, using_backend
 from robotsoccer.runs.ray_backend import require_ray
 from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial
@@ -373,8 +373,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         backend = getattr(args, "backend", "process")
         if backend == "ray":
             require_ray()  # without Ray: one line, before any run folder is touched
-        with using_backend(backend):
-            return command(args)
+        try:
+            with using_backend(backend):
+                return command(args)
+        finally:
+            release_run_folders()  # the command's run folder is free for the next one
 
     if args.debug:
         return run(args)

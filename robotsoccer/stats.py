@@ -1,6 +1,6 @@
 """Proportions with honest intervals: every percentage we print carries its n and a 95% interval.
 
-* :func:`wilson_interval` — the interval of one share;
+* :func:`wilson_interval` — the interval of one share (:func:`wilson_intervals`: of many);
 * :func:`reliability` — predicted probabilities against observed shares, bin by bin (a learned
   evaluator's calibration, e.g. the pass tree's success confidence).
 """
@@ -21,24 +21,62 @@ Z_95 = 1.959963984540054
 def wilson_interval(successes: int, trials: int, z: float = Z_95) -> tuple[float, float]:
     """Wilson score interval for a binomial proportion (good at small n and near 0 or 1).
 
+    The interval always holds the observed share: it starts at exactly 0 when nothing
+    succeeded and ends at exactly 1 when everything did (:func:`wilson_intervals`).
+
     Args:
-        successes: Count of the outcome.
+        successes: Count of the outcome, 0 ≤ successes ≤ trials.
         trials: Number of trials (0 gives the uninformative interval (0, 1)).
         z: Normal quantile; the default gives a 95% interval.
 
     Returns:
         (low, high) as fractions in [0, 1].
 
+    Raises:
+        ValueError: `successes` is negative or above `trials`.
+
     >>> [round(v, 4) for v in wilson_interval(53, 100)]
     [0.4329, 0.6249]
+    >>> wilson_interval(0, 3)[0], wilson_interval(10, 10)[1]
+    (0.0, 1.0)
     """
     if trials <= 0:
         return 0.0, 1.0
-    p = successes / trials
-    denom = 1.0 + z * z / trials
-    centre = (p + z * z / (2 * trials)) / denom
-    half = z * math.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials)) / denom
-    return max(0.0, centre - half), min(1.0, centre + half)
+    if not 0 <= successes <= trials:
+        raise ValueError(f"{successes} successes in {trials} trials: need 0 <= successes <= trials")
+    low, high = wilson_intervals(np.array([successes]), np.array([trials]), z)
+    return float(low[0]), float(high[0])
+
+
+def wilson_intervals(
+    successes: npt.ArrayLike, trials: npt.ArrayLike, z: float = Z_95
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """:func:`wilson_interval` of many (successes, trials) pairs at once, elementwise.
+
+    In exact arithmetic the Wilson interval holds the share k/n and touches 0 at k = 0 and 1 at
+    k = n; in floating point ``centre - half`` comes out a few ulps above 0 (and ``centre +
+    half`` below 1), which made error bars of -5e-15 that matplotlib refuses. So the bounds are
+    pinned: at most the share below, at least the share above (exactly 0 and 1 at the ends).
+
+    Args:
+        successes: (m,) counts, each 0 ≤ k ≤ its n (not checked here).
+        trials: (m,) trial counts; where n ≤ 0 the interval is (0, 1).
+        z: Normal quantile.
+
+    Returns:
+        (low, high), each (m,) fractions in [0, 1].
+    """
+    k = np.asarray(successes, dtype=np.float64)
+    n = np.asarray(trials, dtype=np.float64)
+    empty = n <= 0
+    n = np.where(empty, 1.0, n)  # any positive n: the result is replaced below
+    p = k / n
+    denom = 1.0 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z * np.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / denom
+    low = np.minimum(np.maximum(0.0, centre - half), p)
+    high = np.maximum(np.minimum(1.0, centre + half), p)
+    return np.where(empty, 0.0, low), np.where(empty, 1.0, high)
 
 
 class ReliabilityBin(NamedTuple):

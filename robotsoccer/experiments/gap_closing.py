@@ -509,7 +509,7 @@ def _curve_lines(refs: References, curve: Sequence[CurvePoint], plan: GapPlan) -
 
 def plot_curve(refs: References, curve: Sequence[CurvePoint], path: Path) -> Path | None:
     """Saves against target examples, scratch and fine-tuned, beside the matrix's references."""
-    from robotsoccer.experiments.plots import _pyplot, _save
+    from robotsoccer.experiments.plots import _pyplot, _save, error_bars
     from robotsoccer.stats import wilson_interval
 
     if not curve:
@@ -518,8 +518,7 @@ def plot_curve(refs: References, curve: Sequence[CurvePoint], path: Path) -> Pat
     def share(results: Sequence[TrialResult]) -> tuple[float, float, float]:
         k, n = sum(r.label == "SAVE" for r in results), len(results)
         low, high = wilson_interval(k, n)
-        mid = 100 * k / n
-        return mid, mid - 100 * low, 100 * high - mid
+        return 100 * k / n, 100 * low, 100 * high
 
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
@@ -529,7 +528,7 @@ def plot_curve(refs: References, curve: Sequence[CurvePoint], path: Path) -> Pat
         ax.errorbar(
             xs,
             [v[0] for v in values],
-            yerr=[[v[1] for v in values], [v[2] for v in values]],
+            yerr=error_bars(*zip(*values, strict=True)),
             marker="o",
             capsize=3,
             color=colour,

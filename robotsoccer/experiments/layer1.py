@@ -51,9 +51,11 @@ from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept import InterceptDrill, launch_plan
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.report import Counts, ModelSection, StageTiming
+from robotsoccer.runs.folders import lock_run_folder
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.provenance import code_version
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
+from robotsoccer.runs.table import iter_results
 from robotsoccer.skills.intercept import TaMode
 
 Log = Callable[[str], None]
@@ -242,10 +244,8 @@ def evaluate(
 
 
 def _rows_in(path: Path) -> int:
-    if not path.exists():
-        return 0
-    lines = path.read_text().splitlines()[1:]
-    return sum(1 for line in lines if line.strip())
+    # rows, not lines: a quoted reason may hold line ends (run_trials warns of a cut-short row)
+    return sum(1 for _ in iter_results(path, warn=lambda _: None))
 
 
 def counts_of(results: Iterable[TrialResult]) -> Counts:
@@ -784,11 +784,18 @@ def run_layer1(
 
 
 def claim_folder(out: Path, header: dict[str, Any]) -> None:
-    """Refuse a folder holding another run's results; mark it as this run's.
+    """Refuse a folder holding another run's results; mark it as this run's and hold it.
+
+    The folder's lock (:func:`~robotsoccer.runs.folders.lock_run_folder`) stays held until the
+    command ends, so no other run writes there meanwhile, and the run's manifests store paths
+    relative to it.
 
     Raises:
         PipelineError: ``config.json`` there differs in what defines the run.
+        FolderInUseError: Another process holds the folder.
     """
+    out.mkdir(parents=True, exist_ok=True)
+    lock_run_folder(out)
     path = out / "config.json"
     if path.exists():
         try:
@@ -802,7 +809,6 @@ def claim_folder(out: Path, header: dict[str, Any]) -> None:
                 f"{out} holds a run with another {', '.join(d.replace('_', ' ') for d in differ)};"
                 " choose another --out or remove it"
             )
-    out.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(header, indent=2) + "\n")
 
 

@@ -7,6 +7,7 @@ this module costs nothing and plotting works on a machine without a display.
   95% Wilson interval as error bars, and the paper's Figure 7 (the "all" row at 4773).
 * :func:`plot_figure8` — saves (%) against ball noise, NN and straight: one panel per field model,
   ours with error bars, the paper's Figure 8 dashed.
+* :func:`error_bars` — the asymmetric, never negative error bars every plot here draws.
 """
 
 from __future__ import annotations
@@ -14,6 +15,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
+
+import numpy as np
 
 from robotsoccer.experiments.paper import (
     FIGURE_7,
@@ -41,16 +44,30 @@ def _pyplot() -> Any:
     return plt
 
 
+def error_bars(
+    values: Sequence[float], lows: Sequence[float], highs: Sequence[float]
+) -> list[list[float]]:
+    """Error bars ``[below, above]`` for matplotlib's ``yerr`` of values inside [low, high].
+
+    A bar is clipped at 0: matplotlib refuses a negative one ("'yerr' must not contain negative
+    values"), and a share and its interval scaled to percent separately can cross by a rounding
+    error. NaN stays NaN (no bar).
+    """
+    value, low, high = (np.asarray(v, dtype=np.float64) for v in (values, lows, highs))
+    below = np.maximum(value - low, 0.0)  # np.maximum keeps NaN, the builtin max would not
+    above = np.maximum(high - value, 0.0)
+    return [below.tolist(), above.tolist()]
+
+
 def _saves_with_errors(counts: Sequence[Counts]) -> tuple[list[float], list[list[float]]]:
     """Saves % and the asymmetric error bars [below, above] of their 95% intervals."""
-    values, below, above = [], [], []
+    values, lows, highs = [], [], []
     for c in counts:
         low, high = wilson_interval(c.saves, c.n)
-        share = 100.0 * c.saves / c.n if c.n else 0.0
-        values.append(share)
-        below.append(share - 100.0 * low)
-        above.append(100.0 * high - share)
-    return values, [below, above]
+        values.append(100.0 * c.saves / c.n if c.n else 0.0)
+        lows.append(100.0 * low)
+        highs.append(100.0 * high)
+    return values, error_bars(values, lows, highs)
 
 
 def plot_figure7(sections: Sequence[ModelSection], path: Path) -> Path | None:

@@ -19,7 +19,7 @@ import numpy as np
 from learning.pass_tree import LABELS
 from robotsoccer.experiments.layer2 import RELIABILITY_BINS, Layer2Section, confidence_of, in_bin
 from robotsoccer.experiments.paper import TABLE_2, TABLE_2_BINS
-from robotsoccer.experiments.plots import _pyplot, _save
+from robotsoccer.experiments.plots import _pyplot, _save, error_bars
 from robotsoccer.stats import reliability, wilson_interval
 
 _LABEL_COLOURS = {"SUCCESS": "tab:green", "FAILURE": "tab:red", "MISS": "tab:gray"}
@@ -41,15 +41,16 @@ def plot_table2(sections: Sequence[Layer2Section], path: Path) -> Path | None:
         x = np.arange(len(keys))
         for k, label in enumerate(LABELS):
             ours: list[float] = []
-            err: list[list[float]] = [[], []]
+            lows: list[float] = []
+            highs: list[float] = []
             for results in groups:
                 n = len(results)
                 hits = Counter(r.label for r in results)[label]
-                share = 100.0 * hits / n if n else np.nan
-                low, high = wilson_interval(hits, n) if n else (np.nan, np.nan)
-                ours.append(share)
-                err[0].append(share - 100 * low if n else 0.0)
-                err[1].append(100 * high - share if n else 0.0)
+                low, high = wilson_interval(hits, n)
+                ours.append(100.0 * hits / n if n else np.nan)
+                lows.append(100.0 * low if n else np.nan)  # an empty bin draws no bar
+                highs.append(100.0 * high if n else np.nan)
+            err = error_bars(ours, lows, highs)
             offset = (k - 1) * 2 * width
             colour = _LABEL_COLOURS[label]
             ax.bar(x + offset - width / 2, ours, width, yerr=err, color=colour, capsize=2,
@@ -85,10 +86,7 @@ def plot_reliability(sections: Sequence[Layer2Section], path: Path) -> Path | No
         bins = [b for b in reliability(conf, success, RELIABILITY_BINS) if b.n]
         xs = [b.mean_confidence for b in bins]
         ys = [b.observed for b in bins]
-        err = [
-            [b.observed - b.observed_low for b in bins],
-            [b.observed_high - b.observed for b in bins],
-        ]
+        err = error_bars(ys, [b.observed_low for b in bins], [b.observed_high for b in bins])
         ax.errorbar(xs, ys, yerr=err, marker="o", color=colour, capsize=3,
                     label=f"{section.field_model}, {run} (n={len(tree)})")  # fmt: skip
     ax.set_xlim(0, 1)

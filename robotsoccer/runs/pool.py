@@ -5,12 +5,16 @@
   a pool starts in milliseconds rather than re-importing numpy and pymunk per worker (and, unlike
   a plain fork, never inherits the threads of a parent that trained a torch model). One worker
   runs the trials in this process, with no pool at all.
-* Each finished chunk is appended to the CSV table and flushed at once, so an interrupted run
-  keeps every trial it finished; a rerun with ``resume=True`` skips them. Beside the table a
-  manifest (``<table>.json``) records what made it: the spec, the code version and the digests
-  of the files the trials read (:mod:`robotsoccer.runs.provenance`). A resume onto a table made
-  by anything else is refused with one line saying what differs; a last row cut short by a
-  killed write is dropped with a warning and run again.
+* Each finished chunk is appended to the CSV table (:mod:`robotsoccer.runs.table`) and flushed
+  at once, so an interrupted run keeps every trial it finished; a rerun with ``resume=True``
+  skips them. Beside the table a manifest (``<table>.json``) records what made it: the spec, the
+  code version and the digests of the files the trials read (:mod:`robotsoccer.runs.provenance`),
+  with paths inside the run folder stored relative to it, so a copied or moved folder resumes. A
+  resume onto a table made by anything else is refused with one line saying what differs; a last
+  row cut short by a killed write is dropped with a warning and run again.
+* A run holds the lock of the table's folder while it writes (or of the run folder above it
+  that the command holds already: :mod:`robotsoccer.runs.folders`), so two runs can never
+  write one table at once.
 * Results come back sorted by trial index, and each trial depends only on its own seed, so the
   table is identical whatever the worker count (a test checks this).
 """
@@ -35,15 +39,11 @@ from typing import Any, TextIO
 from field_models.registry import preload_modules
 from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept_batch import DEFAULT_BATCH, batch_reason, run_intercept_batch
+from robotsoccer.runs.folders import holding
 from robotsoccer.runs.provenance import code_version, file_digest, machine
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
-
-
-class ResumeError(ValueError):
-    """A results table cannot be resumed: another run made it, or it is damaged.
-
-    A ValueError, so the CLI reports it as one line.
-    """
+from robotsoccer.runs.table import ResumeError, TableWriter, iter_results
+from robotsoccer.runs.table import read_results as read_results  # where callers found it
 
 
 def default_workers() -> int:
@@ -172,70 +172,41 @@ class Progress:
             self._bar.close()
 
 
-def read_results(path: Path, warn: Callable[[str], None] | None = None) -> dict[int, TrialResult]:
-    """Results already in a table, by index (:func:`iter_results`); an absent file holds none."""
-    return {result.index: result for result in iter_results(path, warn)}
-
-
-def iter_results(path: Path, warn: Callable[[str], None] | None = None) -> Iterator[TrialResult]:
-    """The results in a table, one at a time (a resumed run of any size reads it in passing).
-
-    A last row without its line end was cut short by a killed write: it is dropped (and the
-    file truncated after the last complete row, so appending goes on cleanly), with a warning.
-
-    Raises:
-        ResumeError: The file does not start with the results header, or a complete row does
-            not parse.
-    """
-    if not path.exists():
-        return
-    _drop_torn_row(path, warn or _warn)
-    with path.open() as table:
-        header = table.readline().rstrip("\n")
-        if header != TrialResult.CSV_HEADER:
-            raise ResumeError(f"{path}: not a results table of this version (header {header!r})")
-        for number, line in enumerate(table, start=2):
-            try:
-                yield TrialResult.from_csv_row(line)
-            except ValueError as exc:
-                raise ResumeError(f"{path}: line {number} is not a result row ({exc})") from None
-
-
-def _drop_torn_row(path: Path, warn: Callable[[str], None]) -> None:
-    """Cut a last row that has no line end (a write killed half-way) off the file."""
-    with path.open("rb+") as table:
-        size = table.seek(0, os.SEEK_END)
-        if size == 0:
-            return
-        table.seek(size - 1)
-        if table.read(1) == b"\n":
-            return
-        block = min(size, 1 << 16)
-        table.seek(size - block)
-        tail = table.read(block)
-        cut = size - block + tail.rfind(b"\n") + 1  # 0 when no line end at all
-        table.truncate(cut)
-    warn(f"{path}: dropped a last row cut short by an interrupted write")
-
-
-def _warn(message: str) -> None:
-    print(f"warning: {message}", file=sys.stderr)
-
-
-def manifest(spec: TrialSpec) -> dict[str, Any]:
+def manifest(spec: TrialSpec, root: Path | None = None) -> dict[str, Any]:
     """What makes a run's results: its spec, the code version and its input files' digests.
+
+    Args:
+        spec: The run's spec.
+        root: The run folder: absolute paths inside it (model files, presets) are stored
+            relative to it, so a copy of the folder is the same run. None keeps every path.
 
     It also records the machine (CPU, numpy's SIMD dispatch, versions); a resume does not
     compare it, since results do not depend on it.
     """
+    root = root.resolve() if root is not None else None
     inputs = make_drill(spec.drill, dict(spec.drill_options)).inputs()
     recorded = dataclasses.replace(spec, record_dir=None, record_trials=0)
     return {
-        "spec": json.loads(json.dumps(dataclasses.asdict(recorded), default=str)),
+        "spec": _relative(json.loads(json.dumps(dataclasses.asdict(recorded), default=str)), root),
         "code_version": code_version(),
-        "inputs": {path: file_digest(path) for path in inputs},
+        "inputs": {_relative(path, root): file_digest(path) for path in inputs},
         "machine": machine(),
     }
+
+
+def _relative(value: Any, root: Path | None) -> Any:
+    """`value` (JSON data) with every absolute path inside `root` made relative to it."""
+    if root is None:
+        return value
+    if isinstance(value, dict):
+        return {_relative(k, root): _relative(v, root) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_relative(v, root) for v in value]
+    if isinstance(value, str) and os.path.isabs(value):
+        path = Path(value).resolve()
+        if path.is_relative_to(root):
+            return path.relative_to(root).as_posix()
+    return value
 
 
 def manifest_path(results_path: Path) -> Path:
@@ -243,23 +214,32 @@ def manifest_path(results_path: Path) -> Path:
     return results_path.with_suffix(".json")
 
 
-def check_resumable(results_path: Path, spec: TrialSpec) -> None:
+def check_resumable(results_path: Path, spec: TrialSpec, root: Path | None = None) -> None:
     """Refuse to add `spec`'s trials to a table another run made (one line: what differs).
+
+    Args:
+        results_path: The table.
+        spec: What the run now would run.
+        root: The run folder (:func:`manifest`); None: the table's folder. A manifest written
+            with absolute paths (before paths were stored relative) is read the same way.
 
     Raises:
         ResumeError: The table exists but its manifest is missing, unreadable or different.
     """
     if not results_path.exists():
         return
+    root = (root or results_path.parent).resolve()
     where = manifest_path(results_path)
     try:
         old = json.loads(where.read_text())
-    except (OSError, ValueError):
+        old = {**old, "spec": _relative(old.get("spec", {}), root),
+               "inputs": _relative(old.get("inputs"), root)}  # fmt: skip
+    except (OSError, ValueError, AttributeError, TypeError):  # absent, not JSON, not a dict
         raise ResumeError(
             f"{results_path}: no readable record of the run that made it ({where.name}); "
             "--overwrite replaces it, or choose another --out"
         ) from None
-    new = manifest(spec)
+    new = manifest(spec, root)
     differences = _differences(old, new)
     if differences:
         raise ResumeError(
@@ -355,51 +335,43 @@ def run_trials(
         if on_result is not None:
             on_result(result)
 
-    resumed = 0
-    if results_path is not None:
-        if resume:
-            check_resumable(results_path, spec)
-            for result in iter_results(results_path):
-                if result.index < n_trials and not finished[result.index]:
-                    record(result)
-                    resumed += 1
-        _write_manifest(results_path, spec)
-    remaining = n_trials - resumed
-    todo = (i for i in range(n_trials) if not finished[i])
-    size = chunk_size or default_chunk_size(spec, remaining, workers)
-    bar = Progress(n_trials, enabled=progress)
-    bar.advance(resumed)
-    sink = _open_sink(results_path, keep_rows=resume and results_path is not None)
-    try:
+    with contextlib.ExitStack() as stack:
+        writer = None
+        resumed = 0
+        if results_path is not None:
+            results_path.parent.mkdir(parents=True, exist_ok=True)
+            # held until the run ends: no other run may read or append this table meanwhile
+            root = stack.enter_context(holding(results_path.parent))
+            if resume:
+                check_resumable(results_path, spec, root)
+                for result in iter_results(results_path, repair=True):
+                    if result.index < n_trials and not finished[result.index]:
+                        record(result)
+                        resumed += 1
+            _write_manifest(results_path, spec, root)
+            writer = TableWriter(results_path, append=resume)
+            stack.callback(writer.close)
+        remaining = n_trials - resumed
+        todo = (i for i in range(n_trials) if not finished[i])
+        size = chunk_size or default_chunk_size(spec, remaining, workers)
+        bar = Progress(n_trials, enabled=progress)
+        stack.callback(bar.close)
+        bar.advance(resumed)
         for chunk in _execute(spec, chunked(todo, size), workers, backend):
             for result in chunk:
                 record(result)
-                if sink is not None:
-                    sink.write(result.csv_row() + "\n")
-            if sink is not None:
-                sink.flush()
+            if writer is not None:
+                writer.write(chunk)
             bar.advance(len(chunk))
-    finally:
-        bar.close()
-        if sink is not None:
-            sink.close()
     return [kept[i] for i in sorted(kept)]
 
 
-def _write_manifest(results_path: Path, spec: TrialSpec) -> None:
-    results_path.parent.mkdir(parents=True, exist_ok=True)
-    manifest_path(results_path).write_text(json.dumps(manifest(spec), indent=2) + "\n")
-
-
-def _open_sink(path: Path | None, keep_rows: bool) -> TextIO | None:
-    if path is None:
-        return None
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if keep_rows and path.exists() and path.stat().st_size > 0:
-        return path.open("a")
-    sink = path.open("w")
-    sink.write(TrialResult.CSV_HEADER + "\n")
-    return sink
+def _write_manifest(results_path: Path, spec: TrialSpec, root: Path) -> None:
+    """Write the table's manifest whole or not at all (a kill must not leave half of one)."""
+    where = manifest_path(results_path)
+    partial = where.with_name(where.name + ".part")
+    partial.write_text(json.dumps(manifest(spec, root), indent=2) + "\n")
+    partial.replace(where)
 
 
 def _execute(

@@ -7,9 +7,11 @@ how many workers ran or in which order.
 
 from __future__ import annotations
 
+import csv
 import dataclasses
+import io
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
@@ -30,6 +32,22 @@ DrillOption = str | float | int | bool
 
 DecisionLog = Callable[[Percept, tuple[Action, ...]], None]
 """Called with every percept a mind acted on and the actions it chose."""
+
+
+def csv_record(fields: Sequence[str]) -> str:
+    r"""One CSV record of `fields`, with its ``\n`` line end, quoted by the ``csv`` module.
+
+    A field that holds a comma, a quote or a line end is quoted, so it stays one field and can
+    never swallow the next row; a row without such a field reads as it always did. Python 3.11's
+    writer does not quote a lone ``\r`` when lines end in ``\n``, though its reader ends a
+    record there, so a row with one has every field quoted.
+    """
+    text = io.StringIO()
+    if any("\r" in field for field in fields):
+        csv.writer(text, lineterminator="\n", quoting=csv.QUOTE_ALL).writerow(fields)
+    else:
+        csv.writer(text, lineterminator="\n", quoting=csv.QUOTE_MINIMAL).writerow(fields)
+    return text.getvalue()
 
 
 @dataclass(frozen=True, slots=True)
@@ -103,28 +121,52 @@ class TrialResult:
     data: tuple[float, ...] = ()
     measures: tuple[tuple[str, float], ...] = ()
 
-    CSV_HEADER = "index,label,ticks,time_s,data,measures,reason"
+    CSV_COLUMNS = ("index", "label", "ticks", "time_s", "data", "measures", "reason")
+    """The results table's columns (:mod:`robotsoccer.runs.table`)."""
+    CSV_HEADER = ",".join(CSV_COLUMNS)
+    """The table's header line."""
 
-    def csv_row(self) -> str:
-        """This result as a CSV line: floats exactly (repr); the reason last, free text."""
+    def csv_fields(self) -> list[str]:
+        """This result as the table's fields: floats exactly (repr), the reason as it is."""
         data = " ".join(repr(v) for v in self.data)
         measures = " ".join(f"{name}={value!r}" for name, value in self.measures)
-        return (
-            f"{self.index},{self.label},{self.ticks},{self.time_s!r},{data},{measures},"
-            f"{self.reason}"
-        )
+        return [str(self.index), self.label, str(self.ticks), repr(self.time_s), data, measures,
+                self.reason]  # fmt: skip
 
     @classmethod
-    def from_csv_row(cls, row: str) -> TrialResult:
-        """Parse a line written by :meth:`csv_row`.
+    def from_csv_fields(cls, fields: Sequence[str]) -> TrialResult:
+        """Parse the fields :meth:`csv_fields` made.
 
         Raises:
-            ValueError: The line is not a complete result row.
+            ValueError: Not the table's 7 fields, or one of them does not parse.
         """
-        index, label, ticks, time_s, data, measures, reason = row.rstrip("\n").split(",", 6)
+        if len(fields) != len(cls.CSV_COLUMNS):
+            raise ValueError(f"{len(fields)} fields, not {len(cls.CSV_COLUMNS)}")
+        index, label, ticks, time_s, data, measures, reason = fields
+        if not (index.isascii() and index.isdigit()):
+            raise ValueError(f"index {index!r} is not a whole number >= 0")
         values = tuple(float(v) for v in data.split())
         named = tuple(_measure(item) for item in measures.split())
         return cls(int(index), label, reason, int(ticks), float(time_s), values, named)
+
+    def csv_row(self) -> str:
+        """This result as one CSV record (:func:`csv_record`), without its line end."""
+        return csv_record(self.csv_fields())[: -len("\n")]
+
+    @classmethod
+    def from_csv_row(cls, row: str) -> TrialResult:
+        """Parse one record written by :meth:`csv_row`.
+
+        Raises:
+            ValueError: The text is not exactly one complete result record.
+        """
+        try:
+            records = list(csv.reader(io.StringIO(row, newline=""), strict=True))
+        except csv.Error as exc:
+            raise ValueError(str(exc)) from None
+        if len(records) != 1:
+            raise ValueError(f"{len(records)} records, not 1")
+        return cls.from_csv_fields(records[0])
 
     def measure(self, name: str) -> float:
         """The measure called `name`, or nan when the trial did not record it."""

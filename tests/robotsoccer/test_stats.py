@@ -8,12 +8,34 @@ import math
 import numpy as np
 import pytest
 
-from robotsoccer.stats import reliability, wilson_interval
+from robotsoccer.stats import reliability, wilson_interval, wilson_intervals
 
 
 def test_wilson_interval_known_value() -> None:
     assert [round(v, 4) for v in wilson_interval(53, 100)] == [0.4329, 0.6249]
     assert wilson_interval(0, 0) == (0.0, 1.0)
+
+
+def test_wilson_interval_ends_exactly_at_0_and_1() -> None:
+    # In floating point the formula gave 5.6e-17 and 0.9999999999999999 here, so an error bar
+    # came out at -5e-15 and matplotlib refused the plot (issue 30)
+    assert wilson_interval(0, 3)[0] == 0.0
+    assert wilson_interval(10, 10)[1] == 1.0
+    with pytest.raises(ValueError, match="successes"):
+        wilson_interval(4, 3)
+
+
+def test_every_interval_up_to_2000_trials_holds_its_share() -> None:
+    n, k = np.tril_indices(2001)  # every (k, n) with 0 <= k <= n <= 2000
+    n, k = n[n > 0], k[n > 0]
+    low, high = wilson_intervals(k, n)
+    share = k / n
+    assert np.all((low >= 0.0) & (low <= share) & (share <= high) & (high <= 1.0))
+    assert np.all(low[k == 0] == 0.0) and np.all(high[k == n] == 1.0)
+    assert np.all(low[k > 0] > 0.0) and np.all(high[k < n] < 1.0)
+    assert np.all(share - low >= 0.0) and np.all(high - share >= 0.0)  # error bars
+    for i in np.random.default_rng(0).integers(0, k.shape[0], 200):  # the scalar form agrees
+        assert wilson_interval(int(k[i]), int(n[i])) == (low[i], high[i])
 
 
 def test_reliability_of_a_calibrated_sample() -> None:

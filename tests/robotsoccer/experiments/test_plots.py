@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from robotsoccer.experiments.plots import measured_runs, plot_figure7, plot_figure8
+from math import isnan, nan
+
+from robotsoccer.experiments.plots import error_bars, measured_runs, plot_figure7, plot_figure8
 from robotsoccer.experiments.report import Counts, ModelSection
 
 
@@ -30,3 +32,19 @@ def test_both_figures_are_drawn_for_every_field(tmp_path) -> None:
     assert f7 is not None and f7.stat().st_size > 10_000
     assert f8 is not None and f8.stat().st_size > 10_000
     assert plot_figure7([], tmp_path / "none.png") is None
+
+
+def test_no_saves_and_all_saves_draw_their_error_bars(tmp_path) -> None:
+    # 0 of 3 and 10 of 10: bars a rounding error below 0 crashed matplotlib (issue 30)
+    s = ModelSection("soccer_server", "p", noise=0.05, noise_period_s=0.1)
+    s.figure7 = [(100, "100", Counts(0, 3, 0)), (300, "300", Counts(10, 0, 0))]
+    s.figure8 = {(0.0, "net"): Counts(10, 0, 0), (0.05, "net"): Counts(0, 2, 1)}
+    assert plot_figure7([s], tmp_path / "f7.png") is not None
+    assert plot_figure8([s], tmp_path / "f8.png") is not None
+
+
+def test_error_bars_are_never_negative() -> None:
+    below, above = error_bars([0.0, 100.0, 50.0, nan], [1e-15, 99.0, 40.0, nan],
+                              [5.0, 100.0 - 1e-13, 60.0, nan])  # fmt: skip
+    assert below[:3] == [0.0, 1.0, 10.0] and above[:3] == [5.0, 0.0, 10.0]
+    assert isnan(below[3]) and isnan(above[3])  # no bar where there is no value
