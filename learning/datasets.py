@@ -28,10 +28,11 @@ import numpy as np
 import numpy.typing as npt
 
 from learning.features import (
-    FEATURE_NAMES,
+    DECISIONS,
     SCHEMA_VERSION,
-    TARGET_NAME,
+    SchemaError,
     check_feature_rows,
+    decision_of,
 )
 
 DATASET_FORMAT = "robotsoccer/interception-dataset"
@@ -128,8 +129,14 @@ class InterceptionDataset:
     x: npt.NDArray[np.float64]
     y: npt.NDArray[np.float64]
     provenance: Provenance
+    decision: str = "turn"
+    """What the rows are (:data:`~learning.features.DECISIONS`): ``turn`` or ``lead``."""
 
     def __post_init__(self) -> None:
+        if self.decision not in DECISIONS:
+            raise DatasetError(
+                f"unknown decision {self.decision!r} (known: {', '.join(DECISIONS)})"
+            )
         # Own read-only float64 copies: a dataset is a value, and callers keep their arrays.
         x, y = _float_copy(self.x, "rows"), _float_copy(self.y, "targets")
         _check_rows(x, y)
@@ -160,7 +167,10 @@ class InterceptionDataset:
         rows = np.sort(rng.choice(len(self), size=n, replace=False))
         extra = {**self.provenance.extra, "subset_of_n": len(self)}
         return InterceptionDataset(
-            self.x[rows], self.y[rows], dataclasses.replace(self.provenance, extra=extra)
+            self.x[rows],
+            self.y[rows],
+            dataclasses.replace(self.provenance, extra=extra),
+            self.decision,
         )
 
     def save(self, path: str | os.PathLike[str]) -> Path:
@@ -176,8 +186,8 @@ class InterceptionDataset:
             "format": DATASET_FORMAT,
             "format_version": DATASET_FORMAT_VERSION,
             "schema_version": SCHEMA_VERSION,
-            "feature_names": list(FEATURE_NAMES),
-            "target_name": TARGET_NAME,
+            "feature_names": list(DECISIONS[self.decision][0]),
+            "target_name": DECISIONS[self.decision][1],
             "provenance": self.provenance.to_dict(),
         }
         arrays = {"x": self.x, "y": self.y}
@@ -194,9 +204,9 @@ class InterceptionDataset:
         path = Path(path)
         arrays, meta = read_npz(path, ("x", "y"), DatasetError)
         try:
-            _check_meta(meta)
+            decision = _check_meta(meta)
             provenance = Provenance.from_dict(meta["provenance"])
-            return cls(arrays["x"], arrays["y"], provenance)
+            return cls(arrays["x"], arrays["y"], provenance, decision)
         except DatasetError as exc:
             raise DatasetError(f"{path}: {exc}") from None
 
@@ -261,7 +271,8 @@ def _check_rows(x: npt.NDArray[np.float64], y: npt.NDArray[np.float64]) -> None:
         raise DatasetError("targets hold NaN or infinite values")
 
 
-def _check_meta(meta: Mapping[str, Any]) -> None:
+def _check_meta(meta: Mapping[str, Any]) -> str:
+    """Check a dataset file's metadata; return the decision its columns are."""
     if meta.get("format") != DATASET_FORMAT:
         raise DatasetError(f"format tag {meta.get('format')!r} is not {DATASET_FORMAT!r}")
     if meta.get("format_version") != DATASET_FORMAT_VERSION:
@@ -271,13 +282,13 @@ def _check_meta(meta: Mapping[str, Any]) -> None:
             f"feature schema version {meta.get('schema_version')!r} does not match this "
             f"code's version {SCHEMA_VERSION}"
         )
-    if meta.get("feature_names") != list(FEATURE_NAMES) or meta.get("target_name") != TARGET_NAME:
-        raise DatasetError(
-            f"columns {meta.get('feature_names')!r} -> {meta.get('target_name')!r} are not "
-            f"{list(FEATURE_NAMES)} -> {TARGET_NAME!r}"
-        )
+    try:
+        decision = decision_of(meta.get("feature_names"), meta.get("target_name"))
+    except SchemaError as exc:
+        raise DatasetError(str(exc)) from None
     if not isinstance(meta.get("provenance"), dict):
         raise DatasetError("metadata lacks the provenance record")
+    return decision
 
 
 # ----------------------------------------------------------------------------- safe .npz files

@@ -41,6 +41,35 @@ TARGET_NAME = "turn_angle_rad"
 DISTANCE_COLUMNS = (0, 2)
 """Indices of the columns divided by the distance scale."""
 
+LEAD_FEATURE_NAMES = ("ball_distance_m", "ball_track_angle_rad", "previous_ball_distance_m")
+"""The lead decision's inputs: BD [m], the ball's track angle [rad, left positive: the angle at
+the ball from its velocity to the line to the player], previous BD [m]
+(:mod:`robotsoccer.skills.lead`). Same shape and distance columns as the turn decision's."""
+
+LEAD_TARGET_NAME = "lead_time_s"
+"""The lead decision's output: how far ahead in time along the ball's track to aim [s]."""
+
+DECISIONS: dict[str, tuple[tuple[str, ...], str]] = {
+    "turn": (FEATURE_NAMES, TARGET_NAME),
+    "lead": (LEAD_FEATURE_NAMES, LEAD_TARGET_NAME),
+}
+"""What a layer-1 model decides, by name: its (input names, output name). ``turn`` is the
+paper's TA (§5); ``lead`` the meeting horizon of the robot-native decision."""
+
+
+def decision_of(feature_names: object, target_name: object) -> str:
+    """The decision whose columns these are.
+
+    Raises:
+        SchemaError: They are no decision's columns.
+    """
+    listed = tuple(feature_names) if isinstance(feature_names, list | tuple) else None
+    for decision, (names, target) in DECISIONS.items():
+        if listed == names and target_name == target:
+            return decision
+    known = "; ".join(f"{list(n)} -> {t!r}" for n, t in DECISIONS.values())
+    raise SchemaError(f"columns {feature_names!r} -> {target_name!r} are none of: {known}")
+
 
 class SchemaError(ValueError):
     """A file's feature schema is not the one this code reads (version, names or scale)."""
@@ -123,15 +152,28 @@ class FeatureSchema:
                 f"feature schema version {data['version']!r} does not match this code's "
                 f"version {SCHEMA_VERSION}"
             )
-        names, target = data["feature_names"], data["target_name"]
-        if not isinstance(names, list | tuple) or tuple(names) != FEATURE_NAMES:
-            raise SchemaError(f"feature names {names!r} are not {list(FEATURE_NAMES)}")
-        if target != TARGET_NAME:
-            raise SchemaError(f"target name {target!r} is not {TARGET_NAME!r}")
+        decision = decision_of(data["feature_names"], data["target_name"])
         scale = data["distance_scale_m"]
         if isinstance(scale, bool) or not isinstance(scale, int | float):
             raise SchemaError(f"distance_scale_m {scale!r} is not a number")
-        return cls(distance_scale_m=float(scale))
+        return cls.for_decision(decision, float(scale))
+
+    @classmethod
+    def for_decision(cls, decision: str, distance_scale_m: float = 1.0) -> FeatureSchema:
+        """The schema of a decision (:data:`DECISIONS`).
+
+        Raises:
+            SchemaError: An unknown decision.
+        """
+        if decision not in DECISIONS:
+            raise SchemaError(f"unknown decision {decision!r} (known: {', '.join(DECISIONS)})")
+        names, target = DECISIONS[decision]
+        return cls(feature_names=names, target_name=target, distance_scale_m=distance_scale_m)
+
+    @property
+    def decision(self) -> str:
+        """``"turn"`` (the paper's TA) or ``"lead"`` (:data:`DECISIONS`)."""
+        return decision_of(self.feature_names, self.target_name)
 
 
 def check_distance_scale(distance_scale_m: float) -> None:

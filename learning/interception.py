@@ -180,8 +180,12 @@ class InterceptionModel:
 
     # ------------------------------------------------------------------------- training
 
-    def fit(self, x: npt.ArrayLike, y: npt.ArrayLike) -> Self:
+    def fit(self, x: npt.ArrayLike, y: npt.ArrayLike, *, decision: str = "turn") -> Self:
         """Train on saves: `x` (N, 3) features [m, rad, m], `y` (N,) turn angles [rad].
+
+        `decision` names what the rows and targets are (:data:`~learning.features.DECISIONS`):
+        ``"turn"`` (TA [rad]) or ``"lead"`` (lead times [s], with the track angle as the
+        angle column); the file records it, and the drills refuse a net of the other kind.
 
         Returns:
             self, fitted.
@@ -204,7 +208,7 @@ class InterceptionModel:
         net, history = self._train((rows - mean) / scale, targets)
         self.weights_ = {k: v.detach().numpy().copy() for k, v in net.state_dict().items()}
         self.input_mean_, self.input_scale_ = mean, scale
-        self.feature_schema_ = FeatureSchema(distance_scale_m=self.distance_scale_m)
+        self.feature_schema_ = FeatureSchema.for_decision(decision, self.distance_scale_m)
         self.loss_history_ = history
         self.n_train_ = int(rows.shape[0])
         self.provenance_ = None

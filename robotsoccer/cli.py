@@ -47,6 +47,27 @@ if TYPE_CHECKING:
 DEFAULT_FIELD = "robot_physics"
 """The field model every command runs on unless told otherwise: the paper's mini-robots."""
 PAPER_MODELS = ("soccer_server", "robot_physics")
+
+LEAD_DRILLS: dict[str, tuple[str, tuple[tuple[str, str | float], ...], str]] = {
+    "robot_physics": (
+        "small_size_1997_arc",
+        (
+            ("shot", "goal_mouth"),
+            ("scaling", "task"),
+            ("launch", "coach"),
+            ("launch_speed_mps", 0.6),
+            ("launch_speed_max_mps", 1.2),
+        ),
+        "shots across the goal mouth at 0.6-1.2 m/s from 0.52-0.78 m, arcs, 30 Hz camera",
+    ),
+    "soccer_server": (
+        "soccer_server_1996",
+        (),
+        "the paper's drill (§5), shots at the defender",
+    ),
+}
+"""The lead study's drill on each field: (preset, drill options, summary)
+(:mod:`robotsoccer.experiments.lead_study`, whose docstring gives the numbers' sources)."""
 """The field models ``reproduce`` runs, in report order."""
 BENCH_TARGETS = {
     "robot_physics.realtime_factor.2_robots": (">=", 300.0),
@@ -219,6 +240,19 @@ def build_parser() -> argparse.ArgumentParser:
         help="layer 1's interception net (.npz) for receivers and defenders (default: train it)",
     )
     _experiment_options(passing)
+
+    lead = targets.add_parser(
+        "lead",
+        help="layer 1 with the lead decision beside the paper's turn angle, both field models",
+        parents=[common],
+    )
+    lead.add_argument(
+        "--field",
+        default=None,
+        choices=FIELD_MODELS,
+        help="one field model (default: both)",
+    )
+    _experiment_options(lead)
 
     reproduce = command(
         "reproduce",
@@ -683,6 +717,8 @@ def cmd_learn(args: argparse.Namespace) -> int:
     """``learn intercept`` / ``learn pass``: one layer on one field model."""
     if args.target == "pass":
         return cmd_learn_pass(args)
+    if args.target == "lead":
+        return cmd_learn_lead(args)
     preset = args.field_preset or default_preset(args.field)
     tag = f"learn-intercept-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
@@ -733,6 +769,39 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
     report.write_text(f"{title}\n\n{layer2_markdown([section], plan, plots)}")
     (out / "config.json").write_text(
         json.dumps({"plan": plan.to_dict(), "seed": args.seed, "net": str(net)}, indent=2) + "\n"
+    )
+    print()
+    print(report.read_text())
+    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
+    return 0
+
+
+def cmd_learn_lead(args: argparse.Namespace) -> int:
+    """``learn lead``: layer 1's two decisions on one or both field models, with a report."""
+    from robotsoccer.experiments.layer1 import seeds_for
+    from robotsoccer.experiments.lead_study import StudyDrill, plan_for, run_study
+
+    fields = [args.field] if args.field else list(LEAD_DRILLS)
+    tag = "learn-lead" + (f"-{args.field}" if args.field else "") + ("-quick" if args.quick else "")
+    out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
+    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
+    plan = plan_for(args.quick)
+    workers = args.workers or default_workers()
+    start = time.perf_counter()
+    try:
+        drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in fields]
+        text, _ = run_study(drills, plan, out, seeds_for(args.seed), workers, _clock_log())
+    except KeyboardInterrupt:
+        return _fail(
+            EXIT_INTERRUPTED,
+            f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
+        )
+    report = out / "report.md"
+    report.write_text(
+        f"# Layer 1: the lead decision{' — quick plan' if args.quick else ''}\n\n{text}"
+    )
+    (out / "config.json").write_text(
+        json.dumps({"plan": plan.to_dict(), "seed": args.seed, "fields": fields}, indent=2) + "\n"
     )
     print()
     print(report.read_text())

@@ -95,7 +95,7 @@ from enum import StrEnum
 from pathlib import Path
 
 from field_models.arena import Arena, FieldFacts
-from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef
+from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef, wrap_angle
 from field_models.registry import paper_field_facts
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import GoalWatch, Verdict
@@ -107,10 +107,13 @@ from robotsoccer.skills.intercept import (
     DefenderMind,
     TaMode,
     check_behaviour,
+    load_net_function,
     make_policy,
+    model_decision,
     model_origin,
     transfer_distance_factor,
 )
+from robotsoccer.skills.lead import LeadDefenderMind, lead_policy
 
 SHOOTER = PlayerRef(LEFT, 1)
 DEFENDER = PlayerRef(RIGHT, 1)
@@ -156,6 +159,20 @@ class Launch(StrEnum):
     AUTO = "auto"
     SHOOTER = "shooter"
     COACH = "coach"
+
+
+class Decision(StrEnum):
+    """What the defender decides at the trigger (module docstring, "Decision")."""
+
+    TURN = "turn"
+    LEAD = "lead"
+
+
+class Shot(StrEnum):
+    """Where the ball is aimed (module docstring, "Shot")."""
+
+    DEFENDER = "defender"
+    GOAL_MOUTH = "goal_mouth"
 
 
 class Scaling(StrEnum):
@@ -432,6 +449,14 @@ class InterceptDrill:
             period and the trigger stay as planned).
         turn_tolerance_deg: The defender's turn tolerance [deg] instead of the plan's (an
             ablation); None: the plan's (three sigmas of the sensor's heading noise).
+        decision: ``turn`` (the paper's TA) or ``lead`` (a meeting time,
+            :mod:`robotsoccer.skills.lead`).
+        shot: ``defender`` (the paper's: at the defender, plus the aim offset) or
+            ``goal_mouth`` (at a point drawn uniformly across the goal mouth).
+        launch_speed_mps: The ball's launch speed [m/s] in place of the plan's; 0: the plan's.
+        launch_speed_max_mps: With `launch_speed_mps`, draw each trial's speed uniformly
+            between the two [m/s] (a coach launch); 0: one speed. The plan's numbers
+            (arrival time, ...) are those of the middle speed.
 
     Raises:
         ValueError: An unknown behaviour, TA mode, launch or scaling, a missing model file
@@ -458,8 +483,28 @@ class InterceptDrill:
         trigger_scale: float = 1.0,
         launch_speed_scale: float = 1.0,
         turn_tolerance_deg: float | None = None,
+        decision: Decision | str = Decision.TURN,
+        shot: Shot | str = Shot.DEFENDER,
+        launch_speed_mps: float = 0.0,
+        launch_speed_max_mps: float = 0.0,
     ) -> None:
         self.behaviour = check_behaviour(behaviour, model)
+        self.decision = choice(Decision, decision, "decision")
+        self.shot = choice(Shot, shot, "shot")
+        if self.decision is Decision.LEAD and self.behaviour is Behaviour.LOOKUP:
+            raise ValueError("decision 'lead' has no lookup table: choose another behaviour")
+        if not (math.isfinite(float(launch_speed_mps)) and float(launch_speed_mps) >= 0.0):
+            raise ValueError(f"launch_speed_mps must be >= 0, got {launch_speed_mps!r}")
+        self.launch_speed_mps = float(launch_speed_mps)
+        self.launch_speed_max_mps = float(launch_speed_max_mps)
+        if self.launch_speed_max_mps and not (
+            math.isfinite(self.launch_speed_max_mps)
+            and self.launch_speed_max_mps >= self.launch_speed_mps > 0.0
+        ):
+            raise ValueError(
+                "launch_speed_max_mps needs 0 < launch_speed_mps <= launch_speed_max_mps, got "
+                f"{launch_speed_mps!r} and {launch_speed_max_mps!r}"
+            )
         self.model = model
         self.ta_mode = choice(TaMode, ta_mode, "ta_mode")
         self.launch = choice(Launch, launch, "launch")
@@ -487,7 +532,8 @@ class InterceptDrill:
         self.max_time_s = float(max_time_s)
         self.defender_kick = flag("defender_kick", defender_kick)
         self.transfer = flag("transfer", transfer)
-        self.defender_mind: DefenderMind | None = None
+        self.defender_mind: DefenderMind | LeadDefenderMind | None = None
+        self._aim_offset_trial_rad = self.aim_offset_rad
         self._judge_state: _Judge | None = None
         self._plan: LaunchPlan | None = None
         self._plan_facts: FieldFacts | None = None
@@ -507,9 +553,13 @@ class InterceptDrill:
     def plan_for(self, facts: FieldFacts) -> LaunchPlan:
         """This drill's launch plan on a field (cached per field), with the ablations applied."""
         plan = cached_launch_plan(facts, self.kick_power, self.launch, self.scaling)
-        return ablated(
-            plan, facts, self.trigger_scale, self.launch_speed_scale, self.turn_tolerance_deg
-        )
+        speed_scale = self.launch_speed_scale
+        if self.launch_speed_mps:
+            speed = self.launch_speed_mps
+            if self.launch_speed_max_mps:
+                speed = 0.5 * (speed + self.launch_speed_max_mps)
+            speed_scale *= speed / plan.launch_speed_mps
+        return ablated(plan, facts, self.trigger_scale, speed_scale, self.turn_tolerance_deg)
 
     def distance_factor(self, facts: FieldFacts) -> float:
         """The net's distance factor on this field (1 on the field it was trained on).
@@ -528,7 +578,19 @@ class InterceptDrill:
             ValueError: The model file was trained on another field and ``transfer`` is off.
         """
         self._check_origin(facts)
+        self._check_decision()
         return self.plan_for(facts)
+
+    def _check_decision(self) -> None:
+        """Refuse a model file that decides the other thing (a TA net for the lead, ...)."""
+        if not self.model:
+            return
+        decides = model_decision(self.model)
+        if decides != self.decision.value:
+            raise ValueError(
+                f"model {self.model} decides the {decides}, this run's decision is "
+                f"{self.decision.value!r}: train a {self.decision.value} model for it"
+            )
 
     def _check_origin(self, facts: FieldFacts) -> None:
         """Refuse a model file trained on another field (unless this is a transfer run)."""
@@ -543,12 +605,18 @@ class InterceptDrill:
                 f"`{here[1]}`: give option transfer=true to test it across fields"
             )
 
-    def field_settings(self, facts: FieldFacts) -> dict[str, float]:
-        """The ball-noise period of the plan where it differs from the field's own."""
+    def field_settings(self, facts: FieldFacts) -> dict[str, float | bool]:
+        """The field settings the drill needs where they differ from the field's own.
+
+        The plan's ball-noise period; every landmark in the percepts for the lead decision.
+        """
         plan = self.plan_for(facts)
-        if math.isclose(plan.noise_period_s, facts.ball_noise_period_s):
-            return {}
-        return {"ball_noise_period_s": plan.noise_period_s}
+        settings: dict[str, float | bool] = {}
+        if not math.isclose(plan.noise_period_s, facts.ball_noise_period_s):
+            settings["ball_noise_period_s"] = plan.noise_period_s
+        if self.decision is Decision.LEAD:
+            settings["all_landmarks"] = True  # the lead defender localises itself
+        return settings
 
     def inputs(self) -> tuple[str, ...]:
         """The model file of ``net`` or ``lookup``."""
@@ -560,21 +628,46 @@ class InterceptDrill:
         rng = rngs["placement"]
         distance = float(rng.uniform(plan.min_distance_m, plan.max_distance_m))
         bearing = float(rng.uniform(-self.sector_rad, self.sector_rad))
-        self.place(arena, plan, distance, bearing)
+        target = None
+        if self.shot is Shot.GOAL_MOUTH:
+            pitch = arena.facts.pitch
+            half = 0.5 * pitch.goal_width_m - pitch.ball_radius_m
+            target = float(rng.uniform(-half, half))
+        speed = None
+        if self.launch_speed_max_mps:
+            if plan.launch is not Launch.COACH:
+                raise ValueError("launch_speed_max_mps needs a coach launch (launch=coach)")
+            speed = float(rng.uniform(self.launch_speed_mps, self.launch_speed_max_mps))
+        self.place(arena, plan, distance, bearing, target, speed)
 
-    def place(self, arena: Arena, plan: LaunchPlan, distance_m: float, bearing_rad: float) -> None:
+    def place(
+        self,
+        arena: Arena,
+        plan: LaunchPlan,
+        distance_m: float,
+        bearing_rad: float,
+        target_y_m: float | None = None,
+        speed_mps: float | None = None,
+    ) -> None:
         """Place everything for a ball `distance_m` from the defender at `bearing_rad` off -x.
 
         The coach's deterministic half of :meth:`setup` (tests place by hand through it).
+        `target_y_m`: aim at this point of the defended goal line instead of the defender;
+        `speed_mps`: a coach launch at this speed instead of the plan's.
         """
         dx, dy = plan.defender_x_m, 0.0
         ux, uy = math.cos(bearing_rad), math.sin(bearing_rad)  # ball -> defender
         bx, by = dx - distance_m * ux, dy - distance_m * uy
-        aim = bearing_rad + self.aim_offset_rad
+        offset = self.aim_offset_rad
+        if target_y_m is not None:
+            line_x = arena.facts.pitch.half_length_m
+            offset += wrap_angle(math.atan2(target_y_m - by, line_x - bx) - bearing_rad)
+        self._aim_offset_trial_rad = offset
+        aim = bearing_rad + offset
         ax, ay = math.cos(aim), math.sin(aim)
         gap = plan.shooter_gap_m
         if plan.launch is Launch.COACH:
-            speed = plan.launch_speed_mps
+            speed = plan.launch_speed_mps if speed_mps is None else speed_mps
             arena.place_ball(bx, by, speed * ax, speed * ay)
             arena.place_player(SHOOTER, bx - gap * ux, by - gap * uy, bearing_rad)
         elif not plan.aimable_kick:  # a kicker fires along the heading: aim the shooter
@@ -595,15 +688,50 @@ class InterceptDrill:
         ball = arena.ball_state()
         defender = arena.player_state(DEFENDER)
         plan = self.plan(arena)
-        self._judge_state = _Judge(arena, plan, (ball.x, ball.y), (defender.x, defender.y))
+        self._judge_state = _Judge(
+            arena,
+            plan,
+            (ball.x, ball.y),
+            (defender.x, defender.y),
+            touches=self.shot is Shot.GOAL_MOUTH,
+        )
 
     def minds(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
         """The defender's behaviour, and the shooter when it launches the ball."""
         plan = self.plan(arena)
+        defender: DefenderMind | LeadDefenderMind
+        if self.decision is Decision.LEAD:
+            defender = self._lead_mind(arena, plan, rngs)
+        else:
+            defender = self._turn_mind(arena, plan, rngs)
+        self.defender_mind = defender
+        minds: dict[PlayerRef, Mind] = {DEFENDER: defender}
+        if plan.launch is Launch.SHOOTER:
+            aim = self._aim_offset_trial_rad if plan.aimable_kick else 0.0
+            minds[SHOOTER] = AimedShooterMind(DEFENDER, plan.kick_power, aim)
+        return minds
+
+    def _lead_mind(self, arena: Arena, plan: LaunchPlan, rngs: TrialRngs) -> LeadDefenderMind:
+        """The lead defender (:mod:`robotsoccer.skills.lead`)."""
+        net = None
+        if self.behaviour is Behaviour.NET:
+            net = load_net_function(self.model, self.distance_factor(arena.facts))
+        policy = lead_policy(self.behaviour.value, rngs["policy"], net, plan.arrival_time_s)
+        return LeadDefenderMind(
+            policy,
+            arena.facts,
+            plan.max_distance_m,  # decide at the first full velocity fit: no time to wait
+            replan=self.behaviour is Behaviour.ANALYTIC,
+            kickable_distance_m=plan.kickable_distance_m if self.defender_kick else None,
+            turn_tolerance_rad=plan.turn_tolerance_rad,
+        )
+
+    def _turn_mind(self, arena: Arena, plan: LaunchPlan, rngs: TrialRngs) -> DefenderMind:
+        """The paper's TA defender (:mod:`robotsoccer.skills.intercept`)."""
         policy = make_policy(
             self.behaviour, rngs["policy"], self.model, self.distance_factor(arena.facts)
         )
-        defender = DefenderMind(
+        return DefenderMind(
             policy,
             plan.trigger_distance_m,
             ta_mode=self.ta_mode,
@@ -611,12 +739,6 @@ class InterceptDrill:
             turn_tolerance_rad=plan.turn_tolerance_rad,
             decision_period_ticks=decision_ticks(plan, arena.facts),
         )
-        self.defender_mind = defender
-        minds: dict[PlayerRef, Mind] = {DEFENDER: defender}
-        if plan.launch is Launch.SHOOTER:
-            aim = self.aim_offset_rad if plan.aimable_kick else 0.0
-            minds[SHOOTER] = AimedShooterMind(DEFENDER, plan.kick_power, aim)
-        return minds
 
     def judge(self, arena: Arena) -> Verdict | None:
         """SAVE, GOAL, MISS or carry on (module docstring)."""
@@ -671,8 +793,13 @@ class _Judge:
         plan: LaunchPlan,
         ball: tuple[float, float],
         defender: tuple[float, float],
+        *,
+        touches: bool = False,
     ) -> None:
         pitch = arena.facts.pitch
+        # Shots across the goal mouth are all on target: one the defender touched and that did
+        # not go in is a save even when it still rolls forward (pushed wide of the post).
+        self.touch_m = arena.facts.touch_distance_m + 0.05 * arena.facts.unit_m if touches else 0.0
         self.dt_s = arena.facts.dt_s
         self.plan = plan
         self.half_length = pitch.half_length_m
@@ -712,6 +839,10 @@ class _Judge:
 
     def _verdict(self, arena: Arena) -> Verdict | None:  # every tick: keep it lean
         x, y, _, vx, vy = arena.ball_state()
+        if self.touch_m and not self.deflected:
+            d = arena.player_state(DEFENDER)
+            if (d.x - x) ** 2 + (d.y - y) ** 2 <= self.touch_m * self.touch_m:
+                self.deflected = True
         crossing = self.goals.step(arena, x, y)
         if crossing:
             if crossing is Crossing.RIGHT_GOAL:

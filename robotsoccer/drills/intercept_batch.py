@@ -65,9 +65,11 @@ from robotsoccer.drills.intercept import (
     SAVE_SPEED_PER_LENGTH,
     SHOOTER,
     STOPPED_SHORT,
+    Decision,
     InterceptDrill,
     Launch,
     LaunchPlan,
+    Shot,
     deflected_then,
 )
 from robotsoccer.runs.runner import TrialResult, TrialSpec, field_options
@@ -121,6 +123,10 @@ def batch_reason(spec: TrialSpec) -> str | None:
     assert isinstance(drill, InterceptDrill)
     if drill.defender_kick:
         return "the defender's clearing kick reads landmarks, which the batch does not see"
+    if drill.decision is not Decision.TURN:
+        return "the batch plays the paper's turn-angle decision, not the lead"
+    if drill.shot is not Shot.DEFENDER:
+        return "the batch aims every shot at the defender"
     options = field_options(spec, drill)
     reason = field_batch_reason(spec.field_model, spec.preset, options)
     if reason is not None:

@@ -42,7 +42,7 @@ from field_models.registry import FIELD_MODELS, field_facts
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept import DEFENDER, InterceptDrill
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
-from robotsoccer.skills.intercept import TA_CLIP_RAD
+from robotsoccer.skills.intercept import TA_CLIP_RAD, DefenderMind
 
 MAX_DISTANCE_UNITS = 60.0
 """The observation's distance bound (the drill places the ball at most 30 units away)."""
@@ -138,7 +138,7 @@ class _Episode:
         drill.setup(arena, rngs)
         minds: dict[PlayerRef, Mind] = drill.minds(arena, rngs)
         mind = drill.defender_mind
-        assert mind is not None
+        assert isinstance(mind, DefenderMind), "the environment plays the paper's TA decision"
         self.turn = _AgentTurn()
         mind.policy = self.turn
         self.defender = mind

@@ -324,6 +324,22 @@ def model_origin(path: str | os.PathLike[str]) -> tuple[str, str] | None:
 _ORIGINS: dict[tuple[str, int, int], tuple[str, str] | None] = {}
 
 
+def model_decision(path: str | os.PathLike[str]) -> str:
+    """What a model file decides: ``"turn"`` (TA; every lookup table) or ``"lead"``.
+
+    Raises:
+        learning.features.ModelFileError: The file is unreadable.
+    """
+    key = file_key(path)
+    if key not in _DECISIONS:
+        suffix = Path(path).suffix
+        _DECISIONS[key] = read_net_file(path).schema.decision if suffix == ".npz" else "turn"
+    return _DECISIONS[key]
+
+
+_DECISIONS: dict[tuple[str, int, int], str] = {}
+
+
 def make_policy(
     behaviour: Behaviour | str, rng: Rng, model: str = "", distance_factor: float = 1.0
 ) -> TurnPolicy | None:
@@ -447,7 +463,7 @@ class DefenderMind:
         elif self.every_see:
             self.turn_angle_rad = self._choose(policy, bd, ba, previous_bd, previous_xy, xy)
         if self.kickable_distance_m is not None and bd <= self.kickable_distance_m:
-            return (Kick(KICK_POWER, _clearing_direction(percept)),)
+            return (Kick(KICK_POWER, clearing_direction(percept)),)
         return self._turn(percept.tick, ba + self.turn_angle_rad, (Dash(DASH_POWER),))
 
     def _choose(
@@ -479,7 +495,7 @@ class DefenderMind:
         return self._heading_rad
 
 
-def _clearing_direction(percept: Percept) -> float:
+def clearing_direction(percept: Percept) -> float:
     """Kick direction away from the own goal: "g r" + 180°, else toward "g l", else ahead."""
     own = percept.landmark("g r")
     if own is not None:

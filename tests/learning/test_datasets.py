@@ -82,10 +82,12 @@ def test_schema_round_trip_and_mismatches() -> None:
     good = schema.to_dict()
     with pytest.raises(SchemaError, match="version 2 does not match"):
         FeatureSchema.from_dict({**good, "version": 2})
-    with pytest.raises(SchemaError, match="feature names"):
+    with pytest.raises(SchemaError, match=r"'ball_angle_deg'.*are none of"):
         FeatureSchema.from_dict({**good, "feature_names": ["ball_distance_m", "ball_angle_deg"]})
-    with pytest.raises(SchemaError, match="target name"):
+    with pytest.raises(SchemaError, match="'turn_angle_deg' are none of"):
         FeatureSchema.from_dict({**good, "target_name": "turn_angle_deg"})
+    with pytest.raises(SchemaError, match="'lead_time_s' are none of"):  # turn inputs, lead output
+        FeatureSchema.from_dict({**good, "target_name": "lead_time_s"})
     with pytest.raises(SchemaError, match="lacks"):
         FeatureSchema.from_dict({"version": SCHEMA_VERSION})
     with pytest.raises(SchemaError, match="distance_scale_m"):
@@ -262,3 +264,19 @@ def test_concatenate_refuses_different_provenance_unless_given() -> None:
         concatenate([])
     mixed = provenance(behaviour="mixed", n_trials=80)
     assert concatenate([a, b], provenance=mixed).provenance == mixed
+
+
+def test_the_lead_decisions_schema_and_dataset_round_trip(tmp_path) -> None:
+    schema = FeatureSchema.for_decision("lead", distance_scale_m=0.026)
+    assert schema.decision == "lead" and FeatureSchema().decision == "turn"
+    assert FeatureSchema.from_dict(schema.to_dict()) == schema
+    with pytest.raises(SchemaError, match="unknown decision"):
+        FeatureSchema.for_decision("kick")
+    rows = np.array([[0.5, 0.1, 0.52], [0.4, -0.2, 0.43]])
+    provenance = Provenance("robot_physics", "small_size_1997_arc", 1, 0.05, "random_lead", 9)
+    data = InterceptionDataset(rows, np.array([0.3, 0.2]), provenance, "lead")
+    back = InterceptionDataset.load(data.save(tmp_path / "lead.npz"))
+    assert back.decision == "lead" and np.array_equal(back.x, rows)
+    assert InterceptionDataset.load(
+        InterceptionDataset(rows, np.array([0.1, 0.2]), provenance).save(tmp_path / "turn.npz")
+    ).decision == "turn"
