@@ -262,6 +262,11 @@ def build_parser() -> argparse.ArgumentParser:
     reproduce.add_argument(
         "--no-transfer", action="store_true", help="layers 1 and 2 only, without the transfer study"
     )
+    reproduce.add_argument(
+        "--no-lead",
+        action="store_true",
+        help="without layer 1's lead decision (robotsoccer learn lead) after layers 1 and 2",
+    )
     _transfer_options(reproduce)
     transfer = command(
         "transfer",
@@ -776,10 +781,23 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_learn_lead(args: argparse.Namespace) -> int:
-    """``learn lead``: layer 1's two decisions on one or both field models, with a report."""
+def _lead_section(
+    args: argparse.Namespace, out: Path, workers: int, log: Callable[[str], None]
+) -> str:
+    """The lead study (:mod:`robotsoccer.experiments.lead_study`) on the chosen fields."""
     from robotsoccer.experiments.layer1 import seeds_for
     from robotsoccer.experiments.lead_study import StudyDrill, plan_for, run_study
+
+    field = getattr(args, "field", None)
+    fields = [field] if field else list(LEAD_DRILLS)
+    drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in fields]
+    text, _ = run_study(drills, plan_for(args.quick), out, seeds_for(args.seed), workers, log)
+    return text
+
+
+def cmd_learn_lead(args: argparse.Namespace) -> int:
+    """``learn lead``: layer 1's two decisions on one or both field models, with a report."""
+    from robotsoccer.experiments.lead_study import plan_for
 
     fields = [args.field] if args.field else list(LEAD_DRILLS)
     tag = "learn-lead" + (f"-{args.field}" if args.field else "") + ("-quick" if args.quick else "")
@@ -789,8 +807,7 @@ def cmd_learn_lead(args: argparse.Namespace) -> int:
     workers = args.workers or default_workers()
     start = time.perf_counter()
     try:
-        drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in fields]
-        text, _ = run_study(drills, plan, out, seeds_for(args.seed), workers, _clock_log())
+        text = _lead_section(args, out, workers, _clock_log())
     except KeyboardInterrupt:
         return _fail(
             EXIT_INTERRUPTED,
@@ -881,6 +898,10 @@ def _run_layer1(
             plots = layer2_plots(layer2, out)
             with report.open("a") as f:
                 f.write("\n" + layer2_markdown(layer2, plan2, plots))
+        if with_layer2 and not args.no_lead:
+            section = _lead_section(args, out / "lead", workers, log)
+            with report.open("a") as f:
+                f.write("\n" + section)
         if with_layer2 and not args.no_transfer:
             section = _transfer_section(args, models, out, workers, created_by)
             with report.open("a") as f:

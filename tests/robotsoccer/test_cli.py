@@ -116,3 +116,18 @@ def test_setplay_with_a_models_folder_that_lacks_them_fails_in_one_line(tmp_path
     assert main(["setplay", "--models", str(tmp_path), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "pass_tree.json" in err[0]
+
+
+def test_learn_lead_writes_its_report_and_config(tmp_path, monkeypatch, capsys) -> None:
+    import robotsoccer.experiments.lead_study as study
+
+    tiny = study.LeadPlan("tiny", eval_trials=10, collect_saves=8, collect_batch=40, epochs=10)
+    monkeypatch.setattr(study, "plan_for", lambda quick: tiny)
+    out = tmp_path / "lead"
+    code = main(["learn", "lead", "--field", "soccer_server", "--out", str(out), "--workers", "1"])
+    assert code == 0
+    report = (out / "report.md").read_text()
+    assert report.startswith("# Layer 1: the lead decision") and "| lead | net |" in report
+    assert "robot_physics" not in report
+    assert json.loads((out / "config.json").read_text())["fields"] == ["soccer_server"]
+    assert "report:" in capsys.readouterr().out
