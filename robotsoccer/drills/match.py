@@ -33,7 +33,13 @@ from robotsoccer.drills.passing import LayeredDrill, control_reach, load_evaluat
 from robotsoccer.drills.referee import SIDE, Referee
 from robotsoccer.options import choice, flag
 from robotsoccer.replay.frames import GameFrame
-from robotsoccer.skills.intercept import Behaviour, make_policy, transfer_distance_factor
+from robotsoccer.skills.intercept import (
+    Behaviour,
+    load_net_function,
+    make_policy,
+    model_decision,
+    transfer_distance_factor,
+)
 from robotsoccer.skills.passing import Chooser, PassEvaluator
 from robotsoccer.skills.setplay import KickPowers
 from robotsoccer.skills.team import TeamMind, TeamSetup
@@ -232,14 +238,17 @@ class MatchDrill(LayeredDrill):
         for team in (LEFT, RIGHT):
             setup = self.team_setup(facts, n, team)
             layered = self.kinds[team] is TeamKind.LAYERED
-            policy = (
-                make_policy(Behaviour.NET, rngs["policy"], self.net, factor) if layered else None
-            )
+            policy, lead = None, None
+            if layered and model_decision(self.net) == "lead":
+                lead = load_net_function(self.net, factor)
+            elif layered:
+                policy = make_policy(Behaviour.NET, rngs["policy"], self.net, factor)
             for number in FORMATIONS[n]:
                 mind = TeamMind(
                     number,
                     setup,
                     interception=policy,
+                    lead=lead,
                     evaluator=tree if layered else None,
                 )
                 self.minds_by_ref[PlayerRef(team, number)] = mind
@@ -273,6 +282,8 @@ class MatchDrill(LayeredDrill):
             dt_s=facts.dt_s,
             latency_s=facts.sensor_latency_s or 0.0,
             spin_accel_radps2=facts.player_accel_mps2 / facts.pitch.player_radius_m,
+            sensor_period_s=facts.sensor_period_s,
+            ball_law=facts.ball,
         )
 
     # ------------------------------------------------------------------ the coach

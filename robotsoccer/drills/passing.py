@@ -139,10 +139,18 @@ class LayeredDrill:
         return tuple(f for f in (self.model, self.net) if f)
 
     def _check_origins(self, facts: FieldFacts) -> None:
-        """Refuse a tree or net trained on another field (unless this is a transfer run)."""
+        """Refuse a lead net, and a tree or net trained on another field (unless a transfer)."""
         if facts is self._checked:
             return
         self._checked = facts
+        if self.net:
+            from robotsoccer.skills.intercept import model_decision
+
+            if model_decision(self.net) != "turn":
+                raise ValueError(
+                    f"net {self.net} decides the {model_decision(self.net)}: this drill's "
+                    "receivers and defenders take a turn-angle net (learn intercept)"
+                )
         if self.transfer:
             return
         here = (facts.model, Path(facts.preset).stem)

@@ -29,7 +29,7 @@ carried in the paper's drill, the ball's motion across the line of sight, which 
 keeps facing the ball at 30 Hz no longer sees in BA.
 
 **Where positions come from.** The ball is put in the field frame through the defender's own
-pose, localised from the landmarks its percept names (:class:`~robotsoccer.skills.team.
+pose, localised from the landmarks its percept names (:class:`~robotsoccer.skills.localise.
 Localiser`): on the robots the host gives both goals in every percept, so the pose is the
 camera's detection and the ball comes out as the camera saw it; on the Soccer Server the drill
 asks for every flag. Its velocity is the least-squares slope of its last
@@ -56,7 +56,7 @@ from field_models.arena import BallLaw, FieldFacts
 from field_models.protocol import Action, Dash, Kick, Percept, Turn, wrap_angle
 from field_models.seeding import Rng
 from robotsoccer.skills.intercept import DASH_POWER, KICK_POWER, clearing_direction
-from robotsoccer.skills.team import Localiser
+from robotsoccer.skills.localise import Localiser
 
 RANDOM_LEAD_MAX_S = 1.0
 """The training behaviour's lead range: uniform in [0, 1] s, longer than any drill's flight."""

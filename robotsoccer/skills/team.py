@@ -20,9 +20,11 @@ percept arrives:
      :attr:`TeamMind.pass_threshold`; the baseline passes to the closest teammate ahead (the
      paper's "closest" heuristic). No teammate: dribble on;
    * else *dribble* toward the goal.
-4. **Chasing a ball out of reach:** the layered team intercepts with layer 1's net (TA from
-   the net while the ball comes toward it within the trigger distance, as in §5's drill;
-   straight at it otherwise); the baseline always runs straight at the ball.
+4. **Chasing a ball out of reach:** the layered team intercepts with layer 1's net while the
+   ball comes toward it within the trigger distance (straight at it otherwise): a turn-angle
+   net gives TA, as in §5's drill; a lead net (:mod:`robotsoccer.skills.lead`) the lead τ, and
+   the player aims τ ahead of the ball along its velocity, fitted from its last sightings in
+   the field frame. The baseline always runs straight at the ball.
 5. **Otherwise** it goes to its formation home, shifted toward the ball
    (:data:`BALL_SHIFT_X`, :data:`BALL_SHIFT_Y`), and faces the ball there.
 
@@ -33,12 +35,15 @@ What a team may not do is read truth: the coach places players for kick-offs (as
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass
 
+from field_models.arena import BallLaw
 from field_models.protocol import Action, Dash, Kick, Percept, SeenPlayer, Turn, wrap_angle
 from learning.pass_features import pass_attributes, passer_attributes, unknown_half
 from robotsoccer.skills.intercept import TurnPolicy
+from robotsoccer.skills.lead import BallTrack, LeadPolicy, track_angle, velocity_window
+from robotsoccer.skills.localise import Localiser, Pose
 from robotsoccer.skills.passing import PassEvaluator, view_arrays
 from robotsoccer.skills.setplay import KickPowers, opponent_in_path
 
@@ -68,69 +73,6 @@ little behind is fine)."""
 
 
 @dataclass(frozen=True, slots=True)
-class Pose:
-    """Where a player believes it is: field frame [m], heading [rad]."""
-
-    x: float
-    y: float
-    heading: float
-
-
-class Localiser:
-    """A player's pose from the landmarks it sees (module docstring, step 1).
-
-    Args:
-        landmarks: (name, x [m], y [m]) of the field's landmarks (:attr:`FieldFacts.landmarks`).
-    """
-
-    def __init__(self, landmarks: Sequence[tuple[str, float, float]]) -> None:
-        self.known = {name: (x, y) for name, x, y in landmarks}
-        self.pose: Pose | None = None
-
-    def update(self, percept: Percept) -> Pose | None:
-        """The pose this percept gives (or the last one, when it gives none)."""
-        marks = []
-        for mark in percept.landmarks:
-            where = self.known.get(mark.name)
-            if where is not None:
-                ex = mark.distance_m * math.cos(mark.angle_rad)
-                ey = mark.distance_m * math.sin(mark.angle_rad)
-                marks.append((where[0], where[1], ex, ey, mark.distance_m))
-        if len(marks) >= 2:
-            heading = _heading_from_pair(marks)
-        elif marks and self.pose is not None:
-            heading = self.pose.heading
-        else:
-            return self.pose
-        c, s = math.cos(heading), math.sin(heading)
-        # Near landmarks weigh more: the server quantises log-distance, so far ones err more.
-        x = y = total = 0.0
-        for wx, wy, ex, ey, distance in marks:
-            w = 1.0 / (1.0 + distance)
-            x += w * (wx - (c * ex - s * ey))
-            y += w * (wy - (s * ex + c * ey))
-            total += w
-        x, y = x / total, y / total
-        self.pose = Pose(x, y, heading)
-        return self.pose
-
-
-def _heading_from_pair(marks: Sequence[tuple[float, float, float, float, float]]) -> float:
-    """Heading from the two landmarks farthest apart in view (the best-conditioned pair)."""
-    best, pair = -1.0, (marks[0], marks[1])
-    for i in range(len(marks)):
-        for j in range(i + 1, len(marks)):
-            a, b = marks[i], marks[j]
-            gap = (a[2] - b[2]) ** 2 + (a[3] - b[3]) ** 2
-            if gap > best:
-                best, pair = gap, (a, b)
-    a, b = pair
-    world = math.atan2(b[1] - a[1], b[0] - a[0])
-    seen = math.atan2(b[3] - a[3], b[2] - a[2])
-    return wrap_angle(world - seen)
-
-
-@dataclass(frozen=True, slots=True)
 class TeamSetup:
     """One team's plan on one field (the match drill fills it from the field's facts).
 
@@ -154,6 +96,8 @@ class TeamSetup:
         latency_s: The sensor's latency [s].
         spin_accel_radps2: How fast a player's spin can build up: its acceleration over its
             half-size [rad/s²].
+        sensor_period_s: Time between two percepts [s] (the lead's velocity fit).
+        ball_law: How the free ball slows down (the lead's prediction); None: it does not.
     """
 
     attack_right: bool
@@ -174,6 +118,8 @@ class TeamSetup:
     dt_s: float
     latency_s: float
     spin_accel_radps2: float
+    sensor_period_s: float = 0.1
+    ball_law: BallLaw | None = None
 
     def turn_ticks(self, angle_rad: float) -> int:
         """Ticks until a percept shows a turn by `angle_rad` done: latency plus the spin.
@@ -202,6 +148,7 @@ class TeamMind:
         number: Its uniform number.
         setup: Its team's plan.
         interception: Layer 1's TA rule (the net); None: run straight at the ball.
+        lead: Layer 1's lead rule (a lead net); used instead of `interception` when given.
         evaluator: Layer 2's pass evaluator; None: pass to the closest teammate.
         pass_threshold: The tree's least success confidence for a pass.
 
@@ -218,12 +165,15 @@ class TeamMind:
         setup: TeamSetup,
         *,
         interception: TurnPolicy | None = None,
+        lead: LeadPolicy | None = None,
         evaluator: PassEvaluator | None = None,
         pass_threshold: float = 0.5,
     ) -> None:
         self.number = number
         self.setup = setup
         self.interception = interception
+        self.lead = lead
+        self._track = BallTrack(velocity_window(setup.sensor_period_s))
         self.evaluator = evaluator
         self.pass_threshold = pass_threshold
         self.localiser = Localiser(setup.landmarks)
@@ -264,6 +214,8 @@ class TeamMind:
                 pose.x + ball.distance_m * math.cos(heading),
                 pose.y + ball.distance_m * math.sin(heading),
             )
+            if self.lead is not None:
+                self._track.add(percept.observed_tick * self.setup.dt_s, *self._ball_xy)
         self.chasing = self._is_chaser(percept)
         if not self.chasing:
             self._spell_kicked = ""
@@ -392,7 +344,11 @@ class TeamMind:
         ta = 0.0
         reach = self.setup.reach_m
         coming = previous is not None and previous - bd > COMING_SHARE * reach
-        if (
+        lead_angle = self._lead_angle(bd, previous) if coming else None
+        if lead_angle is not None:
+            ta = wrap_angle(lead_angle - ba)
+            self.intent = "intercept"
+        elif (
             self.interception is not None
             and coming
             and previous is not None
@@ -410,6 +366,29 @@ class TeamMind:
         if bd <= NEAR_REACHES * reach:
             return (Turn(angle),)  # near the ball: run on only once facing it, or it circles
         return (Turn(angle), Dash(100.0))
+
+    def _lead_angle(self, bd: float, previous: float | None) -> float | None:
+        """The direction to aim the lead net's τ ahead of the ball, or None (no lead, no fit).
+
+        Asked only of a ball coming toward the player from beyond the near zone, within the
+        trigger distance: where §5's net was trained to meet it.
+        """
+        pose, ball = self.localiser.pose, self._ball_xy
+        velocity = self._track.velocity()
+        if self.lead is None or pose is None or ball is None or velocity is None:
+            return None
+        if previous is None or not NEAR_REACHES * self.setup.reach_m < bd:
+            return None
+        if bd > self.setup.trigger_distance_m:
+            return None
+        angle = track_angle(ball, velocity, (pose.x, pose.y))
+        lead = max(0.0, self.lead(bd, angle, previous))
+        speed = math.hypot(*velocity)
+        law = self.setup.ball_law
+        along = speed * lead if law is None else law.distance_in(speed, lead)
+        if speed > 0.0:
+            ball = (ball[0] + velocity[0] / speed * along, ball[1] + velocity[1] / speed * along)
+        return math.atan2(ball[1] - pose.y, ball[0] - pose.x) - pose.heading
 
     def _go_home(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...]:
         ball = percept.ball
