@@ -199,6 +199,9 @@ class RcgWriter:
             ``(v ...)`` and ``(s ...)`` (server defaults otherwise).
         player_params: Parameters for the ``player_param`` line, in rcssserver's names.
         goalies: The players whose state carries the ``GOALIE`` flag (0x8).
+        goal_scenes: Write a goal's cycle as the server's after-goal pause (module docstring).
+            False where the frames already show the pause (a served game's own referee
+            plays it out): every frame is then written as it is.
 
     Raises:
         ValueError: On a bad team name, player, cycle or parameter.
@@ -214,7 +217,9 @@ class RcgWriter:
         server_params: Mapping[str, float | int | str] | None = None,
         player_params: Mapping[str, float | int | str] | None = None,
         goalies: Collection[PlayerRef] = (),
+        goal_scenes: bool = True,
     ) -> None:
+        self._goal_scenes = goal_scenes
         for name in teams:
             if not isinstance(name, str) or _TEAM_NAME.fullmatch(name) is None:
                 raise ValueError(
@@ -270,6 +275,19 @@ class RcgWriter:
     def closed(self) -> bool:
         """Whether :meth:`close` has run."""
         return self._file.closed
+
+    def rename_teams(self, teams: tuple[str, str]) -> None:
+        """New team names from the next written cycle on (a team line then says so).
+
+        Raises:
+            ValueError: A name rcssserver would not allow (see the constructor).
+        """
+        for name in teams:
+            if not isinstance(name, str) or _TEAM_NAME.fullmatch(name) is None:
+                raise ValueError(f"team name {name!r} cannot be written in a game log")
+        if (teams[0], teams[1]) != self._teams:
+            self._teams = (teams[0], teams[1])
+            self._score = None  # forces a team line, which carries the names
 
     def write(self, frame: GameFrame) -> None:
         """Take one cycle's frame; the previous one is written now (a goal's as a goal scene).
@@ -347,7 +365,7 @@ class RcgWriter:
         frame = self._pending
         assert frame is not None
         self._pending = None
-        side = _scorer(frame.score, next_score)
+        side = _scorer(frame.score, next_score) if self._goal_scenes else None
         if side is None:
             self._write_cycle(frame, frame.play_mode, frame.score)
         else:
