@@ -155,6 +155,7 @@ class ServedGame:
     Args:
         preset: The server preset (options applied).
         seed: Seeds the model's movement and sensing noise (trial 0 of this seed).
+        rngs: The streams to draw that noise from instead (a trial's own, for an arena).
         synch: Synch mode: players (and a trainer with ``eye on``) get ``(think)`` after each
             cycle's sensors, and :meth:`ready` says when all of them answered ``(done)``.
         log: Where lines about joins, leaves and refused messages go.
@@ -168,6 +169,7 @@ class ServedGame:
         preset: ServerPreset,
         *,
         seed: int = 0,
+        rngs: TrialRngs | None = None,
         synch: bool = False,
         log: Log | None = None,
         overrides: dict[str, bool | int | float | str] | None = None,
@@ -178,7 +180,7 @@ class ServedGame:
         self.log: Log = log or (lambda line: None)
         self.overrides = dict(overrides or {})
         self.overrides.setdefault("synch_mode", synch)
-        rngs = TrialRngs.for_trial(seed, 0)
+        rngs = rngs if rngs is not None else TrialRngs.for_trial(seed, 0)
         self._movement = rngs["movement"]
         self._see_rng = rngs["sensing"]
         self.model = SoccerServerModel(preset, (), self._movement)
