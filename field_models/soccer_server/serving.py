@@ -98,6 +98,9 @@ NOT_MODELLED = frozenset(
     )
 )
 """Player commands rcssserver knows and the model does not: answered ``unknown_command``."""
+MAX_MONITORS = 8
+"""Most monitors at once. rcssserver's ``max_monitors`` defaults to no limit; each monitor
+costs a show every cycle, so a flood of ``dispinit`` could stall the server: ours stops at 8."""
 COUNTERS = (
     "kick",
     "dash",
@@ -372,6 +375,8 @@ class ServedGame:
         version = number(tree[2])
         if version not in (3.0, 4.0):
             raise CommandError("(error illegal_client_version)", f"monitor v{version:g}")
+        if len(self.monitors) >= MAX_MONITORS:
+            raise CommandError("(error no_more_monitor)", f"{MAX_MONITORS} monitors already")
         client = Client(next(self._ids), "monitor", version)
         self.monitors.append(client)
         for message in param_messages(self.preset, 999, self.overrides):
