@@ -21,6 +21,7 @@ from field_models.seeding import StreamBatch, TrialRngs
 _ENTRIES = {
     "robot_physics": "field_models.robot_physics.model",
     "soccer_server": "field_models.soccer_server.model",
+    "rcssserver": "field_models.rcssserver.model",
 }
 FIELD_MODELS: tuple[str, ...] = tuple(_ENTRIES)
 """Registered field models, by name."""

@@ -126,17 +126,18 @@ def iter_benchmarks(
     yield "demo.trials_per_s.1_worker", round(demo1, 1)
     demo2 = median_of(repeats, lambda: demo_trials_per_s(demo_field, 2, trials))
     yield "demo.trials_per_s.2_workers", round(demo2, 1)
-    for model in FIELD_MODELS:
+    drilled = drill_models()
+    for model in drilled:
         say(f"intercept drill: {model}")
         measure = functools.partial(intercept_trials_per_s, model, _intercept_trials(model, quick))
         yield f"intercept.trials_per_s.{model}", round(median_of(repeats, measure))
     yield from _batch_figures(quick, repeats, say)
-    for model in FIELD_MODELS:
+    for model in drilled:
         say(f"pass drill: {model}")
         n = _sized(functools.partial(pass_trials_per_s, model), quick)
         measure = functools.partial(pass_trials_per_s, model, n)
         yield f"pass.trials_per_s.{model}", round(median_of(repeats, measure))
-    for model in FIELD_MODELS:
+    for model in drilled:
         say(f"match: {model}")
         half = 60.0 if quick else 300.0
         wall = median_of(repeats, functools.partial(match_wall_s, model, half))
@@ -148,6 +149,15 @@ def iter_benchmarks(
     yield "machine.cpu_count", default_workers()
     yield "machine.repeats", repeats
     yield "machine.statistic", "median"
+
+
+def drill_models() -> tuple[str, ...]:
+    """The field models whose drills and matches are timed: those that do not say otherwise.
+
+    A model over the wire (``BENCH_DRILLS = False`` in its entry) times its own cycles against
+    the in-process engine instead; its drills would time the sockets, not the drill.
+    """
+    return tuple(m for m in FIELD_MODELS if getattr(entry(m), "BENCH_DRILLS", True))
 
 
 def _batch_figures(quick: bool, repeats: int, say: Progress) -> Iterator[tuple[str, Any]]:

@@ -136,6 +136,13 @@ def _positive_float(text: str) -> float:
     return value
 
 
+def _port(text: str) -> int:
+    value = _int(text)
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"a UDP port is 0..65535 (0: any free one), got {value}")
+    return value
+
+
 def _index(text: str) -> int:
     value = _int(text)
     if value < 0:
@@ -328,6 +335,54 @@ def build_parser() -> argparse.ArgumentParser:
     setplay.add_argument("--quick", action="store_true", help="40 plays per condition")
     setplay.add_argument("--seed", type=_index, default=0, help="experiment seed")
     _run_options(setplay)
+
+    serve = command(
+        "serve",
+        "serve the Soccer Server model over UDP in rcssserver's protocol: players, a trainer, "
+        "monitors",
+    )
+    serve.add_argument(
+        "--field-preset",
+        default=SERVE_PRESET,
+        help="soccer_server preset name, .toml or server.conf",
+    )
+    serve.add_argument("--seed", type=_index, default=0, help="seed of the server's noise")
+    serve.add_argument(
+        "--ball-noise", type=_noise, default=None, help="ball noise (preset's when not given)"
+    )
+    serve.add_argument(
+        "--perfect-perception", action="store_true", help="sees without quantisation or fading"
+    )
+    serve.add_argument(
+        "--host", default="127.0.0.1", help="address to bind (another than 127.0.0.1: on purpose)"
+    )
+    serve.add_argument("--port", type=_port, default=6000, help="player and monitor port")
+    serve.add_argument("--trainer-port", type=_port, default=6001, help="trainer port")
+    serve.add_argument("--olcoach-port", type=_port, default=6002, help="online-coach port")
+    serve.add_argument(
+        "--synch", action="store_true", help="synch mode: a cycle as soon as every client is done"
+    )
+    serve.add_argument(
+        "--synch-timeout", type=_positive_float, default=1.25, help="synch: step anyway after [s]"
+    )
+    serve.add_argument(
+        "--idle-timeout", type=_positive_float, default=30.0, help="drop a client silent for [s]"
+    )
+    serve.add_argument(
+        "--play-on", action="store_true", help="start in play_on (default: before_kick_off)"
+    )
+    serve.add_argument("--cycles", type=_positive_int, default=None, help="stop after N cycles")
+    serve.add_argument("--seconds", type=_positive_float, default=None, help="stop after [s]")
+    serve.add_argument(
+        "--record",
+        type=Path,
+        nargs="?",
+        const=Path("recordings"),
+        default=None,
+        metavar="DIR",
+        help="write the game as .rcg and .rrd into DIR (recordings/)",
+    )
+    serve.add_argument("--quiet", action="store_true", help="no log lines")
 
     replay = command("replay", "open a recording (.rrd, or a .rcg game log) in the rerun viewer")
     replay.add_argument("file", type=Path, help="a .rrd recording or .rcg game log")
@@ -584,6 +639,53 @@ def _player(text: str) -> PlayerRef:
     if not team or not number:
         raise UsageError(f"--player: expected a team and a number like left1, got {text!r}")
     return PlayerRef(team, int(number))
+
+
+SERVE_PRESET = "rcssserver_19"
+"""The preset ``serve`` runs unless told: today's server, what existing agents expect."""
+
+
+def cmd_serve(args: argparse.Namespace) -> int:
+    """Serve the Soccer Server model on UDP until a limit or Ctrl-C (:mod:`robotsoccer.serve`)."""
+    from field_models.registry import entry
+    from field_models.soccer_server.serving import ServedGame
+    from field_models.soccer_server.udp import UdpServer
+    from field_models.soccer_server.wire import server_params
+    from robotsoccer.serve import GameRecorder, run_serve, stderr_log
+
+    options = FieldOptions(perfect_perception=args.perfect_perception, ball_noise=args.ball_noise)
+    preset = entry("soccer_server").load(args.field_preset, options)
+    log = (lambda line: None) if args.quiet else stderr_log()
+    if args.host != "127.0.0.1":
+        log(f"binding {args.host}: reachable from other machines")
+    overrides: dict[str, bool | int | float | str] = {
+        "port": args.port,
+        "coach_port": args.trainer_port,
+        "olcoach_port": args.olcoach_port,
+        "synch_mode": args.synch,
+    }
+    start = "play_on" if args.play_on else "before_kick_off"
+    game = ServedGame(
+        preset, seed=args.seed, synch=args.synch, log=log, overrides=overrides, start_mode=start
+    )
+    server = UdpServer(
+        game,
+        host=args.host,
+        port=args.port,
+        trainer_port=args.trainer_port,
+        olcoach_port=args.olcoach_port,
+        synch_timeout_s=args.synch_timeout,
+        idle_timeout_s=args.idle_timeout,
+        log=log,
+    )
+    recorder = None
+    if args.record is not None:
+        stem = f"serve_{time.strftime('%Y%m%d-%H%M%S')}_seed{args.seed}"
+        params = server_params(preset, overrides)
+        recorder = GameRecorder(args.record, stem, game.dt_s, params)
+    return run_serve(
+        server, game, cycles=args.cycles, seconds=args.seconds, recorder=recorder, log=log
+    )
 
 
 def cmd_replay(args: argparse.Namespace) -> int:
@@ -1026,6 +1128,7 @@ COMMANDS: dict[str, Callable[[argparse.Namespace], int]] = {
     "replay": cmd_replay,
     "match": cmd_match,
     "setplay": cmd_setplay,
+    "serve": cmd_serve,
 }
 """Each command's function, by name."""
 

@@ -8,7 +8,10 @@ rcsslogplayer and the usual analysis tools replay and read it. The syntax here i
   ``(server_param ...)``, ``(player_param ...)`` and ``(player_type ...)`` lines
   (``src/initsender.cpp``, ``InitSenderCommonV8``; each parameter ``(name value)`` with no
   space between parameters, doubles as a C++ stream prints them, booleans ``0``/``1``,
-  strings in double quotes);
+  strings in double quotes). A log gets every parameter (its sender asks as protocol 999),
+  sorted by name (the server's ``std::map``), and one line per player type: the writer writes
+  all of them (:mod:`field_models.rcss_params`), rcssserver 19's defaults where it was given
+  no value, and 18 types that are each the default type;
 * ``src/logger.cpp`` (``Logger::writeGameLogImpl``): every cycle a ``(playmode T mode)`` line
   when the play mode changed, a ``(team T LEFT RIGHT SL SR)`` line when a name or the score
   changed (both first written at the first cycle), then the ``(show T ...)`` line;
@@ -82,6 +85,14 @@ from types import TracebackType
 
 from field_models.arena import COMMAND_COUNTERS, CommandTally
 from field_models.protocol import LEFT, RIGHT, BodyState, PlayerRef, Truth, wrap_angle
+from field_models.rcss_params import (
+    PLAYER_TYPE_FIELDS,
+    ParamValue,
+    cxx_text,
+    default_player_params,
+    default_player_type,
+    default_server_params,
+)
 from robotsoccer.replay.frames import TEAM_NAME_CHARS, GameFrame
 
 HEADER = "ULG5"
@@ -131,18 +142,6 @@ _SHOW_DEFAULTS: dict[str, float] = {
     "recover_init": 1.0,
     "stamina_capacity": 130600.0,
 }
-# The default player type (id 0) takes these from the server parameters of the same names
-# (src/heteroplayer.cpp, HeteroPlayer's default constructor); effort_max is effort_init.
-_PLAYER_TYPE_FIELDS = (
-    "player_speed_max",
-    "stamina_inc_max",
-    "player_decay",
-    "inertia_moment",
-    "dash_power_rate",
-    "player_size",
-    "kickable_margin",
-    "kick_rand",
-)
 
 _NUM = r"([-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?)"
 _SHOW = re.compile(
@@ -199,6 +198,9 @@ class RcgWriter:
             ``(v ...)`` and ``(s ...)`` (server defaults otherwise).
         player_params: Parameters for the ``player_param`` line, in rcssserver's names.
         goalies: The players whose state carries the ``GOALIE`` flag (0x8).
+        goal_scenes: Write a goal's cycle as the server's after-goal pause (module docstring).
+            False where the frames already show the pause (a served game's own referee
+            plays it out): every frame is then written as it is.
 
     Raises:
         ValueError: On a bad team name, player, cycle or parameter.
@@ -214,7 +216,9 @@ class RcgWriter:
         server_params: Mapping[str, float | int | str] | None = None,
         player_params: Mapping[str, float | int | str] | None = None,
         goalies: Collection[PlayerRef] = (),
+        goal_scenes: bool = True,
     ) -> None:
+        self._goal_scenes = goal_scenes
         for name in teams:
             if not isinstance(name, str) or _TEAM_NAME.fullmatch(name) is None:
                 raise ValueError(
@@ -270,6 +274,19 @@ class RcgWriter:
     def closed(self) -> bool:
         """Whether :meth:`close` has run."""
         return self._file.closed
+
+    def rename_teams(self, teams: tuple[str, str]) -> None:
+        """New team names from the next written cycle on (a team line then says so).
+
+        Raises:
+            ValueError: A name rcssserver would not allow (see the constructor).
+        """
+        for name in teams:
+            if not isinstance(name, str) or _TEAM_NAME.fullmatch(name) is None:
+                raise ValueError(f"team name {name!r} cannot be written in a game log")
+        if (teams[0], teams[1]) != self._teams:
+            self._teams = (teams[0], teams[1])
+            self._score = None  # forces a team line, which carries the names
 
     def write(self, frame: GameFrame) -> None:
         """Take one cycle's frame; the previous one is written now (a goal's as a goal scene).
@@ -347,7 +364,7 @@ class RcgWriter:
         frame = self._pending
         assert frame is not None
         self._pending = None
-        side = _scorer(frame.score, next_score)
+        side = _scorer(frame.score, next_score) if self._goal_scenes else None
         if side is None:
             self._write_cycle(frame, frame.play_mode, frame.score)
         else:
@@ -524,27 +541,38 @@ def _param_line(kind: str, params: Mapping[str, str]) -> str:
 
 
 def _header(server: dict[str, str], player: dict[str, float | int | str]) -> str:
-    """The lines before the first cycle: header, server, player and default-type parameters."""
+    """The lines before the first cycle: header, server, player and player-type parameters.
+
+    Every parameter rcssserver 19 logs, in its order (by name: :mod:`field_models.rcss_params`),
+    with the server's defaults where the writer was given no value; then one ``player_type``
+    line per type (``player_types``, 18), each the default type built from these server values:
+    our players are all of the default type.
+    """
     player_text = {}
     for name, value in player.items():
         if _PARAM_NAME.fullmatch(name) is None:
             raise ValueError(f"player parameter name {name!r} is not a server name")
         player_text[name] = _param_text(name, value)
+    full_server = {name: cxx_text(value) for name, value in default_server_params().items()}
+    full_server.update(server)
+    full_player = {name: cxx_text(value) for name, value in default_player_params().items()}
+    full_player.update(player_text)
+    values: dict[str, ParamValue] = {**default_server_params(), **full_server}
+    type0 = {
+        name: value if isinstance(value, str) else cxx_text(value)
+        for name, value in default_player_type(values).items()
+    }
+    fields = "".join(f"({name} {type0[name]})" for name, _ in PLAYER_TYPE_FIELDS)
+    try:
+        types = max(1, int(full_player.get("player_types", "18")))
+    except ValueError:
+        types = 18
     lines = [
         HEADER + "\n",
-        _param_line("server_param", server),
-        _param_line("player_param", player_text),
+        _param_line("server_param", full_server),
+        _param_line("player_param", full_player),
+        *(f"(player_type (id {i}){fields})\n" for i in range(types)),
     ]
-    type0 = {name: server[name] for name in _PLAYER_TYPE_FIELDS if name in server}
-    if "effort_init" in server:
-        type0["effort_max"] = server["effort_init"]
-    if "effort_min" in server:
-        type0["effort_min"] = server["effort_min"]
-    if type0:
-        # Without a type line the log players draw type 0 with their own defaults.
-        lines.append(
-            "(player_type (id 0)" + "".join(f"({k} {v})" for k, v in type0.items()) + ")\n"
-        )
     return "".join(lines)
 
 

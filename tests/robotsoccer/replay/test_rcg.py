@@ -112,11 +112,12 @@ def test_round_trip(tmp_path: Path) -> None:
 def test_header_lines_in_order(tmp_path: Path) -> None:
     lines = _write(tmp_path / "match.rcg").read_text().splitlines()
     assert lines[0] == "ULG5"
-    assert lines[1].startswith("(server_param (goal_width 14.02)(ball_size 0.085)")
-    assert "(visible_angle 90)" in lines[1] and "(simulator_step 100)" in lines[1]
+    assert lines[1].startswith("(server_param (audio_cut_dist 50)(auto_mode 0)")
+    assert "(goal_width 14.02)" in lines[1] and "(simulator_step 100)" in lines[1]
     assert lines[2].startswith("(player_param ")
     assert lines[3].startswith("(player_type (id 0)")
-    assert "(player_size 0.3)" in lines[3]
+    assert "(player_size 0.3)" in lines[3] and lines[20].startswith("(player_type (id 17)")
+    del lines[4:21]  # player types 1..17
     assert lines[4] == "(playmode 1 kick_off_l)"
     assert lines[5] == "(team 1 Left-Team right_2 0 0)"
     assert lines[6].startswith("(show 1 ((b) 1.5000 2.2500 0.2700 0.1100) ((l 1) 0 0x1 ")
@@ -126,9 +127,13 @@ def test_header_lines_in_order(tmp_path: Path) -> None:
     assert "((r 2) 0 0 6.0000 -37.0000 0.0000 0.0000 0.000 0 " in lines[6]
 
 
+HEADER_LINES = 21
+"""ULG5, server_param, player_param and 18 player_type lines."""
+
+
 def test_playmode_and_team_lines_only_on_change(tmp_path: Path) -> None:
     lines = _write(tmp_path / "match.rcg").read_text().splitlines()
-    kinds = [line.split(" ", 2)[0] + " " + line.split(" ", 2)[1] for line in lines[4:]]
+    kinds = [line.split(" ", 2)[0] + " " + line.split(" ", 2)[1] for line in lines[HEADER_LINES:]]
     assert kinds == [
         "(playmode 1",
         "(team 1",
@@ -149,7 +154,7 @@ def test_playmode_and_team_lines_only_on_change(tmp_path: Path) -> None:
 
 def test_y_and_angle_flip(tmp_path: Path) -> None:
     lines = _write(tmp_path / "match.rcg").read_text().splitlines()
-    show = lines[6]
+    show = lines[HEADER_LINES + 2]
     # L1 at y = +10 (up), heading +0.5 rad (counter-clockwise), 1.2 / -0.7 m/s.
     assert "((l 1) 0 0x1 -10.0000 -10.0000 0.1200 0.0700 -28.648 0 (v h 90)" in show
     # L2 faces -pi: the server's angle is +180, in (-180, 180].
@@ -162,7 +167,7 @@ def test_missing_player_written_disconnected(tmp_path: Path) -> None:
     players = {ref: state for ref, state in frame.truth.players.items() if ref != R3}
     partial = GameFrame(Truth(1, DT, frame.truth.ball, players), frame.play_mode, frame.score)
     path = _write(tmp_path / "match.rcg", [partial])
-    show = path.read_text().splitlines()[6]
+    show = path.read_text().splitlines()[HEADER_LINES + 2]
     # rcssserver's Player::disable: x = -3 * unum * side, y = -(68 / 2 + 3).
     assert "((r 3) 0 0 9.0000 -37.0000 0.0000 0.0000 0.000 0 " in show
     assert "((l 11) 0 0 -33.0000 -37.0000 0.0000 0.0000 0.000 0 " in show
