@@ -122,6 +122,8 @@ class LayeredDrill:
     net: str
     transfer: bool
     _checked: FieldFacts | None
+    lead_nets: bool = False
+    """Whether the drill's minds can use a lead net (the match's team minds), not only TA."""
 
     def plan(self, facts: FieldFacts) -> LaunchPlan:
         """Layer 1's plan on this field: launch, trigger distance, turn tolerance."""
@@ -146,7 +148,7 @@ class LayeredDrill:
         if self.net:
             from robotsoccer.skills.intercept import model_decision
 
-            if model_decision(self.net) != "turn":
+            if model_decision(self.net) != "turn" and not self.lead_nets:
                 raise ValueError(
                     f"net {self.net} decides the {model_decision(self.net)}: this drill's "
                     "receivers and defenders take a turn-angle net (learn intercept)"
