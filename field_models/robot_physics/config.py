@@ -196,14 +196,22 @@ class RobotPhysicsPreset:
         """Length of one physics tick [s]."""
         return 1.0 / self.timing.physics_hz
 
-    def ticks(self, seconds: float, what: str) -> int:
-        """Convert a duration to whole ticks, refusing one that is not a whole number of ticks."""
+    def ticks(self, seconds: float, what: str, *, least: int = 0) -> int:
+        """Convert a duration to whole ticks, refusing one that is not a whole number of ticks.
+
+        `least`: the fewest ticks allowed (1 for a period: a period of 0 ticks never ends).
+        """
         exact = seconds * self.timing.physics_hz
         whole = round(exact)
         if abs(exact - whole) > 1e-6:
             raise PresetError(
                 f"{self.source or self.name}: key '{what}': expected a whole number of "
                 f"{1000 * self.dt_s:.4g} ms ticks, got {seconds!r} s ({exact:.3f} ticks)"
+            )
+        if whole < least:
+            raise PresetError(
+                f"{self.source or self.name}: key '{what}': expected at least {least} "
+                f"{1000 * self.dt_s:.4g} ms tick(s), got {seconds!r} s"
             )
         return whole
 
@@ -248,12 +256,12 @@ def _validate(p: RobotPhysicsPreset) -> None:
             f"{p.source}: key 'robot.turn_style': expected one of {', '.join(TURN_STYLES)}, "
             f"got {p.robot.turn_style!r}"
         )
-    p.ticks(1.0 / p.camera.frame_rate_hz, "camera.frame_rate_hz")
+    p.ticks(1.0 / p.camera.frame_rate_hz, "camera.frame_rate_hz", least=1)
     p.ticks(p.camera.latency_s, "camera.latency_s")
     p.ticks(p.link.latency_s, "link.latency_s")
-    p.ticks(1.0 / p.link.packets_per_s, "link.packets_per_s")
-    p.ticks(p.firmware.timeout_s, "firmware.timeout_s")
-    p.ticks(p.ball.noise_period_s, "ball.noise_period_s")
+    p.ticks(1.0 / p.link.packets_per_s, "link.packets_per_s", least=1)
+    p.ticks(p.firmware.timeout_s, "firmware.timeout_s", least=1)
+    p.ticks(p.ball.noise_period_s, "ball.noise_period_s", least=1)
     if p.field.goal_width_m >= p.field.width_m:
         raise PresetError(f"{p.source}: key 'field.goal_width_m': expected < field.width_m")
     # Tunnelling rule (robot_physics.md §3.5): the fastest ball moves less than its radius plus

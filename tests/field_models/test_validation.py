@@ -174,3 +174,27 @@ def test_replace_checks_ranges_too() -> None:
         load_server_preset().replace_dynamics(ball_rand=math.nan)
     with pytest.raises(ValueError, match="ball_noise"):
         FieldOptions(ball_noise=1e308)
+
+
+@pytest.mark.parametrize(
+    ("table", "key", "value"),
+    [
+        ("ball", "noise_period_s", "1e-9"),
+        ("firmware", "timeout_s", "1e-9"),
+    ],
+)
+def test_a_period_of_no_tick_is_refused(tmp_path: Path, table: str, key: str, value: str) -> None:
+    text = f'base = "small_size_1997"\n[{table}]\n{key} = {value}\n'
+    assert "at least 1" in _error(load_preset, text, tmp_path)
+
+
+def test_a_see_of_a_nan_position_raises_instead_of_looping() -> None:
+    import numpy as np
+
+    from field_models.soccer_server.batch_sensing import quantised_distances
+
+    sensing = load_server_preset().sensing
+    with pytest.raises(ValueError, match="not finite"):
+        quantised_distances(sensing, np.array([1.0, np.nan]))
+    with pytest.raises(ValueError, match="not finite"):
+        quantised_distances(sensing, np.array([np.inf]))
