@@ -57,15 +57,32 @@ def render_command(action: Action) -> str:
     if isinstance(action, Kick):
         return f"(kick {_number(action.power)} {_number(server_degrees(action.direction_rad))})"
     if isinstance(action, Say):
-        return f"(say {action.text})"
+        return f"(say {_say_message(action.text)})"
     raise TypeError(f"not an action: {action!r}")
+
+
+def _say_message(text: str) -> str:
+    """A say message as written: bare where it reads back unchanged, else in double quotes.
+
+    Bare text loses its leading and trailing white space to :func:`parse_command`, and a text
+    that is itself in quotes loses them; quoted, both survive (``Say(' x')`` is
+    ``(say " x")``). Bare where that is safe keeps the form clients and traces print.
+
+    >>> _say_message("hi there"), _say_message(" x"), _say_message('"q"')
+    ('hi there', '" x"', '""q""')
+    """
+    if text and text == text.strip() and not (len(text) >= 2 and text[0] == text[-1] == '"'):
+        return text
+    return f'"{text}"'
 
 
 def parse_command(text: str) -> Action:
     """The action of one client command: ``(turn 45)``, ``(dash 100 30)``, ``(say hi)``, ...
 
     Angles come back in our frame (radians, counter-clockwise). A say message may be quoted
-    (``(say "hi")``, protocol >= 7) or bare; it keeps its inner spaces and parentheses.
+    (``(say "hi")``, protocol >= 7) or bare; it keeps its inner spaces and parentheses, and a
+    quoted one its outer spaces too, so ``parse_command(render_command(a)) == a`` for every
+    say with a message.
 
     >>> parse_command("(kick 80 -30)")
     Kick(power=80.0, direction_rad=0.5235987755982988)
