@@ -374,6 +374,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``robotsoccer`` console script (module docstring: exit statuses)."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    if not getattr(args, "debug", False):
+        # Rerun's Rust logger prints coloured lines of its own (a full disk during a recording)
+        # before our one-line error. It reads RUST_LOG when rerun is first imported, which is
+        # later, in this process or a worker; a RUST_LOG the user set is kept.
+        os.environ.setdefault("RUST_LOG", "off")
     if args.command is None:
         parser.print_help()
         return EXIT_USAGE

@@ -103,3 +103,20 @@ def test_an_infinite_robot_mass_never_reaches_chipmunk(tmp_path: Path) -> None:
     )  # fmt: skip
     assert done.returncode == 2, done.stderr  # was 134: Chipmunk's abort
     assert done.stderr.count("\n") == 1 and "robot.mass_kg" in done.stderr
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="RLIMIT_FSIZE and SIGXFSZ as on Linux")
+def test_rerun_log_lines_are_quiet_when_a_recording_cannot_be_written(tmp_path: Path) -> None:
+    import os
+    import resource
+
+    def small_files() -> None:  # writes past 100 KB fail (EFBIG), as on a full disk
+        resource.setrlimit(resource.RLIMIT_FSIZE, (100_000, 100_000))
+
+    env = {k: v for k, v in os.environ.items() if k != "RUST_LOG"}
+    done = subprocess.run(
+        [sys.executable, "-m", "robotsoccer.cli", "demo", "--record", "--trials", "2",
+         "--workers", "1", "--quiet", "--out", str(tmp_path / "run")],
+        capture_output=True, text=True, timeout=300, env=env, preexec_fn=small_files,
+    )  # fmt: skip
+    assert "re_log" not in done.stderr and "\x1b[" not in done.stderr, done.stderr
