@@ -36,8 +36,15 @@ def server_degrees(angle_rad: float) -> float:
 
 
 def _number(value: float) -> str:
-    """A power or angle as a client prints it: at most one decimal, no trailing zeros."""
-    return f"{round(value, 1) + 0.0:g}"
+    """A power or angle as a client prints it: at most one decimal, no trailing zeros.
+
+    Fixed-point, not ``%g``: ``%g`` keeps six digits, so 100000.1 would print as 100000.
+
+    >>> _number(100.0), _number(-0.04), _number(100000.14)
+    ('100', '0', '100000.1')
+    """
+    text = f"{round(value, 1) + 0.0:.1f}"
+    return text[:-2] if text.endswith(".0") else text
 
 
 def render_command(action: Action) -> str:
@@ -51,9 +58,10 @@ def render_command(action: Action) -> str:
     if isinstance(action, Turn):
         return f"(turn {_number(server_degrees(action.angle_rad))})"
     if isinstance(action, Dash):
-        if action.direction_rad == 0.0:
+        direction = _number(server_degrees(action.direction_rad))
+        if direction == "0":  # a direction that prints as 0 is written as none, as 0 is
             return f"(dash {_number(action.power)})"
-        return f"(dash {_number(action.power)} {_number(server_degrees(action.direction_rad))})"
+        return f"(dash {_number(action.power)} {direction})"
     if isinstance(action, Kick):
         return f"(kick {_number(action.power)} {_number(server_degrees(action.direction_rad))})"
     if isinstance(action, Say):
