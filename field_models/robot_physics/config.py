@@ -264,6 +264,8 @@ def _validate(p: RobotPhysicsPreset) -> None:
     p.ticks(p.ball.noise_period_s, "ball.noise_period_s", least=1)
     if p.field.goal_width_m >= p.field.width_m:
         raise PresetError(f"{p.source}: key 'field.goal_width_m': expected < field.width_m")
+    if p.field.width_m > p.field.length_m:  # drills measure in length / 105
+        raise PresetError(f"{p.source}: key 'field.width_m': expected at most field.length_m")
     # Tunnelling rule (robot_physics.md §3.5): the fastest ball moves less than its radius plus
     # half a wall per tick.
     per_tick = p.ball.max_speed_mps * p.dt_s

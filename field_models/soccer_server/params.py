@@ -177,6 +177,8 @@ class DynamicsParams:
         _ordered("min_dash_angle_rad", self.min_dash_angle_rad, self.max_dash_angle_rad)
         if self.goal_width_m >= self.pitch_width_m:
             raise ParamError("goal_width_m", "expected less than pitch_width_m")
+        if self.pitch_width_m > self.pitch_length_m:  # drills measure in length / 105
+            raise ParamError("pitch_width_m", "expected at most pitch_length_m")
 
     @property
     def dt_s(self) -> float:

@@ -522,6 +522,9 @@ def _read_show(
             0.0 - vy / dt,
         )
     ball = BodyState(bx, 0.0 - by, 0.0, bvx / dt, 0.0 - bvy / dt)
+    states = (ball, *players.values())
+    if not all(math.isfinite(v) for s in states for v in (s.vx, s.vy)):  # 1e308 / 0.1 s
+        raise _malformed(path, number, "a velocity beyond a double's range", line)
     truth = Truth(tick=tick, time_s=tick * dt, ball=ball, players=players)
     return GameFrame(truth=truth, play_mode=mode, score=score)
 

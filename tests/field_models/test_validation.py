@@ -198,3 +198,10 @@ def test_a_see_of_a_nan_position_raises_instead_of_looping() -> None:
         quantised_distances(sensing, np.array([1.0, np.nan]))
     with pytest.raises(ValueError, match="not finite"):
         quantised_distances(sensing, np.array([np.inf]))
+
+
+def test_a_field_wider_than_long_is_refused(tmp_path: Path) -> None:
+    robot = 'base = "small_size_1997"\n[field]\nwidth_m = 3.0\n'
+    assert "key 'field.width_m'" in _error(load_preset, robot, tmp_path)
+    server = 'base = "soccer_server_1996"\n[dynamics]\npitch_width_m = 300.0\n'
+    assert "key 'dynamics.pitch_width_m'" in _error(load_server_preset, server, tmp_path)

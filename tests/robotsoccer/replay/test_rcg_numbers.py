@@ -26,6 +26,7 @@ def test_finite_numbers_read(tmp_path: Path) -> None:
     "text",
     [
         HEAD + SHOW.format(b="1e999", x="0"),
+        HEAD + SHOW.format(b="0", x="0").replace("((b) 0 0 0 0)", "((b) 0 0 0 1e308)"),
         HEAD + SHOW.format(b="0", x="-1e999"),
         HEAD + SHOW.format(b="0", x="1" + "0" * 400),
         HEAD.replace("14.02", "1e999") + SHOW.format(b="0", x="0"),
