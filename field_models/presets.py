@@ -4,7 +4,7 @@ A preset file is data; the records it fills are frozen dataclasses whose field n
 units (`mass_kg`, `latency_s`). **Every number of a record states its range beside the field**,
 in the field's metadata (:class:`Bounds`), made by one of:
 
-* :func:`positive`: > 0 and at most a stated maximum;
+* :func:`positive`: > 0, from a millionth of a stated maximum (or a stated minimum) to it;
 * :func:`non_negative`: >= 0 and at most a stated maximum;
 * :func:`probability`: in [0, 1];
 * :func:`bounded`: in a stated closed interval (a signed value such as a power or an angle).
@@ -96,10 +96,22 @@ def _bounds(low: float, high: float, low_open: bool, inf_ok: bool, expected: str
     return Bounds(low, high, low_open, inf_ok, expected + suffix)
 
 
-def positive(doc: str = "", *, high: float, inf_ok: bool = False) -> dict[str, Any]:
-    """Field metadata for a number > 0 and <= `high`."""
-    return {"bounds": _bounds(0.0, high, True, inf_ok, f"a positive number <= {_num(high)}"),
-            "doc": doc}  # fmt: skip
+def positive(
+    doc: str = "", *, high: float, low: float | None = None, inf_ok: bool = False
+) -> dict[str, Any]:
+    """Field metadata for a positive number in [`low`, `high`].
+
+    `low` defaults to a millionth of `high`: a positive value far below any real one (a
+    5e-324 kg mass, a 5e-324 Hz rate) is as absurd as a huge one, and its reciprocal or its
+    products underflow (Chipmunk refuses a body whose moment of inertia comes out 0).
+    """
+    floor = high * POSITIVE_FLOOR if low is None else low
+    expected = f"a positive number in [{_num(floor)}, {_num(high)}]"
+    return {"bounds": _bounds(floor, high, False, inf_ok, expected), "doc": doc}
+
+
+POSITIVE_FLOOR = 1e-6
+"""A positive number's default lowest value, as a share of its highest."""
 
 
 def non_negative(doc: str = "", *, high: float) -> dict[str, Any]:

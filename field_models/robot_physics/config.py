@@ -202,8 +202,8 @@ class RobotPhysicsPreset:
         `least`: the fewest ticks allowed (1 for a period: a period of 0 ticks never ends).
         """
         exact = seconds * self.timing.physics_hz
-        whole = round(exact)
-        if abs(exact - whole) > 1e-6:
+        whole = round(exact) if math.isfinite(exact) else -1  # -1: refused just below
+        if whole < 0 or abs(exact - whole) > 1e-6:
             raise PresetError(
                 f"{self.source or self.name}: key '{what}': expected a whole number of "
                 f"{1000 * self.dt_s:.4g} ms ticks, got {seconds!r} s ({exact:.3f} ticks)"

@@ -106,7 +106,9 @@ class DynamicsParams:
             as a collision. Not supported by batch mode.
     """
 
-    simulator_step_ms: int = field(metadata=positive("server.conf simulator_step", high=10_000))
+    simulator_step_ms: int = field(
+        metadata=positive("server.conf simulator_step", high=10_000, low=1)
+    )
     pitch_length_m: float = field(metadata=positive(high=1000))
     pitch_width_m: float = field(metadata=positive(high=1000))
     goal_width_m: float = field(metadata=positive("server.conf goal_width", high=1000))

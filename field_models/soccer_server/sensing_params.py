@@ -102,7 +102,7 @@ class SensingParams:
             unless a client localises itself from them, as a match's players do).
     """
 
-    send_step_ms: int = field(metadata=positive("server.conf send_step", high=MAX_STEP_MS))
+    send_step_ms: int = field(metadata=positive("server.conf send_step", high=MAX_STEP_MS, low=1))
     view_half_angle_rad: float = field(
         metadata=positive("server.conf visible_angle / 2", high=math.pi)
     )
@@ -112,7 +112,7 @@ class SensingParams:
     quantize_step: float = field(metadata=positive("server.conf quantize_step", high=10))
     quantize_step_l: float = field(metadata=positive("server.conf quantize_step_l", high=10))
     direction_mode: DirectionMode
-    protocol_version: int = field(metadata=positive("client protocol version", high=100))
+    protocol_version: int = field(metadata=positive("client protocol version", high=100, low=1))
     report_changes: bool
     landmark_set: LandmarkSet
     unum_far_length_m: float = field(
@@ -130,16 +130,16 @@ class SensingParams:
     audio_cut_dist_m: float = field(
         metadata=non_negative("server.conf audio_cut_dist", high=MAX_DISTANCE_M)
     )
-    say_msg_size: int = field(metadata=positive("server.conf say_msg_size", high=100_000))
+    say_msg_size: int = field(metadata=positive("server.conf say_msg_size", high=100_000, low=1))
     hear_max: int = field(metadata=non_negative("server.conf hear_max", high=MAX_COUNT))
     hear_inc: int = field(metadata=non_negative("server.conf hear_inc", high=MAX_COUNT))
     hear_decay: int = field(metadata=non_negative("server.conf hear_decay", high=MAX_COUNT))
     hear_per_team: bool
     simulator_step_ms: int = field(
-        default=100, metadata=positive("server.conf simulator_step", high=MAX_STEP_MS)
+        default=100, metadata=positive("server.conf simulator_step", high=MAX_STEP_MS, low=1)
     )
     recv_step_ms: int = field(
-        default=10, metadata=positive("server.conf recv_step", high=MAX_STEP_MS)
+        default=10, metadata=positive("server.conf recv_step", high=MAX_STEP_MS, low=1)
     )
     view_width: ViewWidth = "normal"
     view_quality: ViewQuality = "high"

@@ -177,15 +177,33 @@ def test_replace_checks_ranges_too() -> None:
 
 
 @pytest.mark.parametrize(
-    ("table", "key", "value"),
+    ("table", "key", "value", "why"),
     [
-        ("ball", "noise_period_s", "1e-9"),
-        ("firmware", "timeout_s", "1e-9"),
+        ("ball", "noise_period_s", "1e-9", "positive number in"),
+        ("firmware", "timeout_s", "1e-3", "whole number"),
+        ("link", "packets_per_s", "5e-324", "positive number in"),
+        ("camera", "frame_rate_hz", "1000", "whole number"),
     ],
 )
-def test_a_period_of_no_tick_is_refused(tmp_path: Path, table: str, key: str, value: str) -> None:
+def test_a_period_shorter_than_a_tick_is_refused(
+    tmp_path: Path, table: str, key: str, value: str, why: str
+) -> None:
     text = f'base = "small_size_1997"\n[{table}]\n{key} = {value}\n'
-    assert "at least 1" in _error(load_preset, text, tmp_path)
+    message = _error(load_preset, text, tmp_path)
+    assert f"key '{table}.{key}'" in message and why in message
+
+
+def test_ticks_refuse_a_period_of_no_tick_or_an_infinite_one() -> None:
+    preset = load_preset()
+    with pytest.raises(PresetError, match="at least 1"):
+        preset.ticks(1e-9, "ball.noise_period_s", least=1)
+    with pytest.raises(PresetError, match="whole number"):
+        preset.ticks(math.inf, "link.packets_per_s")
+
+
+def test_a_vanishing_mass_is_refused_before_chipmunk_sees_it(tmp_path: Path) -> None:
+    text = 'base = "small_size_1997"\n[robot]\nmass_kg = 5e-324\n'
+    assert "key 'robot.mass_kg'" in _error(load_preset, text, tmp_path)
 
 
 def test_a_see_of_a_nan_position_raises_instead_of_looping() -> None:
