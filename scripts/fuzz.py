@@ -33,6 +33,7 @@ import string
 import sys
 import tempfile
 import time
+import typing
 from collections import Counter
 from collections.abc import Callable
 from pathlib import Path
@@ -41,11 +42,12 @@ from typing import Any
 import numpy as np
 
 from field_models.commands import CommandParseError, parse_command, render_command
-from field_models.presets import PRESET_DIR, PresetError, bounds_of, range_problem
+from field_models.presets import PRESET_DIR, Bounds, PresetError, bounds_of, range_problem
 from field_models.protocol import Dash, Kick, Say, Turn
-from field_models.robot_physics.config import load_preset
+from field_models.robot_physics.config import RobotPhysicsPreset, load_preset
 from field_models.soccer_server.messages import MessageParseError, parse_sexpr
-from field_models.soccer_server.params import load_server_preset
+from field_models.soccer_server.params import DynamicsParams, load_server_preset
+from field_models.soccer_server.sensing_params import SensingParams
 from field_models.soccer_server.server_conf import SERVER_PARAMS
 from learning.features import ModelFileError
 from learning.lookup import LookupTable
@@ -118,6 +120,44 @@ def text(rng: random.Random, size: int = 20) -> str:
     return "".join(rng.choice(alphabet) for _ in range(rng.randint(0, size)))
 
 
+def record_bounds(root: type) -> dict[str, Bounds]:
+    """Each dotted preset key of record `root` (and the records in it) with its bounds."""
+    hints = typing.get_type_hints(root)
+    out: dict[str, Bounds] = {}
+    for fld in dataclasses.fields(root):
+        bounds = bounds_of(fld)
+        if bounds is not None:
+            out[fld.name] = bounds
+        elif dataclasses.is_dataclass(hints[fld.name]) and isinstance(hints[fld.name], type):
+            out |= {f"{fld.name}.{k}": b for k, b in record_bounds(hints[fld.name]).items()}
+    return out
+
+
+def edge_values(rng: random.Random, source: str, bounds: dict[str, Bounds]) -> str:
+    """A preset text with one to three numbers set to an end of their stated range.
+
+    The ends are valid, so the preset loads, and they are where a simulation is likeliest to
+    break (a robot at its smallest, a ball at its fastest, physics at 10 kHz).
+    """
+    lines = source.splitlines()
+    table, candidates = "", []
+    for i, line in enumerate(lines):
+        if line.startswith("["):
+            table = line.strip("[] ")
+        elif _value(line) is not None:
+            key = line.partition("=")[0].strip()
+            degrees = key.endswith("_deg")
+            dotted = f"{table}.{key.removesuffix('_deg') + '_rad' if degrees else key}"
+            if dotted in bounds:
+                candidates.append((i, key, bounds[dotted], degrees))
+    for i, key, b, degrees in rng.sample(candidates, rng.randint(1, min(3, len(candidates)))):
+        value = b.high if rng.random() < 0.5 else (b.low if not b.low_open else b.low + 1e-9)
+        if degrees:
+            value = math.degrees(value) * (1 - 1e-12)  # no rounding past the end in radians
+        lines[i] = f"{key} = {value!r}"
+    return "\n".join(lines) + "\n"
+
+
 def scale_values(rng: random.Random, source: str) -> str:
     """A preset text with one to three numbers scaled by up to 100 either way.
 
@@ -186,6 +226,12 @@ class Fuzz:
         self.trial_every = trial_every
         self.loaded = Counter[str]()
         self.written: list[Path] = []
+        self.robot_bounds = record_bounds(RobotPhysicsPreset)
+        self.server_bounds = {
+            f"{table}.{key}": b
+            for table, record in (("dynamics", DynamicsParams), ("sensing", SensingParams))
+            for key, b in record_bounds(record).items()
+        }
         self.played = 0
         self.robot_text = (PRESET_DIR / "robot_physics" / "small_size_1997.toml").read_text()
         self.server_text = (PRESET_DIR / "soccer_server" / "rcssserver_19.toml").read_text()
@@ -232,6 +278,15 @@ class Fuzz:
             path.unlink(missing_ok=True)
         self.written.clear()
 
+    def _mutant(self, rng: random.Random, text: str, bounds: dict[str, Bounds]) -> str:
+        """A preset text: nasty edits, values scaled, or values at the ends of their ranges."""
+        roll = rng.random()
+        if roll < 0.4:
+            return mutate_lines(rng, text)
+        if roll < 0.7:
+            return scale_values(rng, text)
+        return edge_values(rng, text, bounds)
+
     def _trial_due(self, model: str, rng: random.Random) -> bool:
         # Drawn from the case's own generator, so that --case i plays it again.
         self.loaded[model] += 1
@@ -253,8 +308,7 @@ class Fuzz:
 
     def robot_preset(self, rng: random.Random, case: int) -> str:
         """A mutated robot preset: it loads within its ranges (and plays) or is refused."""
-        mutate = scale_values if rng.random() < 0.5 else mutate_lines
-        path = self._file(case, ".toml", mutate(rng, self.robot_text))
+        path = self._file(case, ".toml", self._mutant(rng, self.robot_text, self.robot_bounds))
         preset = load_preset(str(path))
         _in_range(preset)
         if self._trial_due("robot_physics", rng):
@@ -263,8 +317,7 @@ class Fuzz:
 
     def server_preset(self, rng: random.Random, case: int) -> str:
         """A mutated Soccer Server preset, as :meth:`robot_preset`."""
-        mutate = scale_values if rng.random() < 0.5 else mutate_lines
-        path = self._file(case, ".toml", mutate(rng, self.server_text))
+        path = self._file(case, ".toml", self._mutant(rng, self.server_text, self.server_bounds))
         preset = load_server_preset(str(path))
         _in_range(preset.dynamics)
         _in_range(preset.sensing)
