@@ -10,12 +10,13 @@ in the field's metadata (:class:`Bounds`), made by one of:
 * :func:`bounded`: in a stated closed interval (a signed value such as a power or an angle).
 
 A number must be finite (``inf`` and ``nan`` are refused) unless its bounds say ``inf_ok``: a
-limit a preset may switch off (the 1990s servers had no acceleration cap). The maxima are
+limit a preset may switch off (the 1990s servers had no acceleration cap). The ranges are
 generous sanity bounds, not physics: they keep an absurd value (a 10 m robot on a 2.74 m
-table, a 2.4e7 Hz physics step, a 1e300 ms cycle) from reaching a simulation that would abort
-in C, cast a NaN to an integer or loop without end. A record checks its own ranges when it is
-built (:func:`check_ranges`, called from each record's ``__post_init__``), so a copy made with
-``replace`` is checked too; the loader names the file and the key.
+table, a 2.4e7 Hz physics step, a 1e300 ms cycle, a 5e-324 kg mass) from reaching a
+simulation that would abort in C, cast a NaN to an integer or loop without end. A record
+checks its own ranges when it is built (:func:`check_ranges`, called from each record's
+``__post_init__``), so a copy made with ``replace`` is checked too; the loader names the file
+and the key.
 
 An option is typed ``Literal["a", "b"]``: the value must be one of the literal's values.
 
@@ -37,8 +38,8 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 PRESET_DIR = Path(__file__).parent / "presets"
-_PRESET_NAME = re.compile(r"[A-Za-z0-9_.-]{1,100}")
 """Folder holding the preset files shipped with the package."""
+_PRESET_NAME = re.compile(r"[A-Za-z0-9_.-]{1,100}")
 MAX_PRESET_BYTES = 1 << 20
 """The largest preset or server configuration file read [bytes]: a real one is a few KiB, and
 the cap keeps ``/dev/zero`` or a wrong file from filling the memory."""
@@ -65,19 +66,17 @@ class RecordError(ValueError):
 
 @dataclass(frozen=True, slots=True)
 class Bounds:
-    """The range a record's number must lie in: ``low`` (or above it) to ``high``.
+    """The closed range [``low``, ``high``] a record's number must lie in.
 
     Attributes:
-        low: The smallest value (excluded when `low_open`).
+        low: The smallest value.
         high: The largest value.
-        low_open: `low` itself is refused (a positive number).
         inf_ok: ``+inf`` is accepted too: the limit is switched off.
         expected: What an error message says was expected.
     """
 
     low: float
     high: float
-    low_open: bool
     inf_ok: bool
     expected: str
 
@@ -85,15 +84,18 @@ class Bounds:
         """Whether `value` lies in the range (NaN never does)."""
         if math.isinf(value):
             return self.inf_ok and value > 0
-        above = value > self.low if self.low_open else value >= self.low
-        return above and value <= self.high  # False for NaN
+        return self.low <= value <= self.high  # False for NaN
 
 
-def _bounds(low: float, high: float, low_open: bool, inf_ok: bool, expected: str) -> Bounds:
-    if not low < high or math.isnan(high) or math.isinf(low) or math.isinf(high):
+def _bounds(low: float, high: float, inf_ok: bool, expected: str) -> Bounds:
+    if not low < high or math.isinf(low) or math.isinf(high):  # NaN fails low < high
         raise ValueError(f"bad bounds [{low!r}, {high!r}]")  # a bug in a record, not a file
     suffix = ", or inf (no limit)" if inf_ok else ""
-    return Bounds(low, high, low_open, inf_ok, expected + suffix)
+    return Bounds(low, high, inf_ok, expected + suffix)
+
+
+POSITIVE_FLOOR = 1e-6
+"""A positive number's default lowest value, as a share of its highest."""
 
 
 def positive(
@@ -107,28 +109,24 @@ def positive(
     """
     floor = high * POSITIVE_FLOOR if low is None else low
     expected = f"a positive number in [{_num(floor)}, {_num(high)}]"
-    return {"bounds": _bounds(floor, high, False, inf_ok, expected), "doc": doc}
-
-
-POSITIVE_FLOOR = 1e-6
-"""A positive number's default lowest value, as a share of its highest."""
+    return {"bounds": _bounds(floor, high, inf_ok, expected), "doc": doc}
 
 
 def non_negative(doc: str = "", *, high: float) -> dict[str, Any]:
     """Field metadata for a number >= 0 and <= `high`."""
-    return {"bounds": _bounds(0.0, high, False, False, f"a number >= 0 and <= {_num(high)}"),
-            "doc": doc}  # fmt: skip
+    expected = f"a number >= 0 and <= {_num(high)}"
+    return {"bounds": _bounds(0.0, high, False, expected), "doc": doc}
 
 
 def probability(doc: str = "") -> dict[str, Any]:
     """Field metadata for a number in [0, 1]."""
-    return {"bounds": _bounds(0.0, 1.0, False, False, "a probability in [0, 1]"), "doc": doc}
+    return {"bounds": _bounds(0.0, 1.0, False, "a probability in [0, 1]"), "doc": doc}
 
 
 def bounded(low: float, high: float, doc: str = "") -> dict[str, Any]:
     """Field metadata for a number in [`low`, `high`] (a signed value: a power, an angle)."""
     expected = f"a number in [{_num(low)}, {_num(high)}]"
-    return {"bounds": _bounds(low, high, False, False, expected), "doc": doc}
+    return {"bounds": _bounds(low, high, False, expected), "doc": doc}
 
 
 def bounds_of(fld: dataclasses.Field[Any]) -> Bounds | None:

@@ -151,7 +151,7 @@ def edge_values(rng: random.Random, source: str, bounds: dict[str, Bounds]) -> s
             if dotted in bounds:
                 candidates.append((i, key, bounds[dotted], degrees))
     for i, key, b, degrees in rng.sample(candidates, rng.randint(1, min(3, len(candidates)))):
-        value = b.high if rng.random() < 0.5 else (b.low if not b.low_open else b.low + 1e-9)
+        value = b.high if rng.random() < 0.5 else b.low
         if degrees:
             value = math.degrees(value) * (1 - 1e-12)  # no rounding past the end in radians
         lines[i] = f"{key} = {value!r}"
