@@ -258,18 +258,31 @@ class FieldOptions:
     all_landmarks: bool | None = None
 
     def __post_init__(self) -> None:
-        _check_setting("ball_noise", self.ball_noise, allow_zero=True)
-        _check_setting("ball_noise_period_s", self.ball_noise_period_s, allow_zero=False)
-        _check_setting("sensor_latency_s", self.sensor_latency_s, allow_zero=True)
+        _check_setting("ball_noise", self.ball_noise, allow_zero=True, high=MAX_BALL_NOISE)
+        _check_setting("ball_noise_period_s", self.ball_noise_period_s, allow_zero=False,
+                       high=MAX_PERIOD_S)  # fmt: skip
+        _check_setting("sensor_latency_s", self.sensor_latency_s, allow_zero=True,
+                       high=MAX_LATENCY_S)  # fmt: skip
 
 
-def _check_setting(name: str, value: float | None, *, allow_zero: bool) -> None:
-    """Refuse nan, infinities and negative values (and 0 where a period is meant)."""
+MAX_BALL_NOISE = 1.0
+"""The largest ball-motion noise a run may set [-]: at 1 a perturbation is as large as the
+ball's speed (the presets' own limit on ``ball_rand`` and ``motion_noise``)."""
+MAX_PERIOD_S = 60.0
+"""The longest ball-noise period a run may set [s]."""
+MAX_LATENCY_S = 10.0
+"""The longest sensor latency a run may set [s]."""
+
+
+def _check_setting(name: str, value: float | None, *, allow_zero: bool, high: float) -> None:
+    """Refuse NaN, infinities, values below 0 (0 where a period is meant) or above `high`."""
     if value is None:
         return
     if not math.isfinite(value) or value < 0.0 or (value == 0.0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{name} must be a finite number {bound}, got {value!r}")
+    if value > high:
+        raise ValueError(f"{name} must be at most {high:g}, got {value!r}")
 
 
 class Arena(Protocol):

@@ -36,8 +36,15 @@ def server_degrees(angle_rad: float) -> float:
 
 
 def _number(value: float) -> str:
-    """A power or angle as a client prints it: at most one decimal, no trailing zeros."""
-    return f"{round(value, 1) + 0.0:g}"
+    """A power or angle as a client prints it: at most one decimal, no trailing zeros.
+
+    Fixed-point, not ``%g``: ``%g`` keeps six digits, so 100000.1 would print as 100000.
+
+    >>> _number(100.0), _number(-0.04), _number(100000.14)
+    ('100', '0', '100000.1')
+    """
+    text = f"{round(value, 1) + 0.0:.1f}"
+    return text[:-2] if text.endswith(".0") else text
 
 
 def render_command(action: Action) -> str:
@@ -51,21 +58,39 @@ def render_command(action: Action) -> str:
     if isinstance(action, Turn):
         return f"(turn {_number(server_degrees(action.angle_rad))})"
     if isinstance(action, Dash):
-        if action.direction_rad == 0.0:
+        direction = _number(server_degrees(action.direction_rad))
+        if direction == "0":  # a direction that prints as 0 is written as none, as 0 is
             return f"(dash {_number(action.power)})"
-        return f"(dash {_number(action.power)} {_number(server_degrees(action.direction_rad))})"
+        return f"(dash {_number(action.power)} {direction})"
     if isinstance(action, Kick):
         return f"(kick {_number(action.power)} {_number(server_degrees(action.direction_rad))})"
     if isinstance(action, Say):
-        return f"(say {action.text})"
+        return f"(say {_say_message(action.text)})"
     raise TypeError(f"not an action: {action!r}")
+
+
+def _say_message(text: str) -> str:
+    """A say message as written: bare where it reads back unchanged, else in double quotes.
+
+    Bare text loses its leading and trailing white space to :func:`parse_command`, and a text
+    that is itself in quotes loses them; quoted, both survive (``Say(' x')`` is
+    ``(say " x")``). Bare where that is safe keeps the form clients and traces print.
+
+    >>> _say_message("hi there"), _say_message(" x"), _say_message('"q"')
+    ('hi there', '" x"', '""q""')
+    """
+    if text and text == text.strip() and not (len(text) >= 2 and text[0] == text[-1] == '"'):
+        return text
+    return f'"{text}"'
 
 
 def parse_command(text: str) -> Action:
     """The action of one client command: ``(turn 45)``, ``(dash 100 30)``, ``(say hi)``, ...
 
     Angles come back in our frame (radians, counter-clockwise). A say message may be quoted
-    (``(say "hi")``, protocol >= 7) or bare; it keeps its inner spaces and parentheses.
+    (``(say "hi")``, protocol >= 7) or bare; it keeps its inner spaces and parentheses, and a
+    quoted one its outer spaces too, so ``parse_command(render_command(a)) == a`` for every
+    say with a message.
 
     >>> parse_command("(kick 80 -30)")
     Kick(power=80.0, direction_rad=0.5235987755982988)

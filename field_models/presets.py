@@ -1,29 +1,48 @@
 """Loading frozen, typed config records from TOML preset files, with errors that name the key.
 
 A preset file is data; the records it fills are frozen dataclasses whose field names carry their
-units (`mass_kg`, `latency_s`). Constraints live in the field's metadata:
+units (`mass_kg`, `latency_s`). **Every number of a record states its range beside the field**,
+in the field's metadata (:class:`Bounds`), made by one of:
 
-* ``positive``: the number must be > 0;
-* ``non_negative``: >= 0;
-* ``probability``: in [0, 1].
+* :func:`positive`: > 0, from a millionth of a stated maximum (or a stated minimum) to it;
+* :func:`non_negative`: >= 0 and at most a stated maximum;
+* :func:`probability`: in [0, 1];
+* :func:`bounded`: in a stated closed interval (a signed value such as a power or an angle).
+
+A number must be finite (``inf`` and ``nan`` are refused) unless its bounds say ``inf_ok``: a
+limit a preset may switch off (the 1990s servers had no acceleration cap). The ranges are
+generous sanity bounds, not physics: they keep an absurd value (a 10 m robot on a 2.74 m
+table, a 2.4e7 Hz physics step, a 1e300 ms cycle, a 5e-324 kg mass) from reaching a
+simulation that would abort in C, cast a NaN to an integer or loop without end. A record
+checks its own ranges when it is built (:func:`check_ranges`, called from each record's
+``__post_init__``), so a copy made with ``replace`` is checked too; the loader names the file
+and the key.
 
 An option is typed ``Literal["a", "b"]``: the value must be one of the literal's values.
 
-A wrong file raises :class:`PresetError` naming the file, the dotted key and what was expected.
-Unknown keys are errors too: a misspelt key must not silently fall back to a default.
+A wrong file raises :class:`PresetError` naming the file, the dotted key and what was expected,
+in one line. Unknown keys are errors too: a misspelt key must not silently fall back to a
+default. Files are read as UTF-8 text of at most :data:`MAX_PRESET_BYTES`.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import math
+import re
 import tomllib
 import types
 import typing
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
 
 PRESET_DIR = Path(__file__).parent / "presets"
 """Folder holding the preset files shipped with the package."""
+_PRESET_NAME = re.compile(r"[A-Za-z0-9_.-]{1,100}")
+MAX_PRESET_BYTES = 1 << 20
+"""The largest preset or server configuration file read [bytes]: a real one is a few KiB, and
+the cap keeps ``/dev/zero`` or a wrong file from filling the memory."""
 
 T = TypeVar("T")
 
@@ -32,37 +51,170 @@ class PresetError(ValueError):
     """A preset file is missing, unreadable or holds a wrong value."""
 
 
-def positive(doc: str = "") -> dict[str, Any]:
-    """Field metadata for a number that must be > 0."""
-    return {"check": "positive", "doc": doc}
+class RecordError(ValueError):
+    """A record value outside its allowed set; `key` names the offending field.
+
+    Raised by a record's own checks (:func:`check_ranges`, cross-field rules); the loader turns
+    it into a :class:`PresetError` that names the file and the dotted key.
+    """
+
+    def __init__(self, key: str, message: str) -> None:
+        super().__init__(f"{key}: {message}")
+        self.key = key
+        self.message = message
 
 
-def non_negative(doc: str = "") -> dict[str, Any]:
-    """Field metadata for a number that must be >= 0."""
-    return {"check": "non_negative", "doc": doc}
+@dataclass(frozen=True, slots=True)
+class Bounds:
+    """The closed range [``low``, ``high``] a record's number must lie in.
+
+    Attributes:
+        low: The smallest value.
+        high: The largest value.
+        inf_ok: ``+inf`` is accepted too: the limit is switched off.
+        expected: What an error message says was expected.
+    """
+
+    low: float
+    high: float
+    inf_ok: bool
+    expected: str
+
+    def admits(self, value: float) -> bool:
+        """Whether `value` lies in the range (NaN never does)."""
+        if math.isinf(value):
+            return self.inf_ok and value > 0
+        return self.low <= value <= self.high  # False for NaN
+
+
+def _bounds(low: float, high: float, inf_ok: bool, expected: str) -> Bounds:
+    if not low < high or math.isinf(low) or math.isinf(high):  # NaN fails low < high
+        raise ValueError(f"bad bounds [{low!r}, {high!r}]")  # a bug in a record, not a file
+    suffix = ", or inf (no limit)" if inf_ok else ""
+    return Bounds(low, high, inf_ok, expected + suffix)
+
+
+POSITIVE_FLOOR = 1e-6
+"""A positive number's default lowest value, as a share of its highest."""
+
+
+def positive(
+    doc: str = "", *, high: float, low: float | None = None, inf_ok: bool = False
+) -> dict[str, Any]:
+    """Field metadata for a positive number in [`low`, `high`].
+
+    `low` defaults to a millionth of `high`: a positive value far below any real one (a
+    5e-324 kg mass, a 5e-324 Hz rate) is as absurd as a huge one, and its reciprocal or its
+    products underflow (Chipmunk refuses a body whose moment of inertia comes out 0).
+    """
+    floor = high * POSITIVE_FLOOR if low is None else low
+    expected = f"a positive number in [{_num(floor)}, {_num(high)}]"
+    return {"bounds": _bounds(floor, high, inf_ok, expected), "doc": doc}
+
+
+def non_negative(doc: str = "", *, high: float) -> dict[str, Any]:
+    """Field metadata for a number >= 0 and <= `high`."""
+    expected = f"a number >= 0 and <= {_num(high)}"
+    return {"bounds": _bounds(0.0, high, False, expected), "doc": doc}
 
 
 def probability(doc: str = "") -> dict[str, Any]:
     """Field metadata for a number in [0, 1]."""
-    return {"check": "probability", "doc": doc}
+    return {"bounds": _bounds(0.0, 1.0, False, "a probability in [0, 1]"), "doc": doc}
 
 
-_CHECKS = {
-    "positive": (lambda v: v > 0, "a positive number"),
-    "non_negative": (lambda v: v >= 0, "a number >= 0"),
-    "probability": (lambda v: 0 <= v <= 1, "a probability in [0, 1]"),
-}
+def bounded(low: float, high: float, doc: str = "") -> dict[str, Any]:
+    """Field metadata for a number in [`low`, `high`] (a signed value: a power, an angle)."""
+    expected = f"a number in [{_num(low)}, {_num(high)}]"
+    return {"bounds": _bounds(low, high, False, expected), "doc": doc}
+
+
+def bounds_of(fld: dataclasses.Field[Any]) -> Bounds | None:
+    """The range stated beside a record's field; None for a field that is not a number."""
+    bounds = fld.metadata.get("bounds")
+    return bounds if isinstance(bounds, Bounds) else None
+
+
+def _num(value: float) -> str:
+    """A bound as a message shows it: ``100``, ``0.5``, ``3.14159``, ``1e+06``."""
+    return f"{value:g}"
+
+
+def _shown(value: Any) -> str:
+    """A value for a one-line message: its repr, cut short (a 400-digit number stays short)."""
+    text = repr(value)
+    if len(text) <= 32:
+        return text
+    if isinstance(value, int):
+        return f"an integer of {len(text.lstrip('-'))} digits"
+    return f"{text[:24]}... ({len(text)} characters)"
+
+
+def range_problem(bounds: Bounds | None, value: Any) -> str | None:
+    """What is wrong with `value` for a field with `bounds`; None when it is fine.
+
+    Numbers without bounds must still be finite; non-numbers (bool, str, None, records) pass.
+    """
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return None
+    if bounds is None:
+        finite = isinstance(value, int) or math.isfinite(value)
+        return None if finite else f"expected a finite number, got {_shown(value)}"
+    if isinstance(value, int) and not bounds.low - 1 <= value <= bounds.high + 1:
+        return f"expected {bounds.expected}, got {_shown(value)}"  # no float() of a huge int
+    if not bounds.admits(value):
+        return f"expected {bounds.expected}, got {_shown(value)}"
+    return None
+
+
+def check_ranges(record: Any) -> None:
+    """Check every number of a dataclass `record` against the bounds beside its field.
+
+    Called from the records' ``__post_init__``: a record out of range cannot be built, by a
+    loader or by ``replace``.
+
+    Raises:
+        RecordError: naming the first field out of range and what was expected.
+    """
+    for fld in dataclasses.fields(record):
+        problem = range_problem(bounds_of(fld), getattr(record, fld.name))
+        if problem is not None:
+            raise RecordError(fld.name, problem)
+
+
+def read_text(path: Path, what: str = "preset file") -> str:
+    """A UTF-8 text file of at most :data:`MAX_PRESET_BYTES`, or a PresetError naming it.
+
+    Args:
+        path: The file.
+        what: What the file is, for messages (``preset file``).
+    """
+    try:
+        with path.open("rb") as fh:
+            data = fh.read(MAX_PRESET_BYTES + 1)
+    except FileNotFoundError:
+        raise PresetError(f"{path}: {what} not found") from None
+    except OSError as exc:
+        raise PresetError(f"{path}: cannot read the {what} ({exc.strerror or exc})") from None
+    if len(data) > MAX_PRESET_BYTES:
+        raise PresetError(f"{path}: larger than {MAX_PRESET_BYTES >> 10} KiB, not a {what}")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise PresetError(f"{path}: not UTF-8 text (byte {exc.start}): not a {what}") from None
 
 
 def read_toml(path: Path) -> dict[str, Any]:
     """Read a TOML file, turning any failure into a PresetError that names the file."""
+    text = read_text(path)
     try:
-        with path.open("rb") as fh:
-            return tomllib.load(fh)
-    except FileNotFoundError:
-        raise PresetError(f"{path}: preset file not found") from None
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise PresetError(f"{path}: not valid TOML ({exc})") from None
+    except ValueError:  # Python's limit on the digits of an integer it converts
+        raise PresetError(f"{path}: not valid TOML (a number with too many digits)") from None
+    except RecursionError:  # tomllib parses nested arrays and tables recursively
+        raise PresetError(f"{path}: not valid TOML (nested too deeply)") from None
 
 
 def read_preset(path: Path, prefix: str, _seen: tuple[Path, ...] = ()) -> dict[str, Any]:
@@ -106,11 +258,13 @@ def preset_path(name_or_path: str, prefix: str) -> Path:
         prefix: Sub-folder of the shipped presets for this field model.
     """
     if name_or_path.endswith(".toml") or "/" in name_or_path:
+        if "\0" in name_or_path:  # no such file can exist; Path would raise a bare ValueError
+            raise PresetError(f"{name_or_path!r}: preset file not found")
         return Path(name_or_path)
     path = PRESET_DIR / prefix / f"{name_or_path}.toml"
-    if not path.exists():
+    if not _PRESET_NAME.fullmatch(name_or_path) or not path.exists():
         known = ", ".join(sorted(p.stem for p in (PRESET_DIR / prefix).glob("*.toml")))
-        raise PresetError(f"unknown preset {name_or_path!r} (known: {known})")
+        raise PresetError(f"unknown preset {_shown(name_or_path)} (known: {known})")
     return path
 
 
@@ -143,7 +297,10 @@ def load_record(cls: type[T], table: Any, *, file: Path | str, key: str = "") ->
             continue
         values[name] = _convert(hints[name], table[name], file=file, key=dotted)
         _check(fld, values[name], file=file, key=dotted)
-    return cls(**values)
+    try:
+        return cls(**values)
+    except RecordError as exc:  # the record's cross-field rules (e.g. minpower <= maxpower)
+        raise PresetError(f"{file}: key '{_join(key, exc.key)}': {exc.message}") from None
 
 
 def load_field(cls: type, name: str, value: Any, *, file: Path | str, key: str) -> Any:
@@ -180,7 +337,7 @@ def _convert(hint: Any, value: Any, *, file: Path | str, key: str) -> Any:
         allowed = typing.get_args(hint)
         if isinstance(value, bool) or value not in allowed:
             shown = ", ".join(str(a) for a in allowed)
-            raise PresetError(f"{file}: key '{key}': expected one of {shown}; got {value!r}")
+            raise PresetError(f"{file}: key '{key}': expected one of {shown}; got {_shown(value)}")
         return value
     if origin in (typing.Union, types.UnionType):
         options = [a for a in typing.get_args(hint) if a is not type(None)]
@@ -198,7 +355,12 @@ def _convert(hint: Any, value: Any, *, file: Path | str, key: str) -> Any:
     if hint is float:
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise PresetError(f"{file}: key '{key}': expected a number, got {_kind(value)}")
-        return float(value)
+        try:
+            return float(value)
+        except OverflowError:  # an integer of hundreds of digits
+            raise PresetError(
+                f"{file}: key '{key}': expected a finite number, got {_shown(value)}"
+            ) from None
     if hint is int:
         if isinstance(value, bool) or not isinstance(value, int):
             raise PresetError(f"{file}: key '{key}': expected an integer, got {_kind(value)}")
@@ -215,13 +377,10 @@ def _convert(hint: Any, value: Any, *, file: Path | str, key: str) -> Any:
 
 
 def _kind(value: Any) -> str:
-    return f"{type(value).__name__} {value!r}"
+    return f"{type(value).__name__} {_shown(value)}"
 
 
 def _check(fld: dataclasses.Field[Any], value: Any, *, file: Path | str, key: str) -> None:
-    check = fld.metadata.get("check")
-    if check is None:
-        return
-    ok, expected = _CHECKS[check]
-    if not ok(value):
-        raise PresetError(f"{file}: key '{key}': expected {expected}, got {value!r}")
+    problem = range_problem(bounds_of(fld), value)
+    if problem is not None:
+        raise PresetError(f"{file}: key '{key}': {problem}")

@@ -102,6 +102,8 @@ def read_model_json(path: str | os.PathLike[str], what: str, *, finite: bool = T
         raise ModelFileError(f"{path}: file not found") from None
     except (OSError, ValueError) as exc:  # JSON and Unicode decode errors are ValueErrors
         raise ModelFileError(f"{path}: not a readable {what} file ({exc})") from None
+    except RecursionError:  # json parses nested arrays recursively
+        raise ModelFileError(f"{path}: not a readable {what} file (nested too deeply)") from None
 
 
 def _reject_constant(token: str) -> Any:

@@ -29,7 +29,13 @@ from learning.pass_tree import LABELS
 BOOST_FORMAT = "robotsoccer/pass-boost"
 """Format tag stored in every boosted-model file."""
 
-BOOST_FORMAT_VERSION = 1
+BOOST_FORMAT_VERSION = 2
+"""Version 2 writes strict JSON: an infinite threshold (scikit-learn splits off unknown values
+at +inf) is the string ``"Infinity"`` (``"-Infinity"``), not JSON's missing Infinity token.
+Version 1 files, which hold those tokens, still load."""
+READABLE_VERSIONS = (1, 2)
+"""The format versions :func:`load_pass_boost` reads."""
+_INFINITIES = {"Infinity": math.inf, "-Infinity": -math.inf}
 
 _FIELDS = ("feature", "threshold", "missing_left", "left", "right", "value")
 
@@ -112,6 +118,7 @@ class PassBoost:
             "tree_class": self.tree_class.tolist(),
             "settings": dict(self.settings),
             **{name: getattr(self, name).tolist() for name in _FIELDS},
+            "threshold": _encode_floats(self.threshold),
         }
 
     @classmethod
@@ -123,13 +130,13 @@ class PassBoost:
 
         if not isinstance(data, dict) or data.get("format") != BOOST_FORMAT:
             raise bad("not a pass-boost file")
-        if data.get("version") != BOOST_FORMAT_VERSION:
+        if data.get("version") not in READABLE_VERSIONS:
             raise bad(f"format version {data.get('version')!r}, expected {BOOST_FORMAT_VERSION}")
         try:
             names = tuple(str(n) for n in data["feature_names"])
             arrays: dict[str, Any] = {
                 "feature": np.asarray(data["feature"], dtype=np.int32),
-                "threshold": np.asarray(data["threshold"], dtype=np.float64),
+                "threshold": np.asarray(_decode_floats(data["threshold"]), dtype=np.float64),
                 "missing_left": np.asarray(data["missing_left"], dtype=bool),
                 "left": np.asarray(data["left"], dtype=np.int32),
                 "right": np.asarray(data["right"], dtype=np.int32),
@@ -139,10 +146,40 @@ class PassBoost:
             tree_class = np.asarray(data["tree_class"], dtype=np.int32)
             model = cls(names, str(data["schema"]), baseline, tree_class=tree_class,
                         settings=dict(data.get("settings", {})), **arrays)  # fmt: skip
-        except (KeyError, TypeError, ValueError) as err:
+        except (KeyError, TypeError, ValueError, RecursionError) as err:
             raise bad(f"malformed ({err})") from None
         _check(model, bad)
         return model
+
+
+def _encode_floats(values: npt.NDArray[np.float64]) -> list[Any]:
+    """A float array as strict JSON: numbers, and ±inf as the strings ``"(-)Infinity"``.
+
+    Raises:
+        ValueError: A NaN, which no model holds (a bug, not data).
+    """
+    if np.isnan(values).any():
+        raise ValueError("a NaN threshold cannot be saved")
+    out = values.astype(object)  # Python floats: written exactly as tolist() writes them
+    out[np.isposinf(values)] = "Infinity"
+    out[np.isneginf(values)] = "-Infinity"
+    encoded: list[Any] = out.tolist()
+    return encoded
+
+
+def _decode_floats(value: Any) -> Any:
+    """Nested lists of numbers back from :func:`_encode_floats` (and version 1's bare infinities).
+
+    Raises:
+        ValueError: A string other than ``"Infinity"`` or ``"-Infinity"``.
+    """
+    if isinstance(value, list):
+        return [_decode_floats(v) for v in value]
+    if isinstance(value, str):
+        if value not in _INFINITIES:
+            raise ValueError(f"{value[:20]!r} is not a number")
+        return _INFINITIES[value]
+    return value
 
 
 def _check(model: PassBoost, bad: Any) -> None:
@@ -162,6 +199,8 @@ def _check(model: PassBoost, bad: Any) -> None:
             raise bad("a node index out of range")
     if not np.all(np.isfinite(model.value)) or not np.all(np.isfinite(model.baseline)):
         raise bad("non-finite leaf values")
+    if np.isnan(model.threshold).any():
+        raise bad("a NaN threshold")
 
 
 def fit_pass_boost(
@@ -235,11 +274,16 @@ def fit_pass_boost(
 def save_pass_boost(
     model: PassBoost, path: str | os.PathLike[str], provenance: Mapping[str, Any]
 ) -> Path:
-    """Write the model and its provenance as JSON, atomically."""
+    """Write the model and its provenance as strict JSON (no NaN or Infinity), atomically.
+
+    Raises:
+        ValueError: A NaN or infinity in the provenance (a bug, not data).
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     partial = path.with_name(path.name + ".tmp")
-    partial.write_text(json.dumps({**model.to_json(), "provenance": dict(provenance)}))
+    doc = {**model.to_json(), "provenance": dict(provenance)}
+    partial.write_text(json.dumps(doc, allow_nan=False))
     partial.replace(path)
     return path
 

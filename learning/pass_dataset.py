@@ -75,7 +75,8 @@ class PassDataset:
         }
         partial = path.with_name(path.name + ".part")
         with partial.open("wb") as f:
-            np.savez_compressed(f, x=self.x, y=self.y.astype(str), meta=np.array(json.dumps(meta)))
+            text = json.dumps(meta, allow_nan=False)  # strict JSON: a NaN in metadata is a bug
+            np.savez_compressed(f, x=self.x, y=self.y.astype(str), meta=np.array(text))
         partial.replace(path)
         return path
 

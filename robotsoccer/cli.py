@@ -29,12 +29,13 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
 
-from field_models.arena import FieldOptions
+from field_models.arena import MAX_BALL_NOISE, FieldOptions
 from field_models.presets import PresetError
 from field_models.protocol import PlayerRef
 from field_models.registry import FIELD_MODELS, default_preset
 from robotsoccer import __version__
 from robotsoccer.drills import DRILLS, make_drill
+from robotsoccer.options import MAX_COUNT, MAX_SEED, MAX_SIMULATED_S, MAX_WORKERS
 from robotsoccer.runs.folders import prepare_run_folder, release_run_folders
 from robotsoccer.runs.pool import default_workers, run_trials, using_backend
 from robotsoccer.runs.ray_backend import require_ray
@@ -119,20 +120,27 @@ class _Parser(argparse.ArgumentParser):
 # ----------------------------------------------------------------------------- option types
 
 
-def _positive_int(text: str) -> int:
+def _positive_int(text: str, most: int = MAX_COUNT) -> int:
     value = _int(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"expected a whole number > 0, got {text!r}")
+    if not 0 < value <= most:
+        raise argparse.ArgumentTypeError(f"expected a whole number > 0 and <= {most}, got {text!r}")
     return value
 
 
+def _workers(text: str) -> int:
+    return _positive_int(text, MAX_WORKERS)
+
+
 def _positive_float(text: str) -> float:
+    """A simulated duration [s] (``--half-time``): finite, > 0 and within the sane limit."""
     try:
         value = float(text)
     except ValueError:
         value = math.nan
-    if not math.isfinite(value) or value <= 0.0:
-        raise argparse.ArgumentTypeError(f"expected a finite number > 0, got {text!r}")
+    if not math.isfinite(value) or not 0.0 < value <= MAX_SIMULATED_S:
+        raise argparse.ArgumentTypeError(
+            f"expected a finite number > 0 and <= {MAX_SIMULATED_S:g}, got {text!r}"
+        )
     return value
 
 
@@ -145,8 +153,8 @@ def _port(text: str) -> int:
 
 def _index(text: str) -> int:
     value = _int(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected a whole number >= 0, got {text!r}")
+    if not 0 <= value <= MAX_SEED:
+        raise argparse.ArgumentTypeError(f"expected a whole number >= 0 and < 2**64, got {text!r}")
     return value
 
 
@@ -162,8 +170,10 @@ def _noise(text: str) -> float:
         value = float(text)
     except ValueError:
         value = math.nan
-    if not math.isfinite(value) or value < 0.0:
-        raise argparse.ArgumentTypeError(f"expected a finite number >= 0, got {text!r}")
+    if not math.isfinite(value) or not 0.0 <= value <= MAX_BALL_NOISE:
+        raise argparse.ArgumentTypeError(
+            f"expected a finite number >= 0 and <= {MAX_BALL_NOISE:g}, got {text!r}"
+        )
     return value
 
 
@@ -427,7 +437,7 @@ def _drill_options(p: argparse.ArgumentParser) -> None:
 
 
 def _run_options(p: argparse.ArgumentParser, *, backend: bool = False) -> None:
-    p.add_argument("--workers", type=_positive_int, default=None, help="processes (all cores)")
+    p.add_argument("--workers", type=_workers, default=None, help="processes (all cores)")
     if backend:
         p.add_argument(
             "--backend",
@@ -458,6 +468,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``robotsoccer`` console script (module docstring: exit statuses)."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    if not getattr(args, "debug", False):
+        # Rerun's Rust logger prints coloured lines of its own (a full disk during a recording)
+        # before our one-line error. It reads RUST_LOG when rerun is first imported, which is
+        # later, in this process or a worker; a RUST_LOG the user set is kept.
+        os.environ.setdefault("RUST_LOG", "off")
     if args.command is None:
         parser.print_help()
         return EXIT_USAGE

@@ -4,6 +4,10 @@ Numbers and their sources: shared `specs/robot_physics.md` §2.5. Every field na
 unit. Times that the simulation counts (camera period, latencies, timeouts) must be whole
 numbers of physics ticks; :meth:`RobotPhysicsPreset.ticks` converts and refuses anything else,
 so that a configured 50 ms latency is exactly 50 ms, never a rounded 45.8.
+
+Every number's range (finite, its sign, a sane maximum) is stated beside its field and checked
+whenever a record is built (:mod:`field_models.presets`); the rules between fields (tunnelling,
+whole ticks, a robot that fits the table, a ball that fits the goal) are checked on load.
 """
 
 from __future__ import annotations
@@ -12,8 +16,11 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from field_models.arena import MAX_BALL_NOISE
 from field_models.presets import (
     PresetError,
+    bounded,
+    check_ranges,
     load_record,
     non_negative,
     positive,
@@ -32,39 +39,52 @@ GRAVITY_MPS2 = 9.81
 class FieldConfig:
     """The walled field: playing area inside the walls, goals, walls."""
 
-    length_m: float = field(metadata=positive("goal line to goal line, inside the walls"))
-    width_m: float = field(metadata=positive("side wall to side wall"))
-    goal_width_m: float = field(metadata=positive("between the posts"))
-    goal_depth_m: float = field(metadata=positive("goal box depth behind the line"))
-    wall_thickness_m: float = field(metadata=positive("static box walls; see tunnelling"))
-    corner_fillet_m: float = field(metadata=non_negative("45° corner panel leg length"))
+    length_m: float = field(metadata=positive("goal line to goal line, inside the walls", high=100))
+    width_m: float = field(metadata=positive("side wall to side wall", high=100))
+    goal_width_m: float = field(metadata=positive("between the posts", high=100))
+    goal_depth_m: float = field(metadata=positive("goal box depth behind the line", high=10))
+    wall_thickness_m: float = field(metadata=positive("static box walls; see tunnelling", high=1))
+    corner_fillet_m: float = field(metadata=non_negative("45° corner panel leg length", high=10))
+
+    def __post_init__(self) -> None:
+        check_ranges(self)
 
 
 @dataclass(frozen=True, slots=True)
 class KickerConfig:
     """An optional solenoid kicker on the robot's front face."""
 
-    reach_m: float = field(metadata=positive("max gap between front face and ball"))
-    max_speed_mps: float = field(metadata=positive("ball speed at kick power 100"))
-    half_angle_rad: float = field(metadata=positive("ball must be within this of straight ahead"))
+    reach_m: float = field(metadata=positive("max gap between front face and ball", high=1))
+    max_speed_mps: float = field(metadata=positive("ball speed at kick power 100", high=100))
+    half_angle_rad: float = field(
+        metadata=positive("ball must be within this of straight ahead", high=math.pi)
+    )
+
+    def __post_init__(self) -> None:
+        check_ranges(self)
 
 
 @dataclass(frozen=True, slots=True)
 class RobotConfig:
     """A differential-drive mini-robot (square footprint, two wheels)."""
 
-    size_m: float = field(metadata=positive("side of the square footprint"))
-    track_m: float = field(metadata=positive("distance between wheel contact points"))
-    wheel_radius_m: float = field(metadata=positive())
-    max_wheel_speed_mps: float = field(metadata=positive("wheel surface speed cap"))
-    wheel_accel_mps2: float = field(metadata=positive("motor ramp on each wheel's speed"))
-    tyre_mu: float = field(metadata=positive("tyre-floor friction: traction and skid limit"))
-    mass_kg: float = field(metadata=positive())
+    size_m: float = field(metadata=positive("side of the square footprint", high=1))
+    track_m: float = field(metadata=positive("distance between wheel contact points", high=1))
+    wheel_radius_m: float = field(metadata=positive(high=1))
+    max_wheel_speed_mps: float = field(metadata=positive("wheel surface speed cap", high=20))
+    wheel_accel_mps2: float = field(metadata=positive("motor ramp on each wheel's speed", high=200))
+    tyre_mu: float = field(
+        metadata=positive("tyre-floor friction: traction and skid limit", high=10)
+    )
+    mass_kg: float = field(metadata=positive(high=100))
     elasticity: float = field(metadata=probability("effective restitution vs the ball"))
     kicker: KickerConfig | None = None
     turn_style: str = "spin"
     """How the host runs a turn followed by a dash: ``"spin"`` in place, then drive (the paper's
     primitives, §2); ``"arc"``: drive forward while turning, with a wheel-speed difference."""
+
+    def __post_init__(self) -> None:
+        check_ranges(self)
 
     @property
     def max_turn_rate_radps(self) -> float:
@@ -82,52 +102,79 @@ class BallConfig:
     perturbation grows with speed, as the server's does per 100 ms cycle. It is dimensionless.
     """
 
-    radius_m: float = field(metadata=positive())
-    mass_kg: float = field(metadata=positive())
-    rolling_decel_mps2: float = field(metadata=positive("constant rolling deceleration"))
-    stop_speed_mps: float = field(metadata=non_negative("below this the ball is put at rest"))
+    radius_m: float = field(metadata=positive(high=0.5))
+    mass_kg: float = field(metadata=positive(high=10))
+    rolling_decel_mps2: float = field(metadata=positive("constant rolling deceleration", high=100))
+    stop_speed_mps: float = field(
+        metadata=non_negative("below this the ball is put at rest", high=10)
+    )
     wall_restitution: float = field(metadata=probability())
-    max_speed_mps: float = field(metadata=positive("fastest ball; speeds are clamped to it"))
-    motion_noise: float = field(default=0.0, metadata=non_negative("ball_rand counterpart"))
-    noise_period_s: float = field(default=0.1, metadata=positive("how often noise is applied"))
+    max_speed_mps: float = field(
+        metadata=positive("fastest ball; speeds are clamped to it", high=100)
+    )
+    motion_noise: float = field(
+        default=0.0, metadata=non_negative("ball_rand counterpart", high=MAX_BALL_NOISE)
+    )
+    noise_period_s: float = field(
+        default=0.1, metadata=positive("how often noise is applied", high=60)
+    )
+
+    def __post_init__(self) -> None:
+        check_ranges(self)
 
 
 @dataclass(frozen=True, slots=True)
 class CameraConfig:
     """The overhead camera: frame rate, latency, noise, missed detections."""
 
-    frame_rate_hz: float = field(metadata=positive())
-    latency_s: float = field(metadata=non_negative("capture to delivery at the host"))
-    position_sigma_m: float = field(metadata=non_negative("Gaussian noise per axis"))
-    heading_sigma_rad: float = field(metadata=non_negative())
+    frame_rate_hz: float = field(metadata=positive(high=1000))
+    latency_s: float = field(metadata=non_negative("capture to delivery at the host", high=10))
+    position_sigma_m: float = field(metadata=non_negative("Gaussian noise per axis", high=1))
+    heading_sigma_rad: float = field(metadata=non_negative(high=math.pi))
     ball_miss_prob: float = field(metadata=probability("per frame"))
     robot_miss_prob: float = field(metadata=probability("per robot per frame"))
     perfect: bool = False
+
+    def __post_init__(self) -> None:
+        check_ranges(self)
 
 
 @dataclass(frozen=True, slots=True)
 class LinkConfig:
     """The host-to-robot radio/infrared link."""
 
-    packets_per_s: float = field(metadata=positive("one command per packet"))
-    latency_s: float = field(metadata=non_negative())
+    packets_per_s: float = field(metadata=positive("one command per packet", high=10_000))
+    latency_s: float = field(metadata=non_negative(high=10))
     loss_prob: float = field(metadata=probability("per packet"))
+
+    def __post_init__(self) -> None:
+        check_ranges(self)
 
 
 @dataclass(frozen=True, slots=True)
 class FirmwareConfig:
     """The robot's on-board loop that runs the newest command it received."""
 
-    timeout_s: float = field(metadata=positive("stop when no command arrives for this long"))
+    timeout_s: float = field(
+        metadata=positive("stop when no command arrives for this long", high=60)
+    )
+
+    def __post_init__(self) -> None:
+        check_ranges(self)
 
 
 @dataclass(frozen=True, slots=True)
 class TimingConfig:
     """The physics step and the solver settings."""
 
-    physics_hz: float = field(metadata=positive("ticks per second, >= 240"))
-    solver_iterations: int = field(metadata=positive())
-    collision_slop_m: float = field(metadata=positive("pymunk default 0.1 is 10 cm in SI"))
+    physics_hz: float = field(metadata=bounded(240, 10_000, "ticks per second; >= 240: tunnelling"))
+    solver_iterations: int = field(metadata=bounded(1, 1000, "Chipmunk's iterations per step"))
+    collision_slop_m: float = field(
+        metadata=positive("pymunk default 0.1 is 10 cm in SI", high=0.1)
+    )
+
+    def __post_init__(self) -> None:
+        check_ranges(self)
 
 
 @dataclass(frozen=True, slots=True)
@@ -149,14 +196,22 @@ class RobotPhysicsPreset:
         """Length of one physics tick [s]."""
         return 1.0 / self.timing.physics_hz
 
-    def ticks(self, seconds: float, what: str) -> int:
-        """Convert a duration to whole ticks, refusing one that is not a whole number of ticks."""
+    def ticks(self, seconds: float, what: str, *, least: int = 0) -> int:
+        """Convert a duration to whole ticks, refusing one that is not a whole number of ticks.
+
+        `least`: the fewest ticks allowed (1 for a period: a period of 0 ticks never ends).
+        """
         exact = seconds * self.timing.physics_hz
-        whole = round(exact)
-        if abs(exact - whole) > 1e-6:
+        whole = round(exact) if math.isfinite(exact) else -1  # -1: refused just below
+        if whole < 0 or abs(exact - whole) > 1e-6:
             raise PresetError(
                 f"{self.source or self.name}: key '{what}': expected a whole number of "
                 f"{1000 * self.dt_s:.4g} ms ticks, got {seconds!r} s ({exact:.3f} ticks)"
+            )
+        if whole < least:
+            raise PresetError(
+                f"{self.source or self.name}: key '{what}': expected at least {least} "
+                f"{1000 * self.dt_s:.4g} ms tick(s), got {seconds!r} s"
             )
         return whole
 
@@ -188,6 +243,8 @@ def load_preset(name_or_path: str = DEFAULT_PRESET) -> RobotPhysicsPreset:
     return preset
 
 
+ROBOTS_ACROSS = 8
+"""A robot's side is at most the table's width over this: five a side fit with room to move."""
 TURN_STYLES = ("spin", "arc")
 """The values of ``robot.turn_style``."""
 
@@ -199,16 +256,16 @@ def _validate(p: RobotPhysicsPreset) -> None:
             f"{p.source}: key 'robot.turn_style': expected one of {', '.join(TURN_STYLES)}, "
             f"got {p.robot.turn_style!r}"
         )
-    if p.timing.physics_hz < 240:
-        raise PresetError(f"{p.source}: key 'timing.physics_hz': expected >= 240 (tunnelling)")
-    p.ticks(1.0 / p.camera.frame_rate_hz, "camera.frame_rate_hz")
+    p.ticks(1.0 / p.camera.frame_rate_hz, "camera.frame_rate_hz", least=1)
     p.ticks(p.camera.latency_s, "camera.latency_s")
     p.ticks(p.link.latency_s, "link.latency_s")
-    p.ticks(1.0 / p.link.packets_per_s, "link.packets_per_s")
-    p.ticks(p.firmware.timeout_s, "firmware.timeout_s")
-    p.ticks(p.ball.noise_period_s, "ball.noise_period_s")
+    p.ticks(1.0 / p.link.packets_per_s, "link.packets_per_s", least=1)
+    p.ticks(p.firmware.timeout_s, "firmware.timeout_s", least=1)
+    p.ticks(p.ball.noise_period_s, "ball.noise_period_s", least=1)
     if p.field.goal_width_m >= p.field.width_m:
         raise PresetError(f"{p.source}: key 'field.goal_width_m': expected < field.width_m")
+    if p.field.width_m > p.field.length_m:  # drills measure in length / 105
+        raise PresetError(f"{p.source}: key 'field.width_m': expected at most field.length_m")
     # Tunnelling rule (robot_physics.md §3.5): the fastest ball moves less than its radius plus
     # half a wall per tick.
     per_tick = p.ball.max_speed_mps * p.dt_s
@@ -219,3 +276,11 @@ def _validate(p: RobotPhysicsPreset) -> None:
         )
     if p.robot.track_m > p.robot.size_m * math.sqrt(2):
         raise PresetError(f"{p.source}: key 'robot.track_m': wider than the robot")
+    # A team of five lines up across the table with room to move between them.
+    if p.robot.size_m > p.field.width_m / ROBOTS_ACROSS:
+        raise PresetError(
+            f"{p.source}: key 'robot.size_m': expected at most field.width_m / {ROBOTS_ACROSS} "
+            f"({p.field.width_m / ROBOTS_ACROSS:g} m), got {p.robot.size_m!r}"
+        )
+    if 2.0 * p.ball.radius_m >= p.field.goal_width_m:
+        raise PresetError(f"{p.source}: key 'ball.radius_m': the ball does not fit in the goal")

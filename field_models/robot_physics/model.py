@@ -37,7 +37,7 @@ def load(preset: str, options: FieldOptions) -> RobotPhysicsPreset:
         ball = dataclasses.replace(ball, motion_noise=options.ball_noise)
     if options.ball_noise_period_s is not None:
         ball = dataclasses.replace(ball, noise_period_s=options.ball_noise_period_s)
-        loaded.ticks(options.ball_noise_period_s, "ball.noise_period_s")
+        loaded.ticks(options.ball_noise_period_s, "ball.noise_period_s", least=1)
     if options.sensor_latency_s is not None:
         camera = dataclasses.replace(camera, latency_s=options.sensor_latency_s)
         loaded.ticks(options.sensor_latency_s, "camera.latency_s")

@@ -78,7 +78,14 @@ def see_object(
 
 
 def quantised_distances(params: SensingParams, distance_m: Array) -> Array:
-    """The see's quantised ball/player distances (step ``quantize_step``) for an array."""
+    """The see's quantised ball/player distances (step ``quantize_step``) for an array.
+
+    Raises:
+        ValueError: A distance that is NaN or infinite: its log index would be cast to an
+            arbitrary integer and the table below would span 2^64 entries.
+    """
+    if not np.isfinite(distance_m).all():
+        raise ValueError("see: a distance that is not finite (a position became NaN or inf)")
     step = params.quantize_step
     index = np.rint(fpmath.log_array(distance_m + EPS) / step).astype(np.int64)
     low, high = int(index.min(initial=0)), int(index.max(initial=0))

@@ -58,7 +58,10 @@ def facts(preset: ServerPreset) -> FieldFacts:
     d, s = preset.dynamics, preset.sensing
     dt = d.dt_s
     push = min(d.max_dash_power * d.dash_power_rate_m_per_cycle2, d.player_accel_max_m_per_cycle2)
-    top = min(push / (1.0 - d.player_decay), d.player_speed_max_m_per_cycle)
+    # Steady speed under full dash: push / (1 - decay); a decay of 1 (no friction) never
+    # settles, so the cap alone bounds it.
+    settled = push / (1.0 - d.player_decay) if d.player_decay < 1.0 else math.inf
+    top = min(settled, d.player_speed_max_m_per_cycle)
     return FieldFacts(
         model=NAME,
         preset=preset.name,

@@ -24,6 +24,9 @@ from typing import Any, Literal
 
 from field_models.presets import (
     PresetError,
+    RecordError,
+    bounded,
+    check_ranges,
     convert_value,
     load_record,
     non_negative,
@@ -42,13 +45,17 @@ Era = Literal["1996", "19"]
 DEFAULT_PRESET = "soccer_server_1996"
 
 
-class ParamError(ValueError):
+class ParamError(RecordError):
     """A record value outside its allowed set; `key` names the offending field."""
 
-    def __init__(self, key: str, message: str) -> None:
-        super().__init__(f"{key}: {message}")
-        self.key = key
-        self.message = message
+
+MAX_RAND = 1.0
+"""The largest noise factor (``ball_rand``, ``player_rand``, ``kick_rand``) [-]: at 1 the
+noise is as large as the motion it perturbs."""
+MAX_POWER = 10_000.0
+"""The largest |power| of a dash or kick range [power units] (the servers use 100)."""
+TWO_PI = 2.0 * math.pi
+"""The largest |angle| of a turn moment or dash direction range [rad]."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -99,56 +106,81 @@ class DynamicsParams:
             as a collision. Not supported by batch mode.
     """
 
-    simulator_step_ms: int = field(metadata=positive("server.conf simulator_step"))
-    pitch_length_m: float = field(metadata=positive())
-    pitch_width_m: float = field(metadata=positive())
-    goal_width_m: float = field(metadata=positive("server.conf goal_width"))
-    goal_depth_m: float = field(metadata=positive())
-    goal_post_radius_m: float = field(metadata=non_negative("compiled in: 0.06 m today"))
-    center_circle_radius_m: float = field(metadata=non_negative())
-    ball_size_m: float = field(metadata=positive("server.conf ball_size"))
+    simulator_step_ms: int = field(
+        metadata=positive("server.conf simulator_step", high=10_000, low=1)
+    )
+    pitch_length_m: float = field(metadata=positive(high=1000))
+    pitch_width_m: float = field(metadata=positive(high=1000))
+    goal_width_m: float = field(metadata=positive("server.conf goal_width", high=1000))
+    goal_depth_m: float = field(metadata=positive(high=100))
+    goal_post_radius_m: float = field(metadata=non_negative("compiled in: 0.06 m today", high=10))
+    center_circle_radius_m: float = field(metadata=non_negative(high=1000))
+    ball_size_m: float = field(metadata=positive("server.conf ball_size", high=10))
     ball_decay: float = field(metadata=probability("server.conf ball_decay"))
-    ball_rand: float = field(metadata=non_negative("server.conf ball_rand"))
-    ball_speed_max_m_per_cycle: float = field(metadata=positive("server.conf ball_speed_max"))
-    ball_accel_max_m_per_cycle2: float = field(metadata=positive("server.conf ball_accel_max"))
-    player_size_m: float = field(metadata=positive("server.conf player_size"))
+    ball_rand: float = field(metadata=non_negative("server.conf ball_rand", high=MAX_RAND))
+    ball_speed_max_m_per_cycle: float = field(
+        metadata=positive("server.conf ball_speed_max", high=1000)
+    )
+    ball_accel_max_m_per_cycle2: float = field(
+        metadata=positive("server.conf ball_accel_max; inf: no cap", high=1000, inf_ok=True)
+    )
+    player_size_m: float = field(metadata=positive("server.conf player_size", high=10))
     player_decay: float = field(metadata=probability("server.conf player_decay"))
-    player_rand: float = field(metadata=non_negative("server.conf player_rand"))
-    player_speed_max_m_per_cycle: float = field(metadata=positive("server.conf player_speed_max"))
-    player_accel_max_m_per_cycle2: float = field(metadata=positive("server.conf player_accel_max"))
-    inertia_moment_cycle_per_m: float = field(metadata=non_negative("server.conf inertia_moment"))
+    player_rand: float = field(metadata=non_negative("server.conf player_rand", high=MAX_RAND))
+    player_speed_max_m_per_cycle: float = field(
+        metadata=positive("server.conf player_speed_max", high=1000)
+    )
+    player_accel_max_m_per_cycle2: float = field(
+        metadata=positive("server.conf player_accel_max; inf: no cap", high=1000, inf_ok=True)
+    )
+    inertia_moment_cycle_per_m: float = field(
+        metadata=non_negative("server.conf inertia_moment", high=1000)
+    )
     dash_power_rate_m_per_cycle2: float = field(
-        metadata=non_negative("server.conf dash_power_rate")
+        metadata=non_negative("server.conf dash_power_rate", high=10)
     )
     kick_power_rate_m_per_cycle2: float = field(
-        metadata=non_negative("server.conf kick_power_rate")
+        metadata=non_negative("server.conf kick_power_rate", high=10)
     )
-    kickable_margin_m: float = field(metadata=positive("server.conf kickable_margin"))
+    kickable_margin_m: float = field(metadata=positive("server.conf kickable_margin", high=100))
     kick_reduction: bool
-    kick_rand: float = field(metadata=non_negative("server.conf kick_rand"))
+    kick_rand: float = field(metadata=non_negative("server.conf kick_rand", high=MAX_RAND))
     noise_model: NoiseModel
-    minpower: float
-    maxpower: float = field(metadata=positive("server.conf maxpower"))
-    min_dash_power: float
-    max_dash_power: float
-    minmoment_rad: float
-    maxmoment_rad: float
-    side_dash_rate: float = field(metadata=non_negative("server.conf side_dash_rate"))
-    back_dash_rate: float = field(metadata=non_negative("server.conf back_dash_rate"))
-    dash_angle_step_rad: float = field(metadata=non_negative("server.conf dash_angle_step"))
-    min_dash_angle_rad: float
-    max_dash_angle_rad: float
-    after_goal_wait_cycles: int = field(metadata=non_negative())
+    minpower: float = field(metadata=bounded(-MAX_POWER, MAX_POWER, "server.conf minpower"))
+    maxpower: float = field(metadata=positive("server.conf maxpower", high=MAX_POWER))
+    min_dash_power: float = field(
+        metadata=bounded(-MAX_POWER, MAX_POWER, "server.conf min_dash_power")
+    )
+    max_dash_power: float = field(
+        metadata=bounded(-MAX_POWER, MAX_POWER, "server.conf max_dash_power")
+    )
+    minmoment_rad: float = field(metadata=bounded(-TWO_PI, TWO_PI, "server.conf minmoment"))
+    maxmoment_rad: float = field(metadata=bounded(-TWO_PI, TWO_PI, "server.conf maxmoment"))
+    side_dash_rate: float = field(metadata=non_negative("server.conf side_dash_rate", high=10))
+    back_dash_rate: float = field(metadata=non_negative("server.conf back_dash_rate", high=10))
+    dash_angle_step_rad: float = field(
+        metadata=non_negative("server.conf dash_angle_step", high=TWO_PI)
+    )
+    min_dash_angle_rad: float = field(
+        metadata=bounded(-TWO_PI, TWO_PI, "server.conf min_dash_angle")
+    )
+    max_dash_angle_rad: float = field(
+        metadata=bounded(-TWO_PI, TWO_PI, "server.conf max_dash_angle")
+    )
+    after_goal_wait_cycles: int = field(metadata=non_negative(high=100_000))
     referee: bool = True
     swept_ball_collisions: bool = False
 
     def __post_init__(self) -> None:
+        check_ranges(self)
         _ordered("minpower", self.minpower, self.maxpower)
         _ordered("min_dash_power", self.min_dash_power, self.max_dash_power)
         _ordered("minmoment_rad", self.minmoment_rad, self.maxmoment_rad)
         _ordered("min_dash_angle_rad", self.min_dash_angle_rad, self.max_dash_angle_rad)
         if self.goal_width_m >= self.pitch_width_m:
             raise ParamError("goal_width_m", "expected less than pitch_width_m")
+        if self.pitch_width_m > self.pitch_length_m:  # drills measure in length / 105
+            raise ParamError("pitch_width_m", "expected at most pitch_length_m")
 
     @property
     def dt_s(self) -> float:
@@ -256,19 +288,11 @@ def _top_string(table: dict[str, Any], key: str, path: Path, default: str) -> st
 
 
 def _load_table(cls: Any, table: dict[str, Any], key: str, path: Path) -> Any:
-    """Load one sub-table into `cls`, turning the record's own checks into PresetErrors."""
+    """Load one sub-table into `cls` (the record's own checks become PresetErrors)."""
     if key not in table:
         raise PresetError(f"{path}: key '{key}': missing (required by ServerPreset)")
     sub = degrees_to_radians(cls, table[key], file=path, key=key)
-    try:
-        return load_record(cls, sub, file=path, key=key)
-    except PresetError:
-        raise
-    except ParamError as exc:
-        raise PresetError(f"{path}: key '{key}.{exc.key}': {exc.message}") from None
-    except ValueError as exc:  # the sensing record says "field: message"
-        field_name, _, message = str(exc).partition(": ")
-        raise PresetError(f"{path}: key '{key}.{field_name}': {message}") from None
+    return load_record(cls, sub, file=path, key=key)
 
 
 def degrees_to_radians(cls: Any, table: Any, *, file: Path | str, key: str) -> Any:
@@ -293,5 +317,8 @@ def degrees_to_radians(cls: Any, table: Any, *, file: Path | str, key: str) -> A
                 f"{file}: key '{dotted}': expected a number, got {type(value).__name__} {value!r}"
             )
         del out[name]
-        out[target] = math.radians(value)
+        try:
+            out[target] = math.radians(value)
+        except OverflowError:  # an integer of hundreds of digits
+            raise PresetError(f"{file}: key '{dotted}': expected a finite number") from None
     return out

@@ -33,7 +33,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-from field_models.presets import non_negative, positive
+from field_models.presets import RecordError, check_ranges, non_negative, positive
 
 DirectionMode = Literal["truncate", "round"]
 """How a direction becomes integer degrees: protocol < 7 truncates, >= 7 rounds (§3.2)."""
@@ -43,6 +43,13 @@ ViewQuality = Literal["high", "low"]
 """The ``change_view`` quality (§3.1)."""
 LandmarkSet = Literal["full", "1996"]
 """Which flags and goals the pitch has (§3.8)."""
+
+MAX_STEP_MS = 10_000
+"""The longest cycle, see interval or timer step [ms]."""
+MAX_DISTANCE_M = 1000.0
+"""The longest sensing distance [m]."""
+MAX_COUNT = 1_000_000
+"""The largest hearing capacity count."""
 
 WIDTH_FACTOR: dict[ViewWidth, float] = {"narrow": 0.5, "normal": 1.0, "wide": 2.0}
 """View-cone width and see-interval factor per view width (§3.1)."""
@@ -95,40 +102,65 @@ class SensingParams:
             unless a client localises itself from them, as a match's players do).
     """
 
-    send_step_ms: int = field(metadata=positive("server.conf send_step"))
-    view_half_angle_rad: float = field(metadata=positive("server.conf visible_angle / 2"))
-    visible_distance_m: float = field(metadata=non_negative("server.conf visible_distance"))
-    quantize_step: float = field(metadata=positive("server.conf quantize_step"))
-    quantize_step_l: float = field(metadata=positive("server.conf quantize_step_l"))
+    send_step_ms: int = field(metadata=positive("server.conf send_step", high=MAX_STEP_MS, low=1))
+    view_half_angle_rad: float = field(
+        metadata=positive("server.conf visible_angle / 2", high=math.pi)
+    )
+    visible_distance_m: float = field(
+        metadata=non_negative("server.conf visible_distance", high=MAX_DISTANCE_M)
+    )
+    quantize_step: float = field(metadata=positive("server.conf quantize_step", high=10))
+    quantize_step_l: float = field(metadata=positive("server.conf quantize_step_l", high=10))
     direction_mode: DirectionMode
-    protocol_version: int = field(metadata=positive("client protocol version"))
+    protocol_version: int = field(metadata=positive("client protocol version", high=100, low=1))
     report_changes: bool
     landmark_set: LandmarkSet
-    unum_far_length_m: float = field(metadata=non_negative("player type unum_far_length"))
-    unum_too_far_length_m: float = field(metadata=non_negative("player type unum_too_far_length"))
-    team_far_length_m: float = field(metadata=non_negative("player type team_far_length"))
-    team_too_far_length_m: float = field(metadata=non_negative("player type team_too_far_length"))
-    audio_cut_dist_m: float = field(metadata=non_negative("server.conf audio_cut_dist"))
-    say_msg_size: int = field(metadata=positive("server.conf say_msg_size"))
-    hear_max: int = field(metadata=non_negative("server.conf hear_max"))
-    hear_inc: int = field(metadata=non_negative("server.conf hear_inc"))
-    hear_decay: int = field(metadata=non_negative("server.conf hear_decay"))
+    unum_far_length_m: float = field(
+        metadata=non_negative("player type unum_far_length", high=MAX_DISTANCE_M)
+    )
+    unum_too_far_length_m: float = field(
+        metadata=non_negative("player type unum_too_far_length", high=MAX_DISTANCE_M)
+    )
+    team_far_length_m: float = field(
+        metadata=non_negative("player type team_far_length", high=MAX_DISTANCE_M)
+    )
+    team_too_far_length_m: float = field(
+        metadata=non_negative("player type team_too_far_length", high=MAX_DISTANCE_M)
+    )
+    audio_cut_dist_m: float = field(
+        metadata=non_negative("server.conf audio_cut_dist", high=MAX_DISTANCE_M)
+    )
+    say_msg_size: int = field(metadata=positive("server.conf say_msg_size", high=100_000, low=1))
+    hear_max: int = field(metadata=non_negative("server.conf hear_max", high=MAX_COUNT))
+    hear_inc: int = field(metadata=non_negative("server.conf hear_inc", high=MAX_COUNT))
+    hear_decay: int = field(metadata=non_negative("server.conf hear_decay", high=MAX_COUNT))
     hear_per_team: bool
-    simulator_step_ms: int = field(default=100, metadata=positive("server.conf simulator_step"))
-    recv_step_ms: int = field(default=10, metadata=positive("server.conf recv_step"))
+    simulator_step_ms: int = field(
+        default=100, metadata=positive("server.conf simulator_step", high=MAX_STEP_MS, low=1)
+    )
+    recv_step_ms: int = field(
+        default=10, metadata=positive("server.conf recv_step", high=MAX_STEP_MS, low=1)
+    )
     view_width: ViewWidth = "normal"
     view_quality: ViewQuality = "high"
-    distance_resolution_m: float = field(default=0.1, metadata=positive("compiled in: 0.1 m"))
-    dir_change_step_deg: float = field(default=0.1, metadata=positive("compiled in: 0.1°"))
-    dist_change_rel_step: float = field(default=0.02, metadata=positive("compiled in: 0.02"))
+    distance_resolution_m: float = field(
+        default=0.1, metadata=positive("compiled in: 0.1 m", high=10)
+    )
+    dir_change_step_deg: float = field(
+        default=0.1, metadata=positive("compiled in: 0.1°", high=360)
+    )
+    dist_change_rel_step: float = field(
+        default=0.02, metadata=positive("compiled in: 0.02", high=10)
+    )
     perfect: bool = False
     percept_flags: bool = False
 
     def __post_init__(self) -> None:
+        check_ranges(self)
         if self.unum_too_far_length_m < self.unum_far_length_m:
-            raise ValueError("unum_too_far_length_m must be >= unum_far_length_m")
+            raise RecordError("unum_too_far_length_m", "expected >= unum_far_length_m")
         if self.team_too_far_length_m < self.team_far_length_m:
-            raise ValueError("team_too_far_length_m must be >= team_far_length_m")
+            raise RecordError("team_too_far_length_m", "expected >= team_far_length_m")
 
     @property
     def half_angle_rad(self) -> float:

@@ -46,11 +46,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal, NamedTuple, TypeVar
 
-from field_models.presets import PresetError, load_field
+from field_models.presets import PresetError, RecordError, load_field, read_text
 from field_models.soccer_server.messages import MessageParseError, Quoted, parse_sexpr
 from field_models.soccer_server.params import (
     DynamicsParams,
-    ParamError,
     ServerPreset,
     load_server_preset,
 )
@@ -512,12 +511,7 @@ def load_server_conf(
         settings = parse_server_param(text, file=MESSAGE_SOURCE)
         return preset_from_settings(settings, base=base, name="server_param", source=MESSAGE_SOURCE)
     path = Path(source)
-    try:
-        content = path.read_text()
-    except FileNotFoundError:
-        raise PresetError(f"{path}: server configuration file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise PresetError(f"{path}: cannot read the server configuration ({exc})") from None
+    content = read_text(path, "server configuration file")
     if content.lstrip().startswith("(server_param"):
         settings = parse_server_param(content, file=str(path))
     else:
@@ -592,10 +586,8 @@ def _replace(
     """`record` with `changes`; its own consistency checks become PresetErrors."""
     try:
         return record.replace(**changes)
-    except ParamError as exc:
+    except RecordError as exc:
         field, message = exc.key, exc.message
-    except ValueError as exc:  # the sensing record says "field: message"
-        field, _, message = str(exc).partition(": ")
     name = _SERVER_NAME.get(field)
     setting = last.get(name) if name is not None else None
     if setting is None:
@@ -608,6 +600,7 @@ def _replace(
 _INT_TEXT = re.compile(r"[-+]?[0-9]+")
 _REAL_TEXT = re.compile(r"[-+]?(?:[0-9]+\.[0-9]*|\.[0-9]+|[0-9]+(?=[eE]))(?:[eE][-+]?[0-9]+)?")
 _NAME_END = frozenset(" \t\r\n\0=\"'")
+_MAX_INT_DIGITS = 4000
 
 
 def parse_server_conf(text: str, *, file: str) -> list[Setting]:
@@ -728,9 +721,11 @@ def _conf_value(raw: str, quoted: bool) -> ServerValue:
     if lower in ("off", "false"):
         return False
     if _INT_TEXT.fullmatch(raw):
-        return int(raw)
+        # Python refuses to read integers of more than 4300 digits; as a double such a
+        # number is out of range, and _typed says so.
+        return int(raw) if len(raw) <= _MAX_INT_DIGITS else math.inf
     if _REAL_TEXT.fullmatch(raw):
-        return float(raw)
+        return float(raw)  # 1e999 overflows to inf, refused by _typed as inf is
     return raw
 
 
@@ -775,7 +770,7 @@ def _typed(name: str, value: ServerValue, key: str, where: str) -> ServerValue:
     """
     if name not in _KNOWN:
         raise PresetError(f"{where}: key '{key}': not a parameter of rcssserver 19")
-    shown = f"{type(value).__name__} {value!r}"
+    shown = f"{type(value).__name__} {_short(value)}"
     if name in STR_PARAMS:
         if not isinstance(value, str):
             raise PresetError(f"{where}: key '{key}': expected a string, got {shown}")
@@ -788,8 +783,31 @@ def _typed(name: str, value: ServerValue, key: str, where: str) -> ServerValue:
         raise PresetError(f"{where}: key '{key}': expected true or false, got {shown}")
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise PresetError(f"{where}: key '{key}': expected a number, got {shown}")
+    # The server would read 1e999 as the largest double or inf; either is no parameter value,
+    # so an overflowing number is refused like a written inf (which is not a number here).
+    if (isinstance(value, float) and not math.isfinite(value)) or abs(value) > _MAX_NUMBER:
+        raise PresetError(f"{where}: key '{key}': expected a finite number, got {_short(value)}")
     if name in INT_PARAMS:
         if isinstance(value, float) and not value.is_integer():
             raise PresetError(f"{where}: key '{key}': expected an integer, got {shown}")
+        if not _INT_MIN <= value <= _INT_MAX:  # the server holds it in a C int
+            raise PresetError(
+                f"{where}: key '{key}': expected an integer in [{_INT_MIN}, {_INT_MAX}], "
+                f"got {_short(value)}"
+            )
         return int(value)
     return float(value)
+
+
+_MAX_NUMBER = 1e300
+"""The largest magnitude a number parameter may have: within a double, with room to compute."""
+_INT_MIN, _INT_MAX = -(2**31), 2**31 - 1
+"""The range of the server's ``int`` parameters (a 32-bit C int)."""
+
+
+def _short(value: ServerValue) -> str:
+    """A number for a one-line message: 1e999 read as inf, a 4000-digit integer not shown whole."""
+    if isinstance(value, float) and math.isinf(value):
+        return "a number beyond a double's range"
+    text = repr(value)
+    return text if len(text) <= 32 else f"an integer of {len(text.lstrip('-'))} digits"

@@ -100,7 +100,7 @@ from field_models.registry import paper_field_facts
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import GoalWatch, Verdict
 from robotsoccer.drills.task_scaling import ReferenceFlight, task_launch
-from robotsoccer.options import choice, flag
+from robotsoccer.options import choice, duration, flag
 from robotsoccer.skills.intercept import (
     AimedShooterMind,
     Behaviour,
@@ -511,8 +511,7 @@ class InterceptDrill:
         self.scaling = choice(Scaling, scaling, "scaling")
         if not 0.0 <= sector_deg <= 90.0:
             raise ValueError(f"sector_deg must be in [0, 90], got {sector_deg!r}")
-        if not max_time_s > 0.0:
-            raise ValueError(f"max_time_s must be > 0, got {max_time_s!r}")
+        max_time_s = duration("max_time_s", max_time_s)
         if not kick_power > 0.0:
             raise ValueError(f"kick_power must be > 0, got {kick_power!r}")
         for name, scale in (

@@ -31,7 +31,7 @@ from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.passing import LayeredDrill, control_reach, load_evaluator
 from robotsoccer.drills.referee import SIDE, Referee
-from robotsoccer.options import choice, flag
+from robotsoccer.options import choice, duration, flag
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.skills.intercept import (
     Behaviour,
@@ -142,9 +142,7 @@ class MatchDrill(LayeredDrill):
         if self.size not in (0, *FORMATIONS):
             known = ", ".join(str(n) for n in FORMATIONS)
             raise ValueError(f"players must be 0 (the field's default) or one of {known}")
-        half = float(half_time_s)
-        if not half > 0.0 or not math.isfinite(half):
-            raise ValueError(f"half_time_s must be > 0, got {half_time_s!r}")
+        half = duration("half_time_s", half_time_s)
         self.half_time_s = half
         self.max_time_s = 2.0 * half
         self.transfer = flag("transfer", transfer)
@@ -196,6 +194,11 @@ class MatchDrill(LayeredDrill):
         }
         spots = {team: self._kickoff_spots(facts, n, team, jitter) for team in (LEFT, RIGHT)}
         ticks = round(self.half_time_s / facts.dt_s)
+        if ticks < 1:  # a half of no tick would end the match before its kick-off
+            raise ValueError(
+                f"half_time_s must be at least one tick ({facts.dt_s:g} s), "
+                f"got {self.half_time_s!r}"
+            )
         self.referee = Referee(arena, spots, ticks, control_reach(facts))
         self.referee.start(arena)
 

@@ -58,7 +58,7 @@ from robotsoccer.drills.intercept import (
     cached_launch_plan,
     decision_ticks,
 )
-from robotsoccer.options import choice, flag
+from robotsoccer.options import choice, duration, flag
 from robotsoccer.skills.intercept import (
     Behaviour,
     DefenderMind,
@@ -229,9 +229,7 @@ class PassDrill(LayeredDrill):
         if defenders not in ("intercept", "still"):
             raise ValueError(f"unknown defenders {defenders!r} (known: intercept, still)")
         self.defenders_still = defenders == "still"
-        if not max_time_s > 0.0:
-            raise ValueError(f"max_time_s must be > 0, got {max_time_s!r}")
-        self.max_time_s = float(max_time_s)
+        self.max_time_s = duration("max_time_s", max_time_s)
         self.transfer = flag("transfer", transfer)
         if receiver_half not in ("use", "ignore"):
             raise ValueError(f"unknown receiver_half {receiver_half!r} (known: use, ignore)")

@@ -76,7 +76,7 @@ from robotsoccer.drills.passing import (
     LayeredDrill,
     load_evaluator,
 )
-from robotsoccer.options import choice, flag
+from robotsoccer.options import choice, duration, flag
 from robotsoccer.skills.intercept import (
     Behaviour,
     DefenderMind,
@@ -167,8 +167,8 @@ class SetPlayDrill(LayeredDrill):
         self.model = model
         self.interceptor = check_behaviour(interceptor, net)
         self.net = net
-        if max_time_s is not None and not max_time_s > 0.0:
-            raise ValueError(f"max_time_s must be > 0, got {max_time_s!r}")
+        if max_time_s is not None:
+            max_time_s = duration("max_time_s", max_time_s)
         self._max_time_s = max_time_s
         self.max_time_s = max_time_s or 60.0
         self.transfer = flag("transfer", transfer)

@@ -27,6 +27,7 @@ from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef, end_line_crossing
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
+from robotsoccer.options import duration
 from robotsoccer.skills.shootout import ChaseGoalieMind, DribbleShooterMind
 
 SHOOTER = PlayerRef(LEFT, 1)
@@ -40,9 +41,7 @@ class ShootoutDrill:
     labels: tuple[str, ...] = ("SAVE", "GOAL", "MISS")
 
     def __init__(self, max_time_s: float = 12.0) -> None:
-        if not max_time_s > 0.0:
-            raise ValueError(f"max_time_s must be > 0, got {max_time_s!r}")
-        self.max_time_s = max_time_s
+        self.max_time_s = duration("max_time_s", max_time_s)
         self._touched = False
         self._last_ball = (0.0, 0.0)
 

@@ -116,6 +116,10 @@ def run_time_s(distance_m: float, accel_mps2: float, top_speed_mps: float) -> fl
     return top_speed_mps / accel_mps2 + (distance_m - ramp_m) / top_speed_mps
 
 
+MAX_NOISE_PERIODS = 1_000_000
+"""The most noise periods :func:`lateral_wander` sums over (a flight lasts a few hundred)."""
+
+
 def lateral_wander(ball: BallLaw, speed_mps: float, flight_s: float, period_s: float) -> float:
     """Standard deviation [m] of the ball's sideways miss at arrival, per unit noise level.
 
@@ -123,7 +127,16 @@ def lateral_wander(ball: BallLaw, speed_mps: float, flight_s: float, period_s: f
     a fraction δ of the speed, carries the ball δ times the distance it still covers (it slows
     by the same law), so the miss is the root of the sum of squares of those distances times
     noise / √3.
+
+    Raises:
+        ValueError: A flight of more than :data:`MAX_NOISE_PERIODS` noise periods (or none
+            that ends): the sum would not end in reasonable time.
     """
+    if not (period_s > 0.0 and flight_s / period_s <= MAX_NOISE_PERIODS):
+        raise ValueError(
+            f"a flight of {flight_s!r} s spans more than {MAX_NOISE_PERIODS} noise periods "
+            f"of {period_s!r} s"
+        )
     total = ball.distance_in(speed_mps, flight_s)
     squares = 0.0
     k = 1

@@ -41,6 +41,7 @@ from field_models.protocol import Mind, Percept, PlayerRef
 from field_models.registry import FIELD_MODELS, field_facts
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept import DEFENDER, InterceptDrill
+from robotsoccer.envs.checks import checked_seed, checked_turns
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.intercept import TA_CLIP_RAD, DefenderMind
 
@@ -99,7 +100,12 @@ class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[np.ndarray, dict[str, Any]]:
-        """Run the next trial up to the defender's decision; its (BD, BA, previous BD)."""
+        """Run the next trial up to the defender's decision; its (BD, BA, previous BD).
+
+        Raises:
+            ValueError: A seed that is not None or a whole number in [0, 2^64).
+        """
+        seed = checked_seed(seed)
         super().reset(seed=seed)
         if seed is not None:
             self._experiment_seed, self._next_trial = int(seed), 0
@@ -116,12 +122,16 @@ class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
         raise RuntimeError(f"no decision in {SKIP_LIMIT} trials in a row: check the drill options")
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        """Turn by BA + TA and dash to the verdict; reward 1 for a SAVE."""
+        """Turn by BA + TA and dash to the verdict; reward 1 for a SAVE.
+
+        Raises:
+            ValueError: An action that is not one finite number (shape (1,) or a scalar).
+        """
         episode = self._episode
         if episode is None:
             raise RuntimeError("step() before reset(), or after the episode ended")
-        ta = float(np.clip(np.asarray(action, dtype=np.float64).reshape(-1)[0], -TA_CLIP_RAD,
-                           TA_CLIP_RAD))  # fmt: skip
+        turn = checked_turns(action, 1)[0]
+        ta = float(np.clip(turn, -TA_CLIP_RAD, TA_CLIP_RAD))
         verdict = episode.finish(ta)
         self._episode = None
         reward = 1.0 if verdict.label == "SAVE" else 0.0

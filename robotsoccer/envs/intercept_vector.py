@@ -43,6 +43,7 @@ from gymnasium.vector.utils import batch_space
 
 from field_models.registry import PAPER_FIELD
 from robotsoccer.drills.intercept_batch import batch_reason, decisions_batch, play_batch
+from robotsoccer.envs.checks import SEED_LIMIT, checked_seed, checked_seeds, checked_turns
 from robotsoccer.envs.intercept import MAX_DISTANCE_UNITS, SKIP_LIMIT, InterceptEnv
 from robotsoccer.skills.intercept import TA_CLIP_RAD
 
@@ -87,7 +88,7 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
         self.single_action_space = single.action_space
         self.observation_space = batch_space(self.single_observation_space, num_envs)
         self.action_space = batch_space(self.single_action_space, num_envs)
-        self._seeds = np.zeros(num_envs, dtype=np.int64)
+        self._seeds = np.zeros(num_envs, dtype=np.uint64)
         self._trials = np.zeros(num_envs, dtype=np.int64)  # the trial each sub-env is at
         self._obs = np.zeros((num_envs, 3), dtype=np.float32)
         self._ready = False
@@ -99,19 +100,26 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
 
         `seed`: one int (sub-environment i gets ``seed + i``), one per sub-environment, or None
         (seeds drawn from the vector environment's own generator, itself seeded from the OS).
+
+        Raises:
+            ValueError: A seed that is not a whole number in [0, 2^64) (``seed + i`` included),
+                or a list of seeds of another length.
         """
         if seed is None:
             if not hasattr(self, "_np_random") or self._np_random is None:
                 self._np_random, _ = gym.utils.seeding.np_random(None)
-            seeds = self._np_random.integers(2**31 - 1, size=self.num_envs)
-        elif isinstance(seed, int | np.integer):
-            seeds = int(seed) + np.arange(self.num_envs)
-            self._np_random, _ = gym.utils.seeding.np_random(int(seed))
+            seeds = [int(s) for s in self._np_random.integers(2**31 - 1, size=self.num_envs)]
+        elif isinstance(seed, int | np.integer) and not isinstance(seed, bool):
+            first = checked_seed(seed)
+            assert first is not None
+            if first + self.num_envs > SEED_LIMIT:
+                raise ValueError(f"seed + i must be below 2**64 for all {self.num_envs} envs")
+            seeds = [first + i for i in range(self.num_envs)]
+            self._np_random, _ = gym.utils.seeding.np_random(first)
         else:
-            if len(seed) != self.num_envs:
-                raise ValueError(f"expected {self.num_envs} seeds, got {len(seed)}")
-            seeds = np.asarray(seed, dtype=np.int64)
-        self._seeds = np.asarray(seeds, dtype=np.int64)
+            seeds = checked_seeds(seed, self.num_envs)
+        # uint64: a seed up to 2^64 - 1 fits; the batch reads the same 64 bits as int64.
+        self._seeds = np.array(seeds, dtype=np.uint64)
         self._trials = np.zeros(self.num_envs, dtype=np.int64)
         self._next_decisions(np.ones(self.num_envs, dtype=bool))
         self._ready = True
@@ -123,9 +131,8 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
         """Play every episode to its verdict with TA = `actions`; start the next ones."""
         if not self._ready:
             raise RuntimeError("step() before reset()")
-        ta = np.asarray(actions, dtype=np.float64).reshape(self.num_envs, -1)[:, 0]
-        ta = np.clip(ta, -TA_CLIP_RAD, TA_CLIP_RAD)
-        results = play_batch(self.spec_, self._seeds, self._trials, ta)
+        ta = np.clip(checked_turns(actions, self.num_envs), -TA_CLIP_RAD, TA_CLIP_RAD)
+        results = play_batch(self.spec_, self._batch_seeds(), self._trials, ta)
         labels = np.array([r.label for r in results])
         rewards = (labels == "SAVE").astype(np.float64)
         infos: dict[str, Any] = {
@@ -141,13 +148,21 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
         done = np.ones(self.num_envs, dtype=bool)
         return self._obs.copy(), rewards, done, np.zeros(self.num_envs, dtype=bool), infos
 
+    def _batch_seeds(self) -> npt.NDArray[np.int64]:
+        """The seeds as the batch takes them: int64 holding the same 64 bits.
+
+        The streams mix the seed modulo 2^64, so a seed above 2^63 gives the numbers the single
+        environment gives it.
+        """
+        return self._seeds.astype(np.int64)
+
     def _next_decisions(self, pending: npt.NDArray[np.bool_]) -> None:
         """From each pending sub-env's present trial on, find the first with a decision."""
         for _ in range(SKIP_LIMIT):
             rows = np.flatnonzero(pending)
             if not rows.size:
                 return
-            found = decisions_batch(self.spec_, self._seeds[rows], self._trials[rows])
+            found = decisions_batch(self.spec_, self._batch_seeds()[rows], self._trials[rows])
             decided = ~np.isnan(found[:, 0])
             u = self.unit_m
             bd, ba, previous = found[decided].T
@@ -172,7 +187,21 @@ def make_intercept_vector_env(
     single = InterceptEnv(**kwargs)
     if batch_reason(single.spec_) is None:
         return InterceptVectorEnv(num_envs, **kwargs)
-    return gym.vector.SyncVectorEnv(
+    return CheckedSyncVectorEnv(
         [lambda: InterceptEnv(**kwargs) for _ in range(num_envs)],
         autoreset_mode=AutoresetMode.SAME_STEP,
     )
+
+
+class CheckedSyncVectorEnv(gym.vector.SyncVectorEnv):
+    """Gymnasium's ``SyncVectorEnv`` that refuses a batch of actions of the wrong shape.
+
+    Gymnasium itself would hand the first ``num_envs`` rows out and drop the rest.
+    """
+
+    def step(
+        self, actions: npt.ArrayLike
+    ) -> tuple[Any, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
+        """Check the batch (:func:`~robotsoccer.envs.checks.checked_turns`), then step."""
+        turns = checked_turns(actions, self.num_envs)
+        return super().step(turns.reshape(self.num_envs, 1))

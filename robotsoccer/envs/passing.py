@@ -77,6 +77,7 @@ from field_models.registry import FIELD_MODELS
 from learning.pass_features import ATTRIBUTE_NAMES
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.passing import DEFENDERS, PASSER, RECEIVERS, PassDrill
+from robotsoccer.envs.checks import checked_seed
 from robotsoccer.envs.intercept import MAX_DISTANCE_UNITS, SKIP_LIMIT
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.intercept import TA_CLIP_RAD, DefenderMind
@@ -194,7 +195,9 @@ class PassParallelEnv(ParallelEnv[str, Observation, ActionValue]):
         Raises:
             RuntimeError: :data:`~robotsoccer.envs.intercept.SKIP_LIMIT` trials in a row ended
                 before the passer decided.
+            ValueError: A seed that is not None or a whole number in [0, 2^64).
         """
+        seed = checked_seed(seed)
         if seed is not None:
             self._experiment_seed, self._next_trial = int(seed), 0
         elif self._experiment_seed is None:

@@ -78,7 +78,7 @@ import dataclasses
 import math
 import os
 import re
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
@@ -687,11 +687,16 @@ def read_rcg(path: Path) -> RcgGame:
                     raise _malformed(path, number, "bad team line", line)
                 if teams is None:
                     teams = (team.group(2), team.group(3))
-                score = (int(team.group(4)), int(team.group(5)))
+                score = (_whole(path, number, team.group(4), line),
+                         _whole(path, number, team.group(5), line))  # fmt: skip
             elif kind == "server_param":
                 if _SERVER_PARAM_LINE.fullmatch(line) is None:
                     raise _malformed(path, number, "bad server_param line", line)
-                params.update((m.group(1), m.group(2).strip('"')) for m in _PARAM.finditer(line))
+                entries = [(m.group(1), m.group(2)) for m in _PARAM.finditer(line)]
+                for name, value in entries:
+                    if not value.startswith('"') and _overflows(value):
+                        raise _malformed(path, number, f"{name}: not a finite number", line)
+                params.update((name, value.strip('"')) for name, value in entries)
                 dt = _cycle_s(path, number, params.get("simulator_step"), line)
     return RcgGame(teams=teams or ("", ""), server_params=params, frames=frames)
 
@@ -719,23 +724,56 @@ def _read_show(
     entries = _PLAYER.findall(rest)
     if len(entries) != rest.count("(("):
         raise _malformed(path, number, "bad player in show line", line)
-    tick = int(show.group(1))
-    bx, by, bvx, bvy = (float(v) for v in show.group(2, 3, 4, 5))
+    tick = _whole(path, number, show.group(1), line)
+    bx, by, bvx, bvy = _finite(path, number, show.group(2, 3, 4, 5), line)
     players: dict[PlayerRef, BodyState] = {}
-    for side, unum, state, x, y, vx, vy, body, _neck in entries:
+    for side, unum, state, *numbers in entries:
+        if len(state) > _MAX_DIGITS:
+            raise _malformed(path, number, "a player state too long to be one", line)
         if not int(state, 16) & _STAND:
             continue  # disabled: a disconnected player's placeholder
-        ref = PlayerRef(LEFT if side == "l" else RIGHT, int(unum))
+        x, y, vx, vy, body, _neck = _finite(path, number, numbers, line)
+        ref = PlayerRef(LEFT if side == "l" else RIGHT, _whole(path, number, unum, line))
         players[ref] = BodyState(
-            float(x),
-            0.0 - float(y),
-            wrap_angle(0.0 - float(body) * _DEG2RAD),
-            float(vx) / dt,
-            0.0 - float(vy) / dt,
+            x,
+            0.0 - y,
+            wrap_angle(0.0 - body * _DEG2RAD),
+            vx / dt,
+            0.0 - vy / dt,
         )
     ball = BodyState(bx, 0.0 - by, 0.0, bvx / dt, 0.0 - bvy / dt)
+    states = (ball, *players.values())
+    if not all(math.isfinite(v) for s in states for v in (s.vx, s.vy)):  # 1e308 / 0.1 s
+        raise _malformed(path, number, "a velocity beyond a double's range", line)
     truth = Truth(tick=tick, time_s=tick * dt, ball=ball, players=players)
     return GameFrame(truth=truth, play_mode=mode, score=score)
+
+
+_MAX_DIGITS = 18
+"""The most digits a whole number of a game log may have (cycles, scores: within 64 bits)."""
+
+
+def _whole(path: Path, number: int, text: str, line: str) -> int:
+    """A whole number of a line (matched as digits), refused when it has too many digits."""
+    if len(text.lstrip("-")) > _MAX_DIGITS:
+        raise _malformed(path, number, f"a number of more than {_MAX_DIGITS} digits", line)
+    return int(text)
+
+
+def _finite(path: Path, number: int, texts: Sequence[str], line: str) -> list[float]:
+    """The numbers of a line; one that overflows a double (``1e999``) is refused like ``inf``."""
+    values = [float(text) for text in texts]
+    if not all(math.isfinite(v) for v in values):
+        raise _malformed(path, number, "a number beyond a double's range", line)
+    return values
+
+
+def _overflows(text: str) -> bool:
+    """Whether `text` reads as a number that is not finite (``1e999``, ``inf``, ``nan``)."""
+    try:
+        return not math.isfinite(float(text))
+    except ValueError:
+        return False  # not a number at all: a bare string value
 
 
 def _malformed(path: Path, number: int, reason: str, line: str) -> ValueError:

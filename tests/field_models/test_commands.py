@@ -68,3 +68,15 @@ def test_bad_command_text_is_refused_with_the_reason(text: str, why: str) -> Non
 def test_any_text_parses_or_raises_the_parse_error_only(text: str) -> None:
     with contextlib.suppress(CommandParseError):
         parse_command(text)
+
+
+@pytest.mark.parametrize("message", [" x", "x ", " ", '"q"', '"', 'a"b', "a)", "\x1c", "hi there"])
+def test_a_say_survives_render_and_parse_whitespace_and_quotes_included(message: str) -> None:
+    assert parse_command(render_command(Say(message))) == Say(message)
+
+
+def test_a_quoted_say_with_a_leading_space_round_trips() -> None:
+    said = parse_command('(say " x")')
+    assert said == Say(" x")
+    assert parse_command(render_command(said)) == said
+    assert render_command(Say("hi")) == "(say hi)"  # bare where that is safe, as before

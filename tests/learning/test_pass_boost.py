@@ -68,3 +68,35 @@ def test_save_and_load_round_trip_and_bad_files_are_refused(data, tmp_path: Path
         bad.write_text(text)
         with pytest.raises(ModelFileError, match=name):
             load_pass_boost(bad)
+
+
+def _strict(token: str) -> None:
+    raise AssertionError(f"not strict JSON: {token}")
+
+
+def test_saved_files_are_strict_json_and_infinite_thresholds_load_back(
+    data, tmp_path: Path
+) -> None:
+    x, y = data
+    model = fit_pass_boost(x, y, NAMES, schema="s", max_iter=10)
+    assert np.isinf(model.threshold).any()  # scikit-learn splits unknowns off at +inf
+    path = save_pass_boost(model, tmp_path / "boost.json", {})
+    raw = json.loads(path.read_text(), parse_constant=_strict)
+    assert raw["version"] == 2 and "Infinity" not in path.read_text().replace('"Infinity"', "")
+    again, _ = load_pass_boost(path)
+    np.testing.assert_array_equal(again.threshold, model.threshold)
+    # A version-1 file (bare Infinity tokens, as written before) loads to the same model.
+    old = {**raw, "version": 1, "threshold": model.threshold.tolist()}
+    legacy = tmp_path / "legacy.json"
+    legacy.write_text(json.dumps(old))
+    assert "Infinity" in legacy.read_text()
+    np.testing.assert_array_equal(load_pass_boost(legacy)[0].threshold, model.threshold)
+    for name, threshold in (("word.json", "big"), ("nan.json", float("nan"))):
+        bad = tmp_path / name
+        bad.write_text(
+            json.dumps({**raw, "threshold": [[threshold] * len(raw["left"][0])] * len(raw["left"])})
+        )
+        with pytest.raises(ModelFileError, match=name):
+            load_pass_boost(bad)
+    with pytest.raises(ValueError):
+        save_pass_boost(model, tmp_path / "nan_provenance.json", {"noise": float("nan")})

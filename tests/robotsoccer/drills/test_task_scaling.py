@@ -87,3 +87,13 @@ def test_a_ball_that_cannot_make_the_flight_is_refused() -> None:
     sticky = dataclasses.replace(facts, ball=BallLaw("constant", facts.dt_s, decel_mps2=50.0))
     with pytest.raises(ValueError, match="launch speed"):
         task_launch(sticky, reference_flight())
+
+
+def test_the_wander_sum_has_a_period_limit() -> None:
+    from robotsoccer.drills.task_scaling import lateral_wander
+
+    ball = BallLaw("constant", 1 / 240, decel_mps2=0.1)
+    assert lateral_wander(ball, 1.0, 2.0, 0.1) > 0.0
+    for flight_s, period_s in ((1e9, 0.1), (2.0, 1e-300), (float("inf"), 0.1), (2.0, 0.0)):
+        with pytest.raises(ValueError, match="noise periods"):
+            lateral_wander(ball, 1.0, flight_s, period_s)
