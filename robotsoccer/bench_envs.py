@@ -4,7 +4,10 @@
 its Box with a fixed seed) for a number of ticks, then the same field, preset, players
 and baseline minds without the environment (the match drill's loop: arena, minds, referee;
 the learner there is a baseline mind too) for as many ticks, in the same process, one after
-the other. The ratio of their speeds is the environment layer's share of the cost
+the other. Times are this process's CPU seconds (``time.process_time``), not wall seconds: on
+a machine shared with other jobs the wall clock charges one run with the others' work, while
+the question is what the layer itself costs. The ratio of the speeds is the environment
+layer's share of the cost
 (observations, rewards, the coach's checks, episode resets); rSoccer's Python layer costs 40-60%
 of its physics, the target here is at most 20% (a ratio of at least 0.8).
 """
@@ -24,13 +27,13 @@ from robotsoccer.runs.runner import TrialLoop
 
 
 def env_run(field_model: str, ticks: int, seed: int = 0) -> tuple[int, int, float]:
-    """(steps, ticks, wall seconds) of the score environment over at least `ticks` ticks."""
+    """(steps, ticks, CPU seconds) of the score environment over at least `ticks` ticks."""
     env = ScoreEnv(field_model)
     # Drawn up front: sampling the Box costs more than an environment step.
     shape = env.action_space.shape or ()
     actions = np.random.default_rng(seed).uniform(-1.0, 1.0, (4096, *shape)).astype(np.float32)
     steps = done_ticks = 0
-    start = time.perf_counter()
+    start = time.process_time()
     episode_seed = seed
     while done_ticks < ticks:
         env.reset(seed=episode_seed)
@@ -42,11 +45,11 @@ def env_run(field_model: str, ticks: int, seed: int = 0) -> tuple[int, int, floa
             steps += 1
             ended = terminated or truncated
         done_ticks += info["tick"]
-    return steps, done_ticks, time.perf_counter() - start
+    return steps, done_ticks, time.process_time() - start
 
 
 def bare_run(field_model: str, ticks: int, seed: int = 0) -> float:
-    """Wall seconds of the same field and minds stepping `ticks` ticks without the env layer."""
+    """CPU seconds of the same field and minds stepping `ticks` ticks without the env layer."""
     env = ScoreEnv(field_model)  # the same preset, options and players
     dt = env.facts.dt_s
     drill = MatchDrill("baseline", "baseline", players=env.players_per_side,
@@ -54,10 +57,10 @@ def bare_run(field_model: str, ticks: int, seed: int = 0) -> float:
     drill.max_time_s = ticks * dt  # one half: no half-time restart
     rngs = TrialRngs(seed, 0)
     arena = make_arena(field_model, env.preset, env.players, rngs, env.field_options)
-    start = time.perf_counter()
+    start = time.process_time()
     drill.setup(arena, rngs)
     TrialLoop(arena, drill, drill.minds(arena, rngs)).run()
-    return time.perf_counter() - start
+    return time.process_time() - start
 
 
 def score_env_figures(field_model: str, ticks: int) -> dict[str, Any]:
