@@ -150,7 +150,7 @@ def test_an_episode_ends_after_the_step_that_ended_it() -> None:
     env.reset(seed=0)
     truncated = False
     while not truncated:
-        *_, terminated, truncated, info = env.step(env.action_space.sample())
+        *_, terminated, truncated, _ = env.step(env.action_space.sample())
         if terminated:
             break
     with pytest.raises(RuntimeError, match="ended"):
