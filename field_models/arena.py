@@ -398,3 +398,29 @@ class CountsCommands(Protocol):
     def command_tally(self) -> dict[PlayerRef, CommandTally]:
         """Every player's counts after the last tick."""
         ...
+
+
+@runtime_checkable
+class WheelDrive(Protocol):
+    """An arena whose players can be driven wheel by wheel (an optional extra: the robots).
+
+    A per-step controller (:mod:`robotsoccer.envs.control`) asks for it: it sends wheel speeds
+    through the same actuation path as every other action (on the robots: host, link,
+    firmware), and can switch that path's imperfections off.
+    """
+
+    def submit_wheels(self, ref: PlayerRef, left_mps: float, right_mps: float) -> None:
+        """Drive `ref`'s wheels at these speeds [m/s] (capped at the top wheel speed) from now.
+
+        Replaces the player's pending actions, as a new decision does; the command is held for
+        the actuation path's hold time (a lost packet does not stall the player), after which
+        the player stops unless a newer command came.
+        """
+        ...
+
+    def ideal_actuation(self) -> None:
+        """From now on, commands reach the players at once and always.
+
+        No latency, no loss, no watchdog: the actuation twin of ``perfect_perception``.
+        """
+        ...

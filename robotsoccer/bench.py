@@ -23,6 +23,10 @@ figure's target beside it (:func:`target_cell`).
   link and firmware running) in this process, on one core: wall seconds and simulated seconds
   per wall second. The baseline needs no model files; the layered team's net and tree are a
   small share of a decision's cost.
+* ``envs.score_*.<field model>`` — the per-step ``robotsoccer/Score-v0`` (3 v 3) in this
+  process: steps per second and real-time factor, the bare arena's real-time factor with the
+  same players and baseline minds, and their ratio, the environment layer's share
+  (:mod:`robotsoccer.bench_envs`; target: at least 0.8).
 * ``training.net_1000_saves_s`` — wall seconds to train the paper's 3-4-1 net for 3000 epochs
   on 1000 synthetic saves (torch on the CPU, one thread).
 """
@@ -143,6 +147,9 @@ def iter_benchmarks(
         wall = median_of(repeats, functools.partial(match_wall_s, model, half))
         yield f"match.wall_s.{model}", round(wall, 2)
         yield f"match.realtime_factor.{model}", round(2.0 * half / wall, 1)
+    for model in FIELD_MODELS:
+        say(f"score environment against the bare arena: {model}")
+        yield from _score_env_figures(model, quick, repeats)
     say("training: the interception net on 1000 saves")
     yield "training.net_1000_saves_s", round(median_of(repeats, training_seconds), 2)
     yield "machine.python", platform.python_version()
@@ -181,6 +188,24 @@ def _batch_figures(quick: bool, repeats: int, say: Progress) -> Iterator[tuple[s
         steps = max(2, (2_048 if quick else 16_384) // envs)
         step = functools.partial(bb.vector_env_steps_per_s, envs, steps)
         yield f"envs.intercept_vector_steps_per_s.{envs}_envs", round(median_of(repeats, step))
+
+
+def _score_env_figures(model: str, quick: bool, repeats: int) -> Iterator[tuple[str, Any]]:
+    """``robotsoccer/Score-v0`` against the bare arena (:mod:`robotsoccer.bench_envs`).
+
+    The repeat with the median ratio gives every figure, so they belong together.
+    """
+    from robotsoccer.bench_envs import score_env_figures
+    from robotsoccer.envs.control import ScoreEnv
+
+    seconds = 60.0 if quick else 200.0
+    ticks = round(seconds / ScoreEnv(model).facts.dt_s)
+    runs = sorted(
+        (score_env_figures(model, ticks) for _ in range(repeats)),
+        key=lambda f: f["env_to_bare_ratio"],
+    )
+    for name, value in runs[len(runs) // 2].items():
+        yield f"envs.score_{name}.{model}", value
 
 
 def nest(rows: Iterable[tuple[str, Any]]) -> dict[str, Any]:

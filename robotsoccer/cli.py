@@ -83,6 +83,8 @@ BENCH_TARGETS = {
     "training.net_1000_saves_s": ("<=", 5.0),
     "match.wall_s.soccer_server": ("<=", 60.0),
     "match.realtime_factor.robot_physics": (">=", 50.0),
+    "envs.score_env_to_bare_ratio.robot_physics": (">=", 0.8),
+    "envs.score_env_to_bare_ratio.soccer_server": (">=", 0.8),
 }
 """What ``robotsoccer bench`` checks each figure against."""
 

@@ -22,6 +22,8 @@ Server's see form (``"see"``, :func:`~field_models.robot_physics.host.percept_te
 
 from __future__ import annotations
 
+import dataclasses
+
 from field_models.arena import ArenaEvent, FieldFacts
 from field_models.commands import render_command
 from field_models.protocol import Action, BodyState, Percept, PlayerRef, Truth
@@ -32,6 +34,9 @@ from field_models.robot_physics.host import CentralHost, percept_text
 from field_models.robot_physics.link import Link
 from field_models.robot_physics.world import RobotWorld
 from field_models.seeding import TrialRngs
+
+NO_WATCHDOG_TICKS = 1 << 40
+"""The firmware timeout under :meth:`RobotArena.ideal_actuation`: longer than any trial."""
 
 
 class RobotArena:
@@ -70,11 +75,12 @@ class RobotArena:
             latency_ticks=preset.ticks(preset.camera.latency_s, "camera.latency_s"),
             rng=rngs["camera"],
         )
+        self._link_rng = rngs["link"]
         self.link = Link(
             preset.link,
             packet_period_ticks=preset.ticks(1.0 / preset.link.packets_per_s, "link.packets_per_s"),
             latency_ticks=preset.ticks(preset.link.latency_s, "link.latency_s"),
-            rng=rngs["link"],
+            rng=self._link_rng,
         )
         timeout = preset.ticks(preset.firmware.timeout_s, "firmware.timeout_s")
         self.firmware = [
@@ -167,6 +173,26 @@ class RobotArena:
         if self.keep_events:
             self._events += [ArenaEvent(tick, "command", render_command(a), ref) for a in actions]
         self.host.submit(ref, actions, tick)
+
+    def submit_wheels(self, ref: PlayerRef, left_mps: float, right_mps: float) -> None:
+        """Send wheel speeds [m/s] to a robot through host, link and firmware (WheelDrive)."""
+        tick = self.world.tick
+        if self.keep_events:
+            text = f"(wheels {left_mps:.3f} {right_mps:.3f})"
+            self._events.append(ArenaEvent(tick, "command", text, ref))
+        self.host.wheels(ref, left_mps, right_mps, tick)
+
+    def ideal_actuation(self) -> None:
+        """No link latency, loss or rate limit and no firmware watchdog from now on (WheelDrive).
+
+        The host's own timing (a turn's duration, a dash's hold) stays: it is the robots'
+        behaviour, not an imperfection of the path.
+        """
+        ideal = dataclasses.replace(self.preset.link, loss_prob=0.0, latency_s=0.0)
+        self.link = Link(ideal, packet_period_ticks=1, latency_ticks=0, rng=self._link_rng)
+        self.host.ideal_link(self.link)
+        for fw in self.firmware:
+            fw.timeout_ticks = NO_WATCHDOG_TICKS
 
     def drain_events(self) -> list[ArenaEvent]:
         """Client commands, primitives sent and (tracing) percepts since the last call."""

@@ -10,9 +10,9 @@ Behaviour:
 
 * **Addressing**: a command is accepted when addressed to this robot or broadcast (robot None).
 * **Newest wins**: a command whose `seq` is not newer than the newest accepted one is dropped
-  (stale or duplicate). An accepted drive command (STOP, FORWARD, BACKWARD, TURN, ARC) replaces
-  the running one; a KICK only arms the kicker (:meth:`Firmware.take_kick`) and leaves the
-  running motion as it is, so a robot can kick while driving.
+  (stale or duplicate). An accepted drive command (STOP, FORWARD, BACKWARD, TURN, ARC, WHEELS)
+  replaces the running one; a KICK only arms the kicker (:meth:`Firmware.take_kick`) and leaves
+  the running motion as it is, so a robot can kick while driving.
 * **Duration**: a command with `duration_ticks = D` accepted at tick `r` drives for update ticks
   `r <= tick < r + D`, then the wheels stop. Without a duration it runs until replaced.
 * **Timeout (watchdog)**: once `timeout_ticks` pass after the last accepted command (at ticks
@@ -21,6 +21,7 @@ Behaviour:
 * **FORWARD/BACKWARD/TURN**: fixed targets (v, v), (-v, -v), (-ω·b/2, ω·b/2) for track b.
 * **ARC** (speed v, rate ω): (u - ω·b/2, u + ω·b/2) with u = min(v, v_max - |ω|·b/2): the turn
   rate is kept and the forward speed is what the top wheel speed leaves.
+* **WHEELS** (left l, right r): (l, r), each clipped to ±v_max.
 
 :meth:`Firmware.due` says when :meth:`Firmware.update` could change its output, so the arena can
 skip quiet ticks: a new command, or an expiring duration or timeout.
@@ -144,6 +145,10 @@ class Firmware:
             rate = max(-self._max_rate, min(self._max_rate, command.value))
             self._left = -rate * self._half_track
             self._right = rate * self._half_track
+        elif primitive is Primitive.WHEELS:
+            cap = self._vmax
+            self._left = max(-cap, min(cap, command.value))
+            self._right = max(-cap, min(cap, command.rate))
         else:  # STOP
             self._left = self._right = 0.0
 

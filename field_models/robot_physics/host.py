@@ -46,6 +46,8 @@ Dash or Kick) at once. Let v_max be the top wheel speed, T one camera period, ω
   :data:`PUSH_HALF_ANGLE_RAD`: push, i.e. FORWARD at p/100 · v_max for 2·T. Otherwise (ball
   direction too far off the heading for the kicker or a push): the Turn(d) above, so that a
   repeated kick becomes a kick once the robot faces d.
+* wheel speeds (:meth:`CentralHost.wheels`, a per-step controller's command): WHEELS (left,
+  right), held for 2·T like a dash; they replace any pending body actions.
 * ``Say(text)``: not sent to the robot; relayed by the host to every other robot's heard buffer,
   with the sender and, when both poses are known, the direction of the sender from the listener.
 
@@ -270,6 +272,24 @@ class CentralHost:
         if due < self.next_release_tick:
             self.next_release_tick = due
 
+    def wheels(self, ref: PlayerRef, left_mps: float, right_mps: float, tick: int) -> None:
+        """Send WHEELS (left, right) [m/s] to `ref` now, held for the dash time (2·T).
+
+        A new decision: whatever body actions of `ref` were still pending are dropped.
+        """
+        i = self._index[ref]
+        self._pending[i] = []
+        self._release_at[i] = NEVER
+        self._send(
+            ref, Primitive.WHEELS, tick, value=left_mps, duration_ticks=self._hold_ticks,
+            rate=right_mps,
+        )  # fmt: skip
+
+    def ideal_link(self, link: Link) -> None:
+        """Send on `link` from now on, a link without rate limit (one packet slot per tick)."""
+        self.link = link
+        self._min_ticks = link.packet_period_ticks
+
     def stop(self, tick: int, ref: PlayerRef | None = None) -> None:
         """Send STOP to `ref`, or broadcast it to every robot when `ref` is None."""
         self._send(ref, Primitive.STOP, tick)
@@ -413,6 +433,8 @@ def describe(command: Command) -> str:
         text = f"ARC {command.value:.2f} m/s {command.rate:+.2f} rad/s"
     elif primitive is Primitive.KICK:
         return f"KICK {command.value:.0f}"
+    elif primitive is Primitive.WHEELS:
+        text = f"WHEELS {command.value:+.2f} {command.rate:+.2f} m/s"
     else:
         return "STOP"
     if command.duration_ticks is not None:

@@ -50,6 +50,10 @@ class Primitive(IntEnum):
     difference): the turn rate is kept, the forward speed is what the wheels' top speed leaves."""
     KICK = 5
     """Fire the kicker at power `value` (0–100); the wheels keep the running command."""
+    WHEELS = 6
+    """Drive the left wheel at `value` m/s and the right at `rate` m/s (each capped at the top
+    wheel speed): the robot-specific action code of a per-step controller (FIRASim's
+    ``Command{wheel_left, wheel_right}``)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -62,8 +66,9 @@ class Command:
         robot: The addressee, or None for a broadcast to every robot.
         primitive: What to do.
         value: FORWARD/BACKWARD/ARC speed [m/s] (>= 0); TURN rate [rad/s], left positive; KICK
-            power (0–100). Unused by STOP.
-        rate: ARC's turn rate [rad/s], left positive; unused by the others.
+            power (0–100); WHEELS the left wheel's speed [m/s]. Unused by STOP.
+        rate: ARC's turn rate [rad/s], left positive; WHEELS the right wheel's speed [m/s];
+            unused by the others.
         duration_ticks: How long the motion runs from its arrival, or None: until replaced or
             the firmware's timeout.
         sent_tick: Tick at which the host sent the command.

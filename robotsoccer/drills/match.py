@@ -8,7 +8,7 @@ two learned decisions, so a series measures what the layers are worth in play.
 
 **Size.** ``players`` per side: by default 11 on an open field (the Soccer Server) and 5 on a
 walled table (the robots). Formation homes are in units (:data:`FORMATIONS`, ours: 4-4-2 and
-1-2-2), mirrored for the right team.
+1-2-2; 1-1-1 and 1-1 for small-sided games), mirrored for the right team.
 
 **Referee** (:mod:`robotsoccer.drills.referee`): the Soccer Server's play modes on an open
 field, the table's restart rules on a walled one. The match lasts two halves of
@@ -67,9 +67,12 @@ FORMATIONS: dict[int, dict[int, tuple[float, float]]] = {
         4: (-2.0, 12.0),
         5: (-2.0, -12.0),
     },
+    3: {1: (-50.0, 0.0), 2: (-25.0, 12.0), 3: (-5.0, -10.0)},
+    2: {1: (-50.0, 0.0), 2: (-5.0, 0.0)},
 }
-"""Formation homes of the left team [units] (module docstring); number 1 keeps goal."""
-KICKER = {11: 10, 5: 4}
+"""Formation homes of the left team [units] (module docstring); number 1 keeps goal. The 3- and
+2-a-side ones are for small-sided games (the VSS table's 3 v 3, ``robotsoccer/Score-v0``)."""
+KICKER = {11: 10, 5: 4, 3: 3, 2: 2}
 """Who kicks off."""
 GOALIE = 1
 """Who keeps goal: number 1 of every formation."""

@@ -7,7 +7,14 @@
   drill engine);
 * :mod:`robotsoccer.envs.passing` — the pass drill's decisions (layer 2's choice of receiver,
   layer 1's TA for the receiver and the defenders) as a PettingZoo parallel environment,
-  :func:`~robotsoccer.envs.passing.pass_parallel_env`.
+  :func:`~robotsoccer.envs.passing.pass_parallel_env`;
+* :mod:`robotsoccer.envs.control` — per-step control: ``robotsoccer/GoToBall-v0`` and
+  ``robotsoccer/Score-v0`` on either field model (spaces in
+  :mod:`robotsoccer.envs.control_spaces`; ``gymnasium.make_vec`` gives Gymnasium's sync or,
+  with ``vectorization_mode="async"``, multi-process vector environments).
+
+Every environment draws frames (``render_mode="rgb_array"`` or ``"human"``,
+:mod:`robotsoccer.envs.rendering`).
 
 Importing this package registers the ids with Gymnasium.
 """
@@ -16,6 +23,7 @@ from __future__ import annotations
 
 from gymnasium.envs.registration import register, registry
 
+from robotsoccer.envs.control import GoToBallEnv, ScoreEnv
 from robotsoccer.envs.intercept import InterceptEnv
 from robotsoccer.envs.intercept_vector import InterceptVectorEnv
 from robotsoccer.envs.passing import PassParallelEnv, pass_parallel_env
@@ -30,10 +38,24 @@ if INTERCEPT_ID not in registry:
         vector_entry_point="robotsoccer.envs.intercept_vector:make_intercept_vector_env",
     )
 
+GO_TO_BALL_ID = "robotsoccer/GoToBall-v0"
+"""The versioned Gymnasium id of :class:`~robotsoccer.envs.control.GoToBallEnv`."""
+SCORE_ID = "robotsoccer/Score-v0"
+"""The versioned Gymnasium id of :class:`~robotsoccer.envs.control.ScoreEnv`."""
+
+for _id, _entry in ((GO_TO_BALL_ID, "GoToBallEnv"), (SCORE_ID, "ScoreEnv")):
+    if _id not in registry:
+        # No step limit here: each task's own time limit truncates (max_time_s).
+        register(id=_id, entry_point=f"robotsoccer.envs.control:{_entry}")
+
 __all__ = [
+    "GO_TO_BALL_ID",
     "INTERCEPT_ID",
+    "SCORE_ID",
+    "GoToBallEnv",
     "InterceptEnv",
     "InterceptVectorEnv",
     "PassParallelEnv",
+    "ScoreEnv",
     "pass_parallel_env",
 ]

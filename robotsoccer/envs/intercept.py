@@ -25,6 +25,10 @@ continues the stream, and the first reset without one draws a seed from the OS.
 
 Registered as ``robotsoccer/Intercept-v0``
 (``gymnasium.make("robotsoccer/Intercept-v0", field_model="robot_physics")``).
+
+**Frames**: ``render_mode="rgb_array"`` gives the field at the decision after ``reset`` and at
+the verdict after ``step``; ``"human"`` streams them to the rerun viewer
+(:mod:`robotsoccer.envs.rendering`).
 """
 
 from __future__ import annotations
@@ -42,6 +46,7 @@ from field_models.registry import FIELD_MODELS, field_facts
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept import DEFENDER, InterceptDrill
 from robotsoccer.envs.checks import checked_seed, checked_turns
+from robotsoccer.envs.rendering import RENDER_MODES, ArenaView
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.intercept import TA_CLIP_RAD, DefenderMind
 
@@ -70,9 +75,11 @@ class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
         ball_noise: Ball-motion noise; None: the preset's.
         drill_options: Further options of the interception drill (``ta_mode`` excepted: the
             agent's TA is held, as in the paper).
+        render_mode: None, ``"rgb_array"`` or ``"human"`` (module docstring).
     """
 
-    metadata: dict[str, Any] = {"render_modes": []}  # noqa: RUF012 (Gymnasium's class attribute)
+    # Gymnasium's class attribute.
+    metadata: dict[str, Any] = {"render_modes": RENDER_MODES, "render_fps": 30}  # noqa: RUF012
 
     def __init__(
         self,
@@ -80,7 +87,11 @@ class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
         preset: str | None = None,
         ball_noise: float | None = None,
         drill_options: dict[str, Any] | None = None,
+        render_mode: str | None = None,
     ) -> None:
+        self.render_mode = render_mode
+        self._view = ArenaView(render_mode, title="Intercept-v0")
+        self._shown: Any = None  # the arena render() draws: the last episode's
         options = {**(drill_options or {}), "behaviour": "analytic", "ta_mode": "hold"}
         spec = TrialSpec(drill="intercept", field_model=field_model, preset=preset)
         self.spec_ = spec.with_options(**options).with_field(ball_noise=ball_noise)
@@ -117,6 +128,9 @@ class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
             episode = _Episode(dataclasses.replace(self.spec_, seed=self._experiment_seed), trial)
             if episode.run_to_decision():
                 self._episode = episode
+                self._shown = episode.arena
+                if self.render_mode == "human":
+                    self.render()
                 info = {"trial": trial, "seed": self._experiment_seed}
                 return episode.observation(), info
         raise RuntimeError(f"no decision in {SKIP_LIMIT} trials in a row: check the drill options")
@@ -136,7 +150,17 @@ class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
         self._episode = None
         reward = 1.0 if verdict.label == "SAVE" else 0.0
         info = {"label": verdict.label, "reason": verdict.reason, "ticks": episode.arena.tick}
+        if self.render_mode == "human":
+            self.render()
         return episode.observation(), reward, True, False, info
+
+    def render(self) -> Any:
+        """The field now: an RGB array (``"rgb_array"``), or logged to rerun (``"human"``)."""
+        return self._view.render(self._shown)
+
+    def close(self) -> None:
+        """Close the viewer's recording, if any."""
+        self._view.close()
 
 
 class _Episode:

@@ -28,10 +28,15 @@ it fast.
 Only field models with a batch arena (today the Soccer Server) are supported; on the robot
 table ``gymnasium.make_vec("robotsoccer/Intercept-v0", ...)`` gives a ``SyncVectorEnv`` over
 ``InterceptEnv`` (:func:`make_intercept_vector_env`).
+
+**Frames.** The batch keeps arrays, not arenas, so ``render_mode="rgb_array"`` draws each
+sub-environment's present decision by playing its trial to that decision on the one-trial path
+(the same trial, bit for bit: see above). That costs a trial per sub-environment per frame.
 """
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from typing import Any
 
@@ -44,7 +49,8 @@ from gymnasium.vector.utils import batch_space
 from field_models.registry import PAPER_FIELD
 from robotsoccer.drills.intercept_batch import batch_reason, decisions_batch, play_batch
 from robotsoccer.envs.checks import SEED_LIMIT, checked_seed, checked_seeds, checked_turns
-from robotsoccer.envs.intercept import MAX_DISTANCE_UNITS, SKIP_LIMIT, InterceptEnv
+from robotsoccer.envs.intercept import MAX_DISTANCE_UNITS, SKIP_LIMIT, InterceptEnv, _Episode
+from robotsoccer.envs.rendering import ArenaView
 from robotsoccer.skills.intercept import TA_CLIP_RAD
 
 
@@ -57,13 +63,14 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
         preset: Its preset; None: the model's default.
         ball_noise: Ball-motion noise; None: the preset's.
         drill_options: Further options of the interception drill (as ``InterceptEnv``).
+        render_mode: None or ``"rgb_array"`` (module docstring).
 
     Raises:
-        ValueError: The field or the drill options cannot run batched.
+        ValueError: The field or the drill options cannot run batched, or another render mode.
     """
 
     metadata: dict[str, Any] = {  # noqa: RUF012 (Gymnasium's class attribute)
-        "render_modes": [],
+        "render_modes": ["rgb_array"],
         "autoreset_mode": AutoresetMode.SAME_STEP,
     }
 
@@ -74,9 +81,14 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
         preset: str | None = None,
         ball_noise: float | None = None,
         drill_options: dict[str, Any] | None = None,
+        render_mode: str | None = None,
     ) -> None:
         if num_envs < 1:
             raise ValueError(f"num_envs must be >= 1, got {num_envs}")
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"render_mode must be None or 'rgb_array' here, got {render_mode!r}")
+        self.render_mode = render_mode
+        self._view = ArenaView(render_mode, title="Intercept-v0")
         single = InterceptEnv(field_model, preset, ball_noise, drill_options)
         why = batch_reason(single.spec_)
         if why is not None:
@@ -155,6 +167,17 @@ class InterceptVectorEnv(gym.vector.VectorEnv[np.ndarray, np.ndarray, np.ndarray
         environment gives it.
         """
         return self._seeds.astype(np.int64)
+
+    def render(self) -> tuple[np.ndarray, ...] | None:
+        """Each sub-environment's field at its present decision (module docstring)."""
+        if self.render_mode is None or not self._ready:
+            return None
+        frames = []
+        for seed, trial in zip(self._seeds.tolist(), self._trials.tolist(), strict=True):
+            episode = _Episode(dataclasses.replace(self.spec_, seed=seed), trial)
+            episode.run_to_decision()
+            frames.append(self._view.frame(episode.arena))
+        return tuple(frames)
 
     def _next_decisions(self, pending: npt.NDArray[np.bool_]) -> None:
         """From each pending sub-env's present trial on, find the first with a decision."""

@@ -56,8 +56,10 @@ for every interceptor and the receiver a drill chooser would pick, an episode en
 that trial of the drill with that chooser (a test checks it with ``closest``). The drill options
 ``chooser``, ``model``, ``interceptor`` and ``net`` are the agents' to decide and are refused.
 
-``pass_parallel_env("robot_physics")`` builds one; ``render_mode`` is always None (recordings:
-``robotsoccer demo --drill pass --record``).
+``pass_parallel_env("robot_physics")`` builds one. ``render_mode="rgb_array"`` draws the field
+at each decision and at the verdict; ``"human"`` streams it to the rerun viewer
+(:mod:`robotsoccer.envs.rendering`; whole recordings: ``robotsoccer demo --drill pass
+--record``).
 """
 
 from __future__ import annotations
@@ -79,6 +81,7 @@ from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.passing import DEFENDERS, PASSER, RECEIVERS, PassDrill
 from robotsoccer.envs.checks import checked_seed
 from robotsoccer.envs.intercept import MAX_DISTANCE_UNITS, SKIP_LIMIT
+from robotsoccer.envs.rendering import RENDER_MODES, ArenaView, check_render_mode
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.intercept import TA_CLIP_RAD, DefenderMind
 from robotsoccer.skills.passing import (
@@ -117,6 +120,7 @@ Option: TypeAlias = PassOption
 def pass_parallel_env(
     field_model: str = FIELD_MODELS[0],
     preset: str | None = None,
+    render_mode: str | None = None,
     **drill_options: DrillOption,
 ) -> PassParallelEnv:
     """The pass drill's decisions as a PettingZoo parallel environment (module docstring).
@@ -124,13 +128,15 @@ def pass_parallel_env(
     Args:
         field_model: A registered field model (default: the first registered).
         preset: Its preset; None: the model's default.
+        render_mode: None, ``"rgb_array"`` or ``"human"``.
         **drill_options: Further options of the pass drill (``defenders``, ``max_time_s``,
             ``receiver_half``, ``transfer``).
 
     Returns:
-        The environment, with ``render_mode`` None.
+        The environment.
     """
-    return PassParallelEnv(field_model, preset, drill_options=drill_options)
+    return PassParallelEnv(field_model, preset, drill_options=drill_options,
+                           render_mode=render_mode)  # fmt: skip
 
 
 class PassParallelEnv(ParallelEnv[str, Observation, ActionValue]):
@@ -142,14 +148,18 @@ class PassParallelEnv(ParallelEnv[str, Observation, ActionValue]):
         ball_noise: Ball-motion noise; None: the preset's.
         drill_options: Further options of the pass drill (``chooser``, ``model``,
             ``interceptor`` and ``net`` excepted: the agents decide).
-        render_mode: Only None (nothing is drawn).
+        render_mode: None, ``"rgb_array"`` or ``"human"`` (module docstring).
 
     Raises:
-        ValueError: A refused drill option, or a render mode.
+        ValueError: A refused drill option, or an unknown render mode.
     """
 
     # PettingZoo's class attribute (mutable, as PettingZoo declares it).
-    metadata: dict[str, Any] = {"name": "robotsoccer_pass_v0", "render_modes": []}  # noqa: RUF012
+    metadata: dict[str, Any] = {  # noqa: RUF012
+        "name": "robotsoccer_pass_v0",
+        "render_modes": RENDER_MODES,
+        "render_fps": 30,
+    }
 
     def __init__(
         self,
@@ -159,9 +169,9 @@ class PassParallelEnv(ParallelEnv[str, Observation, ActionValue]):
         drill_options: dict[str, DrillOption] | None = None,
         render_mode: str | None = None,
     ) -> None:
-        if render_mode is not None:
-            raise ValueError(f"render_mode must be None (nothing is drawn), got {render_mode!r}")
-        self.render_mode = render_mode
+        self.render_mode = check_render_mode(render_mode)
+        self._view = ArenaView(render_mode, title="robotsoccer_pass_v0")
+        self._shown: Any = None  # the arena render() draws: the last episode's
         options = dict(drill_options or {})
         refused = sorted(set(options) & set(AGENT_DECISIONS))
         if refused:
@@ -210,6 +220,9 @@ class PassParallelEnv(ParallelEnv[str, Observation, ActionValue]):
             episode = _PassEpisode(spec, trial, self.possible_agents)
             if episode.advance() is None:
                 self._episode = episode
+                self._shown = episode.arena
+                if self.render_mode == "human":
+                    self.render()
                 self.agents = list(self.possible_agents)
                 return episode.observations(self.agents), _infos(episode, self.agents, {})
         raise RuntimeError(f"no pass in {SKIP_LIMIT} trials in a row: check the drill options")
@@ -254,6 +267,8 @@ class PassParallelEnv(ParallelEnv[str, Observation, ActionValue]):
             end = {"label": verdict.label, "reason": verdict.reason, "ticks": episode.tick}
             self._episode, self.agents = None, []
         done = verdict is not None
+        if self.render_mode == "human":
+            self.render()
         return (
             episode.observations(live),
             rewards,
@@ -262,12 +277,13 @@ class PassParallelEnv(ParallelEnv[str, Observation, ActionValue]):
             _infos(episode, live, end),
         )
 
-    def render(self) -> None:
-        """Nothing to draw (``render_mode`` is None)."""
-        return None
+    def render(self) -> Any:
+        """The field now: an RGB array (``"rgb_array"``), or logged to rerun (``"human"``)."""
+        return self._view.render(self._shown)
 
     def close(self) -> None:
-        """Nothing to release."""
+        """Close the viewer's recording, if any."""
+        self._view.close()
 
 
 # ----------------------------------------------------------------------------- one trial

@@ -540,6 +540,10 @@ class TrialRecorder:
             cleared from the view once :data:`PERCEPT_LIFETIME_PERIODS` of these pass without
             a newer one. None: percepts stay until the next one.
         title: First line of the legend (e.g. the drill, field model and trial).
+        viewer: Stream to a rerun viewer instead of writing `path` (an environment's
+            ``render_mode="human"``): with a display, the viewer beside this interpreter is
+            spawned (or reused, when one listens); without one, the stream goes to rerun's
+            default address, where a viewer started later (``rerun``) picks it up.
 
     Raises:
         ValueError: On a bad shape, a non-positive dt_s, every_ticks, chunk_frames or
@@ -564,6 +568,7 @@ class TrialRecorder:
         chunk_frames: int = 1000,
         sensor_period_s: float | None = None,
         title: str = "",
+        viewer: bool = False,
     ) -> None:
         if not dt_s > 0.0:
             raise ValueError(f"dt_s must be > 0, got {dt_s}")
@@ -610,8 +615,17 @@ class TrialRecorder:
         self._rec: rr.RecordingStream = rr.RecordingStream(
             application_id, recording_id=recording_id
         )
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        self._rec.save(self.path, default_blueprint=self._blueprint())
+        if viewer and _has_display():
+            rr.spawn(
+                executable_path=str(rerun_executable()),
+                recording=self._rec,
+                default_blueprint=self._blueprint(),
+            )
+        elif viewer:
+            self._rec.connect_grpc(default_blueprint=self._blueprint())
+        else:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._rec.save(self.path, default_blueprint=self._blueprint())
         self._log_static()
 
     # --- setup ---------------------------------------------------------------------------

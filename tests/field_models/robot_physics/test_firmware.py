@@ -129,3 +129,13 @@ def test_arc_keeps_the_turn_rate_and_drives_with_what_is_left() -> None:
     left, right = fw.update(1)
     assert left == pytest.approx(ROBOT.max_wheel_speed_mps)
     assert (left - right) / ROBOT.track_m == pytest.approx(fast)
+
+
+def test_wheels_set_each_wheel_capped_at_the_top_speed() -> None:
+    fw = make_firmware()
+    fw.receive(Command(1, ME, Primitive.WHEELS, -0.3, 16, rate=0.4), 0)
+    assert fw.update(0) == (-0.3, 0.4)
+    assert fw.update(16) == (0.0, 0.0)  # the duration ran out
+    vmax = ROBOT.max_wheel_speed_mps
+    fw.receive(Command(2, ME, Primitive.WHEELS, 5.0, None, rate=-5.0), 20)
+    assert fw.update(20) == (vmax, -vmax)

@@ -449,3 +449,14 @@ def test_an_arc_robot_still_spins_for_a_turn_alone() -> None:
     host.submit(A, (Turn(-0.5),), 0)
     (c,) = sent(link)
     assert c.primitive is Primitive.TURN and c.value < 0.0
+
+
+def test_wheels_go_out_at_once_held_and_replace_the_pending_actions() -> None:
+    host, link = make_host()
+    host.submit(A, (Turn(1.0), Dash(100.0)), 0)
+    sent(link)
+    host.wheels(A, 0.2, -0.1, 3)
+    (c,) = sent(link, 3)
+    assert (c.primitive, c.value, c.rate) == (Primitive.WHEELS, 0.2, -0.1)
+    assert c.duration_ticks == 2 * PERIOD and host.pending(A) == ()
+    assert "WHEELS +0.20 -0.10 m/s" in host.drain_events()[-1].text

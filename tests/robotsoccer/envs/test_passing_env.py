@@ -184,6 +184,6 @@ def test_invalid_actions_raise_and_leave_the_decision_open() -> None:
     with pytest.raises(ValueError, match="agents' decisions"):
         pass_parallel_env("soccer_server", chooser="closest")
     with pytest.raises(ValueError, match="render_mode"):
-        PassParallelEnv(render_mode="human")
+        PassParallelEnv(render_mode="video")
     with pytest.raises(ValueError, match="unknown agent"):
         env.action_space("goalie")

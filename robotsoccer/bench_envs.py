@@ -1,0 +1,78 @@
+"""What the per-step environment layer costs: ``robotsoccer/Score-v0`` against the bare arena.
+
+:func:`score_env_figures` runs the score environment (3 v 3, the learner's actions uniform in
+its Box with a fixed seed) for a number of ticks, then the same field, preset, players
+and baseline minds without the environment (the match drill's loop: arena, minds, referee;
+the learner there is a baseline mind too) for as many ticks, in the same process, one after
+the other. Times are this process's CPU seconds (``time.process_time``), not wall seconds: on
+a machine shared with other jobs the wall clock charges one run with the others' work, while
+the question is what the layer itself costs. The ratio of the speeds is the environment
+layer's share of the cost
+(observations, rewards, the coach's checks, episode resets); rSoccer's Python layer costs 40-60%
+of its physics, the target here is at most 20% (a ratio of at least 0.8).
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import numpy as np
+
+from field_models.registry import make_arena
+from field_models.seeding import TrialRngs
+from robotsoccer.drills.match import MatchDrill
+from robotsoccer.envs.control import ScoreEnv
+from robotsoccer.runs.runner import TrialLoop
+
+
+def env_run(field_model: str, ticks: int, seed: int = 0) -> tuple[int, int, float]:
+    """(steps, ticks, CPU seconds) of the score environment over at least `ticks` ticks."""
+    env = ScoreEnv(field_model)
+    # Drawn up front: sampling the Box costs more than an environment step.
+    shape = env.action_space.shape or ()
+    actions = np.random.default_rng(seed).uniform(-1.0, 1.0, (4096, *shape)).astype(np.float32)
+    steps = done_ticks = 0
+    start = time.process_time()
+    episode_seed = seed
+    while done_ticks < ticks:
+        env.reset(seed=episode_seed)
+        episode_seed += 1
+        ended = False
+        while not ended:
+            action = actions[steps % len(actions)]
+            _, _, terminated, truncated, info = env.step(action)
+            steps += 1
+            ended = terminated or truncated
+        done_ticks += info["tick"]
+    return steps, done_ticks, time.process_time() - start
+
+
+def bare_run(field_model: str, ticks: int, seed: int = 0) -> float:
+    """CPU seconds of the same field and minds stepping `ticks` ticks without the env layer."""
+    env = ScoreEnv(field_model)  # the same preset, options and players
+    dt = env.facts.dt_s
+    drill = MatchDrill("baseline", "baseline", players=env.players_per_side,
+                       half_time_s=ticks * dt)  # fmt: skip
+    drill.max_time_s = ticks * dt  # one half: no half-time restart
+    rngs = TrialRngs(seed, 0)
+    arena = make_arena(field_model, env.preset, env.players, rngs, env.field_options)
+    start = time.process_time()
+    drill.setup(arena, rngs)
+    TrialLoop(arena, drill, drill.minds(arena, rngs)).run()
+    return time.process_time() - start
+
+
+def score_env_figures(field_model: str, ticks: int) -> dict[str, Any]:
+    """Steps/s and real-time factor of the score env, the bare arena's, and their ratio."""
+    steps, env_ticks, env_wall = env_run(field_model, ticks)
+    bare_wall = bare_run(field_model, env_ticks)
+    dt = ScoreEnv(field_model).facts.dt_s
+    env_rtf = env_ticks * dt / env_wall
+    bare_rtf = env_ticks * dt / bare_wall
+    return {
+        "steps_per_s": round(steps / env_wall),
+        "realtime_factor": round(env_rtf, 1),
+        "bare_realtime_factor": round(bare_rtf, 1),
+        "env_to_bare_ratio": round(env_rtf / bare_rtf, 3),
+    }
