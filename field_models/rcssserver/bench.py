@@ -1,9 +1,10 @@
 """Speed of a Soccer Server over the wire: synch-mode cycles per second beside in-process.
 
 The same load both ways: 2 players chasing the ball (:class:`~field_models.benchmarks.ChaseLoad`)
-on the ``rcssserver_19`` preset, placed afresh every :data:`RALLY_CYCLES`. In process, the Soccer
-Server arena; over the wire, the :class:`~field_models.rcssserver.arena.WireArena`: 1 trainer and
-2 player clients (the project's :class:`~field_models.rcssserver.client.WireClient`) talking
+on the ``rcssserver_19`` preset, placed afresh every
+:data:`~field_models.benchmarks.RALLY_CYCLES` cycles. In process, the Soccer Server arena;
+over the wire, the :class:`~field_models.rcssserver.arena.WireArena`: 1 trainer and 2 player
+clients (the project's :class:`~field_models.rcssserver.client.WireClient`) talking
 UDP to ``serve``'s game in synch mode. The served server runs in a thread of this process, so
 server and clients share one interpreter (and its lock). The ratio is the figure to compare
 across machines.
@@ -16,34 +17,20 @@ across machines.
 
 from __future__ import annotations
 
-import math
-import time
 from typing import Any
 
 from field_models.arena import Arena
-from field_models.benchmarks import ChaseLoad, drive
+from field_models.benchmarks import rally_cycles_per_s
 from field_models.protocol import LEFT, RIGHT, PlayerRef
 from field_models.registry import make_arena
 from field_models.seeding import TrialRngs
 
 PLAYERS = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1))
-RALLY_CYCLES = 200
-"""A fresh rally every this many cycles keeps the players running, turning and seeing."""
 
 
 def cycles_per_s(arena: Arena, cycles: int, rngs: TrialRngs) -> float:
     """Cycles per wall second of `arena` with two chasers, rallies restarted by the coach."""
-    minds = {ref: ChaseLoad() for ref in PLAYERS}
-    rng = rngs["placement"]
-    start = time.perf_counter()
-    done = 0
-    while done < cycles:
-        arena.place_ball(float(rng.uniform(-30, 30)), float(rng.uniform(-20, 20)), 2.0, 1.0)
-        arena.place_player(PLAYERS[0], -40.0, 0.0, 0.0)
-        arena.place_player(PLAYERS[1], 40.0, 0.0, math.pi)
-        drive(arena, minds, RALLY_CYCLES)
-        done += RALLY_CYCLES
-    return done / (time.perf_counter() - start)
+    return rally_cycles_per_s(arena, PLAYERS, cycles, rngs)
 
 
 def wire_and_local(cycles: int, preset: str = "served", seed: int = 0) -> tuple[float, float]:

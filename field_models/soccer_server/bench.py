@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from field_models.benchmarks import ChaseLoad, drive, median_of
+from field_models.benchmarks import median_of, rally_cycles_per_s
 from field_models.protocol import LEFT, RIGHT, PlayerRef
 from field_models.registry import make_arena
 from field_models.seeding import TrialRngs
@@ -24,26 +24,13 @@ from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.params import load_server_preset
 
 PLAYERS = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1))
-RALLY_CYCLES = 200
-"""A fresh rally every this many cycles keeps the players running, turning and seeing."""
 
 
 def arena_cycles_per_s(cycles: int, preset: str = "soccer_server_1996", seed: int = 0) -> float:
     """Cycles per wall second of a 2-player arena whose players chase the ball."""
     rngs = TrialRngs.for_trial(seed, 0)
     arena = make_arena("soccer_server", preset, PLAYERS, rngs)
-    minds = {ref: ChaseLoad() for ref in PLAYERS}
-    rng = rngs["placement"]
-    start = time.perf_counter()
-    done = 0
-    while done < cycles:
-        # The ball kicked off from a random spot (5% of the time goes to placement).
-        arena.place_ball(float(rng.uniform(-30, 30)), float(rng.uniform(-20, 20)), 2.0, 1.0)
-        arena.place_player(PLAYERS[0], -40.0, 0.0, 0.0)
-        arena.place_player(PLAYERS[1], 40.0, 0.0, math.pi)
-        drive(arena, minds, RALLY_CYCLES)
-        done += RALLY_CYCLES
-    return done / (time.perf_counter() - start)
+    return rally_cycles_per_s(arena, PLAYERS, cycles, rngs)
 
 
 def _drill_like_trial(model: SoccerServerModel | BatchSoccerServer, cycles: int) -> None:
