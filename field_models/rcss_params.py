@@ -236,7 +236,6 @@ SERVER_PARAMS: tuple[tuple[str, int, ParamValue], ...] = (
 """Every server parameter as (name, first protocol version that gets it, default), by name."""
 
 PLAYER_PARAMS: tuple[tuple[str, int, ParamValue], ...] = (
-    ("allow_default_goalie", 14, True),
     ("allow_mult_default_type", 12, False),
     ("catchable_area_l_stretch_max", 14, 1.3),
     ("catchable_area_l_stretch_min", 14, 1.0),

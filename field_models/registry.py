@@ -174,6 +174,22 @@ def batch_reason(
     return found
 
 
+def conformance_limits(model: str, preset: str | None) -> dict[str, str]:
+    """Promises of the conformance suite that `model` with `preset` cannot keep, with why.
+
+    A model names them through an optional module function ``conformance_limits(preset)``
+    (e.g. a real rcssserver takes no seed); keys are a check's name (skipped) or an aspect a
+    check relaxes (``"identity"``: a far player may be seen without its number). Most models
+    have none.
+    """
+    module = entry(model)
+    limits = getattr(module, "conformance_limits", None)
+    if limits is None:
+        return {}
+    found: dict[str, str] = limits(module.load(preset or module.DEFAULT_PRESET, DEFAULT_OPTIONS))
+    return found
+
+
 def make_batch_arena(
     model: str,
     preset: str | None,

@@ -26,8 +26,10 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 import socket
 import subprocess
+import tempfile
 import threading
 import time
 import weakref
@@ -106,6 +108,7 @@ class WireArena:
         self._placed: dict[PlayerRef | None, BodyState] = {}
         self._look: tuple[int, BodyState, dict[PlayerRef, BodyState]] | None = None
         self._score = [0, 0]
+        self._server_time: int | None = None  # the server's clock at the last step's sense_body
         self._clients: dict[PlayerRef, WireClient] = {}
         resources: list[object] = []
         self._resources = resources
@@ -126,10 +129,17 @@ class WireArena:
             return p.host, p.port, p.trainer_port
         if p.start == "binary":
             port = _free_port_triple()
+            # rcssserver writes its ~/.rcssserver/*.conf on start (a literal "~" folder in the
+            # working directory where it does not expand it) and reads them back: a folder of
+            # its own keeps a user's configuration out, and nothing is left behind.
+            home = tempfile.TemporaryDirectory(prefix="rcssserver-")
+            self._resources.append(home)
             process = subprocess.Popen(
                 [p.binary, *server_options(p, port)],
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,
+                cwd=home.name,
+                env={**os.environ, "HOME": home.name},
             )
             self._resources.append(process)
             return "127.0.0.1", port, port + 1
@@ -307,7 +317,16 @@ class WireArena:
     # ------------------------------------------------------------------ client side
 
     def step(self) -> list[Percept]:
-        """One cycle in synch mode (module docstring); the percepts of the sees it brought."""
+        """One cycle in synch mode (module docstring); the percepts of the sees it brought.
+
+        Every client's messages are read up to a ``(think)`` whose cycle's ``sense_body`` shows
+        the server's new time: a real rcssserver sends ``(think)`` to the players it waits for
+        while the arena is still setting up, so a client may hold one cycle's stale messages
+        (its ``(think)`` with no ``(done)`` sent yet). Those are read past at the first step,
+        where the new time is the trainer's look time + 1, and at any later step where a client
+        is behind the others; their hears still count, the newest see makes the percept.
+        """
+        target = self._trainer_time() + 1 if self._server_time is None else None
         for ref, client in self._clients.items():
             commands = [f'(say "{text}")' for text in self._says[ref]]
             self._says[ref].clear()
@@ -318,17 +337,36 @@ class WireArena:
         self._tick += 1
         self._placed.clear()
         self._look = None
+        batches = {ref: client.until("(think)") for ref, client in self._clients.items()}
+        times = {ref: _sense_time(batch) for ref, batch in batches.items()}
+        known = [t for t in (*times.values(), target) if t is not None]
+        now = max(known) if known else None
+        if now is not None:
+            for ref, client in self._clients.items():
+                while (behind := times[ref]) is None or behind < now:  # stale: read on
+                    more = client.until("(think)")
+                    batches[ref] += more
+                    times[ref] = _sense_time(more)
+            self._server_time = now
         percepts = []
-        for ref, client in self._clients.items():
+        for ref, batch in batches.items():
             seen = None
-            for text in client.until("(think)"):
+            for text in batch:
                 if text.startswith("(see "):
                     seen = text
                 elif text.startswith("(hear "):
                     self._hear(ref, text)
             if seen is not None and ref in self._listening:
-                percepts.append(self._percept(ref, seen))
+                percepts.append(self._percept(ref, seen, now))
         return percepts
+
+    def _trainer_time(self) -> int:
+        """The server's clock now, from the trainer's look (the server waits for our done)."""
+        reply = self._command("(look)", "(ok look ")
+        try:
+            return int(reply.split()[2])
+        except (IndexError, ValueError):
+            raise WireError(f"unreadable look: {reply[:80]}") from None
 
     def _hear(self, ref: PlayerRef, text: str) -> None:
         if self.trace:
@@ -340,13 +378,17 @@ class WireArena:
         if heard is not None:
             self._heard[ref].append(heard)
 
-    def _percept(self, ref: PlayerRef, text: str) -> Percept:
+    def _percept(self, ref: PlayerRef, text: str, now: int | None) -> Percept:
+        """The see's percept at this tick; a see older than the server's time is dated back."""
         if self.trace:
             self._log(self._tick, "see", text, ref)
         heard = tuple(self._heard[ref])
         self._heard[ref].clear()
         tick = self._tick
-        return percept_from_see(parse_see(text), ref, tick, tick, heard, cycle_s=self._dt)
+        info = parse_see(text)
+        late = max(0, now - info.time) if now is not None else 0
+        observed = max(0, tick - late)
+        return percept_from_see(info, ref, tick, observed, heard, cycle_s=self._dt)
 
     def listen(self, refs: frozenset[PlayerRef]) -> None:
         """Build percepts only for these players (the others' sees still come, unread)."""
@@ -395,12 +437,24 @@ def _shut(resources: list[object]) -> None:
                 item.wait(timeout=5.0)
             except subprocess.TimeoutExpired:
                 item.kill()
+        elif isinstance(item, tempfile.TemporaryDirectory):
+            item.cleanup()
         elif isinstance(item, tuple):
             stop, thread, server = item
             stop.set()
             thread.join(timeout=5.0)
             server.close()
     resources.clear()
+
+
+def _sense_time(batch: list[str]) -> int | None:
+    """The time of the last ``sense_body`` in a client's messages (None: there was none)."""
+    time_ = None
+    for text in batch:
+        if text.startswith("(sense_body "):
+            with contextlib.suppress(IndexError, ValueError):
+                time_ = int(text.split(maxsplit=2)[1])
+    return time_
 
 
 def _free_port_triple() -> int:

@@ -145,6 +145,28 @@ def unavailable(preset: WirePreset) -> str | None:
     return None
 
 
+def conformance_limits(preset: WirePreset) -> dict[str, str]:
+    """What the conformance suite cannot ask of this preset's server, and why.
+
+    ``served`` keeps every promise. A real rcssserver 19.0.0 takes no random seed, so the same
+    seed cannot replay; and it drops a seen player's uniform number with probability
+    (d - unum_far_length) / (unum_too_far_length - unum_far_length) on its *noisy* distance d
+    even with the finest quantisation (``VisualSenderPlayerV1::sendLowPlayer``): at the
+    percept check's 20 m, unum_far_length, about one see in a hundred names the team only.
+    A server already running (``address``) is seeded by whoever started it, not the trial.
+    """
+    if preset.start == "served":
+        return {}
+    if preset.start == "address":
+        return {"check_determinism": "a running server's noise is not seeded by the trial"}
+    return {
+        "check_determinism": "rcssserver 19.0.0 takes no random seed: its noise differs "
+        "from run to run",
+        "identity": "rcssserver fades a player's number beyond unum_far_length (20 m) on its "
+        "noisy distance, also with the finest quantisation",
+    }
+
+
 @lru_cache(maxsize=32)
 def facts(preset: WirePreset) -> FieldFacts:
     """The Soccer Server model's facts of the preset's server, under this model's name."""

@@ -10,9 +10,11 @@ from __future__ import annotations
 import math
 import os
 import threading
+import time
 
 import pytest
 
+from field_models.checker import QUIET
 from field_models.protocol import LEFT, RIGHT, Dash, PlayerRef
 from field_models.registry import DEFAULT_OPTIONS, entry, make_arena
 from field_models.seeding import TrialRngs
@@ -45,3 +47,39 @@ def test_the_binary_preset_says_why_it_cannot_run_without_rcssserver() -> None:
     with pytest.raises(RuntimeError, match="RCSSSERVER"):
         make_arena("rcssserver", "binary", (PlayerRef(LEFT, 1),), TrialRngs.for_trial(0, 0))
     assert "RCSSSERVER" in (module.unavailable(preset) or "")  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("stale", [(LEFT,), (LEFT, RIGHT)], ids=["left", "both"])
+def test_a_stale_think_from_before_the_first_step_is_read_past(stale) -> None:
+    """A real rcssserver sends ``(think)`` to the players it waits for during the set-up.
+
+    Emulated on the served server: its own port sends a cycle-0 ``sense_body`` and ``(think)``
+    to some clients before the first step. Every step still ends on the server's new cycle, so
+    a ball rolls one cycle per step and both players' sees are of the same cycle.
+    """
+    players = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1))
+    rngs = TrialRngs.for_trial(0, 0)
+    arena = make_arena("rcssserver", "served", players, rngs, QUIET, trace=True)
+    arena.place_player(players[0], 0.0, 0.0, 0.0)
+    arena.place_player(players[1], 10.0, 5.0, math.pi)
+    arena.place_ball(-20.0, 0.0, 10.0, 0.0)
+    _, _, server = next(r for r in arena._resources if isinstance(r, tuple))  # type: ignore[attr-defined]
+    for ref in players:
+        if ref.team in stale:
+            address = arena._clients[ref].sock.getsockname()  # type: ignore[attr-defined]
+            own = next(own for own, addr in server._route.values() if addr == address)
+            own.sendto(b"(sense_body 0 (view_mode high normal))\0", address)
+            own.sendto(b"(think)\0", address)
+    time.sleep(0.05)
+    percepts = []
+    for _ in range(10):
+        percepts += arena.step()
+    ball = arena.ball_state()
+    assert math.isclose(ball.x + 20.0, 10.0 * 0.1 * (1 - 0.94**10) / 0.06, rel_tol=1e-4)
+    sees: dict[int, set[str]] = {}
+    for event in arena.drain_events():  # type: ignore[attr-defined]
+        if event.channel == "see":
+            sees.setdefault(event.tick, set()).add(event.text.split()[1])
+    assert sees and all(times == {str(tick)} for tick, times in sees.items())
+    assert all(p.observed_tick == p.tick for p in percepts)
+    arena.close()  # type: ignore[attr-defined]

@@ -1,6 +1,6 @@
 """Our .rcg header against rcssserver 19.0.0's, key by key and in order.
 
-No real game log is committed. The reference header is rebuilt here, independently of the
+The reference header is rebuilt here, independently of the
 writer, from ``tests/field_models/soccer_server/data/rcssserver_19_defaults.conf`` (rcssserver
 19.0.0's defaults in the form the server writes ``server.conf``) and from the rules of the
 server's source (commit ce87001): a game log's sender asks as protocol 999, so every registered
@@ -9,7 +9,14 @@ server parameter is written, in ``std::map`` order, i.e. sorted by name
 print as ``0``/``1``, strings in double quotes, doubles with six significant digits. Its
 ``player_param`` line and the 18 default ``player_type`` lines come from
 ``src/playerparam.cpp``'s ``DEFAULT_*`` constants and ``HeteroPlayer::setDefault`` /
-``printParamsSExp`` (``src/heteroplayer.cpp``), written out below by hand.
+``printParamsSExp`` (``src/heteroplayer.cpp``), written out below by hand
+(``allow_default_goalie`` is commented out of ``playerparam.cpp``: a real log has none).
+
+``data/rcssserver_19_0_0_header.rcg`` is the header a real rcssserver 19.0.0 wrote (how it was
+made: ``data/rcssserver_19_0_0_header.md``); ours is compared to it key by key below. It
+differs only where the real server draws at random (``random_seed``, the 17 heterogeneous
+types, which our writer gives the default type) and in its version line: 19.0.0 writes
+``ULG6`` (its ``game_log_version`` is 6), our writer ``ULG5``.
 """
 
 from __future__ import annotations
@@ -21,10 +28,11 @@ from pathlib import Path
 from field_models.protocol import LEFT, RIGHT, PlayerRef
 from robotsoccer.replay.rcg import RcgWriter
 
+REAL = Path(__file__).parent / "data/rcssserver_19_0_0_header.rcg"
 CONF = Path(__file__).parents[2] / "field_models/soccer_server/data/rcssserver_19_defaults.conf"
 
 PLAYER_PARAM = (
-    "(player_param (allow_default_goalie 1)(allow_mult_default_type 0)"
+    "(player_param (allow_mult_default_type 0)"
     "(catchable_area_l_stretch_max 1.3)(catchable_area_l_stretch_min 1)"
     "(dash_power_rate_delta_max 0)(dash_power_rate_delta_min 0)(effort_max_delta_factor -0.004)"
     "(effort_min_delta_factor -0.004)(extra_stamina_delta_max 50)(extra_stamina_delta_min 0)"
@@ -99,3 +107,20 @@ def test_player_param_and_player_types_match_a_real_servers(tmp_path: Path) -> N
     assert lines[2] == PLAYER_PARAM
     assert lines[3:21] == [f"(player_type (id {i}){TYPE_FIELDS})" for i in range(18)]
     assert math.isclose(float("125.096"), math.hypot(105, 68), rel_tol=1e-5)
+
+
+def _entries(line: str) -> list[tuple[str, str]]:
+    return re.findall(r"\((\w+) ([^()]*)\)", line[line.index(" ") + 1 : -1])
+
+
+def test_our_header_matches_a_real_rcssserver_19_logs_key_by_key(tmp_path: Path) -> None:
+    real = REAL.read_text().splitlines()
+    ours = our_header(tmp_path)
+    assert (real[0], ours[0]) == ("ULG6", "ULG5")  # the one known difference of format
+    for index in (1, 2):  # server_param, player_param: every key, in order, same value
+        want, got = _entries(real[index]), _entries(ours[index])
+        assert [k for k, _ in got] == [k for k, _ in want]
+        differing = {k: (a, b) for (k, a), (_, b) in zip(got, want, strict=True) if a != b}
+        differing.pop("random_seed", None)  # the real server drew its own (from the clock)
+        assert differing == {}
+    assert ours[3] == real[3]  # player_type id 0, the default type
