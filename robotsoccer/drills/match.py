@@ -122,8 +122,6 @@ class MatchDrill(LayeredDrill):
     name: str = "match"
     labels: tuple[str, ...] = ("LEFT_WIN", "DRAW", "RIGHT_WIN")
 
-    lead_nets = True  # team minds aim a lead net's horizon (robotsoccer.skills.team)
-
     def __init__(
         self,
         left: TeamKind | str = TeamKind.LAYERED,

@@ -64,9 +64,12 @@ from robotsoccer.skills.intercept import (
     DefenderMind,
     check_behaviour,
     file_key,
+    load_net_function,
     make_policy,
+    model_decision,
     transfer_distance_factor,
 )
+from robotsoccer.skills.lead import LeadDefenderMind
 from robotsoccer.skills.passing import (
     Chooser,
     PasserMind,
@@ -122,8 +125,6 @@ class LayeredDrill:
     net: str
     transfer: bool
     _checked: FieldFacts | None
-    lead_nets: bool = False
-    """Whether the drill's minds can use a lead net (the match's team minds), not only TA."""
 
     def plan(self, facts: FieldFacts) -> LaunchPlan:
         """Layer 1's plan on this field: launch, trigger distance, turn tolerance."""
@@ -141,18 +142,10 @@ class LayeredDrill:
         return tuple(f for f in (self.model, self.net) if f)
 
     def _check_origins(self, facts: FieldFacts) -> None:
-        """Refuse a lead net, and a tree or net trained on another field (unless a transfer)."""
+        """Refuse a tree or net trained on another field (unless this is a transfer run)."""
         if facts is self._checked:
             return
         self._checked = facts
-        if self.net:
-            from robotsoccer.skills.intercept import model_decision
-
-            if model_decision(self.net) != "turn" and not self.lead_nets:
-                raise ValueError(
-                    f"net {self.net} decides the {model_decision(self.net)}: this drill's "
-                    "receivers and defenders take a turn-angle net (learn intercept)"
-                )
         if self.transfer:
             return
         here = (facts.model, Path(facts.preset).stem)
@@ -174,6 +167,39 @@ class LayeredDrill:
                     f"net {self.net} was trained on {trained}, this run is {here[0]} "
                     f"`{here[1]}`: give option transfer=true to test it across fields"
                 )
+
+    def interceptor_for(
+        self,
+        facts: FieldFacts,
+        plan: LaunchPlan,
+        rng: Rng,
+        behaviour: Behaviour,
+        kickable_distance_m: float | None = None,
+    ) -> Mind:
+        """Layer 1's interception for a receiver or defender: the net's decision, as trained.
+
+        A lead net (:mod:`robotsoccer.skills.lead`) meets the ball with its lead, deciding at
+        its first full velocity fit within the farthest pass; everything else is the paper's
+        turn-angle defender (:class:`~robotsoccer.skills.intercept.DefenderMind`).
+        """
+        factor = 1.0
+        if self.transfer and self.net and behaviour is Behaviour.NET:
+            factor = transfer_distance_factor(self.net, facts)
+        if behaviour is Behaviour.NET and self.net and model_decision(self.net) == "lead":
+            return LeadDefenderMind(
+                load_net_function(self.net, factor),
+                facts,
+                plan.max_distance_m,
+                kickable_distance_m=kickable_distance_m,
+                turn_tolerance_rad=plan.turn_tolerance_rad,
+            )
+        return DefenderMind(
+            make_policy(behaviour, rng, self.net, factor),
+            plan.trigger_distance_m,
+            kickable_distance_m=kickable_distance_m,
+            turn_tolerance_rad=plan.turn_tolerance_rad,
+            decision_period_ticks=decision_ticks(plan, facts),
+        )
 
 
 def control_reach(facts: FieldFacts) -> float:
@@ -328,17 +354,8 @@ class PassDrill(LayeredDrill):
         assert self._judge is not None
         self._judge.passer = passer
 
-        factor = 1.0
-        if self.transfer and self.net and self.interceptor is Behaviour.NET:
-            factor = transfer_distance_factor(self.net, arena.facts)
-
-        def interceptor() -> DefenderMind:
-            return DefenderMind(
-                make_policy(self.interceptor, policy_rng, self.net, factor),
-                plan.trigger_distance_m,
-                turn_tolerance_rad=plan.turn_tolerance_rad,
-                decision_period_ticks=decision_ticks(plan, facts),
-            )
+        def interceptor() -> Mind:
+            return self.interceptor_for(facts, plan, policy_rng, self.interceptor)
 
         minds: dict[PlayerRef, Mind] = {PASSER: passer}
         for slot, ref in enumerate(RECEIVERS):

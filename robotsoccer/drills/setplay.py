@@ -79,10 +79,7 @@ from robotsoccer.drills.passing import (
 from robotsoccer.options import choice, duration, flag
 from robotsoccer.skills.intercept import (
     Behaviour,
-    DefenderMind,
     check_behaviour,
-    make_policy,
-    transfer_distance_factor,
 )
 from robotsoccer.skills.passing import Chooser, PasserMind, ReceiverMind
 from robotsoccer.skills.setplay import BallSense, CarrierMind, KickPowers, SetPlayReceiverMind
@@ -213,17 +210,9 @@ class SetPlayDrill(LayeredDrill):
         tree = load_evaluator(self.model)[0] if self.model else None
         sense = ball_sense(facts, plan)
         powers = kick_powers(facts, plan)
-        factor = 1.0
-        if self.transfer and self.net and self.interceptor is Behaviour.NET:
-            factor = transfer_distance_factor(self.net, facts)
 
-        def interceptor(kickable: float | None = None) -> DefenderMind:
-            return DefenderMind(
-                make_policy(self.interceptor, rng, self.net, factor),
-                plan.trigger_distance_m,
-                kickable_distance_m=kickable,
-                turn_tolerance_rad=plan.turn_tolerance_rad,
-            )
+        def interceptor(kickable: float | None = None) -> Mind:
+            return self.interceptor_for(facts, plan, rng, self.interceptor, kickable)
 
         def passer(receivers: tuple[PlayerRef, ...]) -> PasserMind:
             return PasserMind(
@@ -250,7 +239,7 @@ class SetPlayDrill(LayeredDrill):
 
         blocked = BLOCKED_UNITS * facts.unit_m
 
-        def carrier(receivers: tuple[PlayerRef, ...], collect: DefenderMind | None) -> CarrierMind:
+        def carrier(receivers: tuple[PlayerRef, ...], collect: Mind | None) -> CarrierMind:
             return CarrierMind(
                 passer(receivers),
                 collect,

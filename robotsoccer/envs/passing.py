@@ -318,8 +318,10 @@ class _Watch:
 
     @property
     def interceptor(self) -> DefenderMind:
-        """The layer-1 mind inside."""
-        return self.mind.interceptor
+        """The layer-1 mind inside (the environment plays the paper's turn-angle decision)."""
+        inner = self.mind.interceptor
+        assert isinstance(inner, DefenderMind), "the pass environment takes a turn-angle net"
+        return inner
 
     def decides(self, percept: Percept) -> bool:
         """Whether the layer-1 mind chooses TA on `percept` (then its features are ready)."""
@@ -396,6 +398,7 @@ class _PassEpisode:
     def _watch(self, agent: str, ref: PlayerRef, minds: dict[PlayerRef, Any], unit: float) -> None:
         mind = minds[ref]
         assert isinstance(mind, ReceiverMind | WaitingInterceptorMind)
+        assert isinstance(mind.interceptor, DefenderMind), "the environment plays TA decisions"
         mind.interceptor.policy = self.turns[agent]
         self.watches[ref] = _Watch(agent, mind, unit)
 

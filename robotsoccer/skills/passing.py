@@ -55,7 +55,7 @@ from typing import Protocol
 import numpy as np
 
 from field_models.arena import BallLaw
-from field_models.protocol import Action, Kick, Percept, Say, SeenPlayer, Turn, wrap_angle
+from field_models.protocol import Action, Kick, Mind, Percept, Say, SeenPlayer, Turn, wrap_angle
 from field_models.seeding import Rng
 from learning.pass_features import (
     decode_view,
@@ -66,7 +66,6 @@ from learning.pass_features import (
     unknown_half,
 )
 from robotsoccer.options import choice
-from robotsoccer.skills.intercept import DefenderMind
 
 INTENT = "pass"
 """What the passer says first (Figure 9)."""
@@ -407,7 +406,7 @@ class ReceiverMind:
     def __init__(
         self,
         number: int,
-        interceptor: DefenderMind,
+        interceptor: Mind,
         *,
         unit_m: float,
         sensor_period_s: float,
@@ -499,7 +498,7 @@ class WaitingInterceptorMind:
         still: Stand still after the announcement too (Table 2's "no defenders" test).
     """
 
-    def __init__(self, interceptor: DefenderMind, *, still: bool = False) -> None:
+    def __init__(self, interceptor: Mind, *, still: bool = False) -> None:
         self.interceptor = interceptor
         self.still = still
         self.started = False

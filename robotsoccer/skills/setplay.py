@@ -77,6 +77,7 @@ from field_models.protocol import (
     Action,
     Dash,
     Kick,
+    Mind,
     Percept,
     Say,
     SeenBall,
@@ -84,7 +85,6 @@ from field_models.protocol import (
     Turn,
     wrap_angle,
 )
-from robotsoccer.skills.intercept import DefenderMind
 from robotsoccer.skills.passing import PasserMind, ReceiverMind, announced_number
 
 WINGER_CUE = "wing"
@@ -568,7 +568,7 @@ def _heard_tick(percept: Percept, texts: Iterable[str]) -> int:
 
 
 def receive(
-    percept: Percept, raw: Percept, tracker: BallTracker, interceptor: DefenderMind
+    percept: Percept, raw: Percept, tracker: BallTracker, interceptor: Mind
 ) -> tuple[Action, ...]:
     """Get to a ball passed to this player: layer 1's interception, then let it come.
 
@@ -636,7 +636,7 @@ class CarrierMind:
     def __init__(
         self,
         passer: PasserMind,
-        interceptor: DefenderMind | None,
+        interceptor: Mind | None,
         *,
         sense: BallSense,
         attack_right: bool,
