@@ -11,8 +11,9 @@ aims.
 **The decision** (:class:`LeadDefenderMind`):
 
 * until the trigger it faces the ball: TURN(BA). The trigger is the first percept within the
-  trigger distance once the velocity fit holds its full window (the drill gives the farthest
-  start distance: on a 0.7 m shot the defender cannot wait);
+  trigger distance once the velocity fit holds its full window and shows the ball coming at
+  the player (:data:`COMING_SHARE_PER_S`); the drill gives the farthest start distance: on a
+  0.7 m shot the defender cannot wait;
 * at the trigger it picks τ [s] with its behaviour, from (BD, track angle, previous BD), and
   records the example (BD, track angle, previous BD, τ). τ is held;
 * at every percept from then on it re-plans the aim: the ball's newest position moved τ ahead
@@ -56,7 +57,7 @@ from field_models.arena import BallLaw, FieldFacts
 from field_models.protocol import Action, Dash, Kick, Percept, Turn, wrap_angle
 from field_models.seeding import Rng
 from robotsoccer.skills.intercept import DASH_POWER, KICK_POWER, clearing_direction
-from robotsoccer.skills.localise import Localiser
+from robotsoccer.skills.localise import Localiser, Pose
 
 RANDOM_LEAD_MAX_S = 1.0
 """The training behaviour's lead range: uniform in [0, 1] s, longer than any drill's flight."""
@@ -66,6 +67,11 @@ LEAD_CLIP_S = 2.0
 
 VELOCITY_SPAN_S = 0.1
 """The ball's velocity is fitted over sightings spanning about this long [s]."""
+
+COMING_SHARE_PER_S = 0.01
+"""The ball comes at the player when its speed toward it exceeds this share of the pitch's
+length per second (2.7 cm/s on the robots' table, 1.05 m/s on the server's pitch): the lead is
+chosen for a ball in flight, not one at rest (a set play's ball before the first pass)."""
 
 MEETING_STEP_S = 0.01
 """The analytic rule searches meeting times on this grid [s]."""
@@ -257,7 +263,10 @@ class LeadDefenderMind:
         self._track.add(now, bx, by)
         velocity = self._track.velocity()
         if not self.triggered:
-            if bd > self.trigger_distance_m or not self._track.full():
+            coming = velocity is not None and self._closing_mps(velocity, (bx, by), pose) > (
+                COMING_SHARE_PER_S * self.facts.pitch.length_m
+            )
+            if bd > self.trigger_distance_m or not self._track.full() or not coming:
                 return self._turn(ba, ())
             self.triggered = True
             angle = 0.0 if velocity is None else track_angle((bx, by), velocity, (pose.x, pose.y))
@@ -271,6 +280,13 @@ class LeadDefenderMind:
         aim = self._aim((bx, by), velocity)
         angle = math.atan2(aim[1] - pose.y, aim[0] - pose.x) - pose.heading
         return self._toward(angle, bd, percept)
+
+    @staticmethod
+    def _closing_mps(velocity: Point, ball: Point, pose: Pose) -> float:
+        """The ball's speed toward the player [m/s] (negative: moving away)."""
+        dx, dy = pose.x - ball[0], pose.y - ball[1]
+        distance = math.hypot(dx, dy)
+        return (velocity[0] * dx + velocity[1] * dy) / distance if distance > 0.0 else 0.0
 
     def _analytic(self, offset: Point, velocity: Point) -> float:
         facts = self.facts
