@@ -5,7 +5,7 @@ One :class:`WireArena` per trial (shared `specs/soccer_server.md` §5):
 * **the server**: ``served`` starts our model (:class:`~field_models.soccer_server.serving.
   ServedGame` on :class:`~field_models.soccer_server.udp.UdpServer`, free ports, synch mode,
   seeded from the trial's streams) in a thread of this process; ``binary`` starts a real
-  rcssserver with the preset's parameters (:func:`~field_models.rcssserver.model.server_options`);
+  rcssserver with the preset's parameters (:func:`~field_models.rcssserver.config.server_options`);
   ``address`` connects to one already running. The arena's server stops when the arena is
   closed or collected.
 * **the trainer** (offline coach, port 6001) does the coach's work: ``move`` places the ball and
@@ -49,7 +49,7 @@ from field_models.protocol import (
     Truth,
 )
 from field_models.rcssserver.client import WireClient, WireError
-from field_models.rcssserver.model import WirePreset, server_options
+from field_models.rcssserver.config import WirePreset, server_options
 from field_models.seeding import TrialRngs
 from field_models.soccer_server.messages import (
     MessageParseError,
@@ -69,7 +69,7 @@ class WireArena:
     """A Soccer Server reached over UDP, behind :class:`~field_models.arena.Arena`.
 
     Args:
-        preset: Which server and its Soccer Server preset (:mod:`~field_models.rcssserver.model`).
+        preset: Which server and its Soccer Server preset (:mod:`~field_models.rcssserver.config`).
         facts: Its facts.
         players: The trial's players (teams ``left`` and ``right``, numbers 1..11).
         rngs: The trial's streams: a served server draws its noise from them.

@@ -381,7 +381,7 @@ def _execute(
     if backend == "ray":  # Ray is imported only here, when asked for
         from robotsoccer.runs.ray_backend import execute_ray
 
-        yield from execute_ray(spec, chunks, workers)
+        yield from execute_ray(spec, chunks, workers, run_chunk)
         return
     if workers <= 1:
         for chunk in chunks:

@@ -27,7 +27,7 @@ import contextlib
 import importlib
 import logging
 import os
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
@@ -93,21 +93,6 @@ def connect(workers: int) -> Any:
     return ray
 
 
-def run_chunk_task(spec: TrialSpec, indices: Sequence[int]) -> list[TrialResult]:
-    """Body of the Ray task: :func:`robotsoccer.runs.pool.run_chunk`, imported on the worker.
-
-    Args:
-        spec: What to run.
-        indices: Trial indices of the chunk.
-
-    Returns:
-        The chunk's results, in the order of `indices`.
-    """
-    from robotsoccer.runs.pool import run_chunk
-
-    return run_chunk(spec, indices)
-
-
 def _result(ray: Any, ref: Any) -> list[TrialResult]:
     """A finished task's chunk; its error raised as the error the trial raised.
 
@@ -124,8 +109,12 @@ def _result(ray: Any, ref: Any) -> list[TrialResult]:
     return chunk
 
 
+ChunkRunner = Callable[["TrialSpec", Sequence[int]], "list[TrialResult]"]
+"""Runs one chunk of trials: the pool's :func:`~robotsoccer.runs.pool.run_chunk`."""
+
+
 def execute_ray(
-    spec: TrialSpec, chunks: Iterable[list[int]], workers: int
+    spec: TrialSpec, chunks: Iterable[list[int]], workers: int, run_chunk: ChunkRunner
 ) -> Iterator[list[TrialResult]]:
     """Run `chunks` of `spec` as Ray tasks and yield each chunk's results as it finishes.
 
@@ -138,6 +127,8 @@ def execute_ray(
         spec: What to run.
         chunks: Lists of trial indices, taken lazily.
         workers: CPUs of a local Ray instance started here; the least parallelism to plan for.
+        run_chunk: The chunk's body, a module-level function the workers import by name (the
+            pool passes its own, so this module needs nothing from the pool).
 
     Yields:
         The results of one chunk, in the order of its indices; chunks in any order.
@@ -150,7 +141,7 @@ def execute_ray(
     ray = connect(workers)
     cpus = int(ray.cluster_resources().get("CPU", 0))
     limit = IN_FLIGHT_PER_CPU * max(workers, cpus, 1)
-    task = ray.remote(num_cpus=1)(run_chunk_task)
+    task = ray.remote(num_cpus=1)(run_chunk)
     spec_ref = ray.put(spec)  # sent to the object store once, not with every chunk
     queue = iter(chunks)
     pending: list[Any] = []

@@ -7,7 +7,13 @@ import sys
 import pytest
 
 from robotsoccer.drills import DRILLS
-from robotsoccer.runs.pool import manifest_path, read_results, run_trials, using_backend
+from robotsoccer.runs.pool import (
+    manifest_path,
+    read_results,
+    run_chunk,
+    run_trials,
+    using_backend,
+)
 from robotsoccer.runs.ray_backend import IN_FLIGHT_PER_CPU, MISSING_RAY, execute_ray
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 
@@ -100,7 +106,7 @@ def test_stopping_early_cancels_the_tasks_still_out(ray_instance, monkeypatch) -
         return real_cancel(ref, **kwargs)
 
     monkeypatch.setattr(ray_instance, "cancel", cancel)
-    chunks = execute_ray(INTERCEPT, ([i] for i in range(40)), workers=2)
+    chunks = execute_ray(INTERCEPT, ([i] for i in range(40)), workers=2, run_chunk=run_chunk)
     assert len(next(chunks)) == 1
     chunks.close()  # what a Ctrl-C in run_trials does: the finally cancels the rest
     assert len(cancelled) == IN_FLIGHT_PER_CPU * 2 - 1  # the chunks still out, not all 40
