@@ -227,6 +227,19 @@ class RobotWorld:
         d.left_target = max(-cap, min(cap, left_mps))
         d.right_target = max(-cap, min(cap, right_mps))
 
+    def drive_control(self, index: int, vx: float, vy: float, spin: float) -> None:
+        """Hold robot `index`'s control body at velocity (vx, vy) [m/s] and `spin` [rad/s].
+
+        For a bare-world reference (the benchmark's ``space.step``-only figure): the wheels'
+        targets are zeroed, so :meth:`step` would undo this; step the space directly instead.
+        """
+        d = self._drives[index]
+        d.left = d.right = d.left_target = d.right_target = 0.0
+        d.control.velocity = (vx, vy)
+        d.control.angular_velocity = spin
+        d.control_moving = vx != 0.0 or vy != 0.0
+        d.control_spin = spin
+
     def wheel_speeds(self, index: int) -> tuple[float, float]:
         """Robot `index`'s current (ramped) wheel speeds [m/s], as its encoders read them."""
         d = self._drives[index]
