@@ -112,4 +112,3 @@ def benchmarks(quick: bool = False) -> dict[str, Any]:
             "12_robots": round(twelve["share"], 3),
         },
     }
-
