@@ -6,7 +6,10 @@ figure's target beside it (:func:`target_cell`).
 
 * ``<field model>.*`` — each registered field model's own engine figures
   (``field_models.<model>.bench``): the robots' real-time factor, the Soccer Server's cycles per
-  second through the arena and object-cycles per second in batch mode.
+  second through the arena and object-cycles per second in batch mode. Beside the robots'
+  real-time factor, the same pymunk world stepped with ``space.step`` alone in the same run
+  (``robot_physics.chipmunk_realtime_factor.N_robots``) and the engine's share of that speed
+  (``robot_physics.share_of_chipmunk.N_robots``), a figure that means the same on any machine.
 * ``demo.trials_per_s.K_worker(s)`` — the shootout demo drill through the process pool.
 * ``intercept.trials_per_s.<field model>`` — the layer-1 interception drill (straight defender,
   ball noise 0.05) through the pool with 2 workers, pool start included; enough trials that

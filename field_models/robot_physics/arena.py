@@ -23,6 +23,7 @@ Server's see form (``"see"``, :func:`~field_models.robot_physics.host.percept_te
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Iterable
 
 from field_models.arena import ArenaEvent, FieldFacts
 from field_models.commands import render_command
@@ -34,6 +35,9 @@ from field_models.robot_physics.host import CentralHost, percept_text
 from field_models.robot_physics.link import Link
 from field_models.robot_physics.world import RobotWorld
 from field_models.seeding import TrialRngs
+
+_NEVER = 1 << 62
+"""A tick that never comes."""
 
 NO_WATCHDOG_TICKS = 1 << 40
 """The firmware timeout under :meth:`RobotArena.ideal_actuation`: longer than any trial."""
@@ -87,6 +91,9 @@ class RobotArena:
             Firmware(ref, preset.robot, preset.firmware, timeout_ticks=timeout) for ref in players
         ]
         self._by_ref = {ref: i for i, ref in enumerate(players)}
+        self._firmware_fresh: list[int] = []  # rows whose firmware accepted a command now
+        # No firmware's duration or watchdog ends before this tick (a lower bound).
+        self._firmware_wake_tick = 0
         self._listeners: frozenset[PlayerRef] | None = None
         self._events: list[ArenaEvent] = []
         self.host = CentralHost(
@@ -134,23 +141,30 @@ class RobotArena:
         host = self.host
         if tick >= host.next_release_tick:  # the later actions of a decision (host docstring)
             host.release(tick)
-        for command in self.link.deliver(tick):
-            if command.robot is None:
-                for fw in self.firmware:
-                    fw.receive(command, tick)
-            else:
-                self.firmware[self._by_ref[command.robot]].receive(command, tick)
-        for i, fw in enumerate(self.firmware):
-            if fw.due(tick):
-                left, right = fw.update(tick)
-                world.set_wheel_targets(i, left, right)
-                power = fw.take_kick()
-                if power is not None:
-                    world.kick(i, power)
+        # Each part below runs only at its own events (its next-event tick says when), so a
+        # quiet tick costs a few integer comparisons beside the physics.
+        link = self.link
+        if tick >= link.next_due_tick:
+            fresh = self._firmware_fresh
+            for command in link.deliver(tick):
+                if command.robot is None:
+                    for i, fw in enumerate(self.firmware):
+                        if fw.receive(command, tick):
+                            fresh.append(i)
+                else:
+                    i = self._by_ref[command.robot]
+                    if self.firmware[i].receive(command, tick):
+                        fresh.append(i)
+        if tick >= self._firmware_wake_tick:
+            self._run_firmware(range(len(self.firmware)), tick)
+        elif self._firmware_fresh:
+            self._run_firmware(sorted(set(self._firmware_fresh)), tick)
         camera = self.camera
-        if camera.capture_due(tick):
+        if tick % camera.period_ticks == 0:
             bx, by = world.ball_xy()
             camera.capture(tick, bx, by, [world.robot_pose(i) for i in range(len(self.players))])
+        if tick < camera.next_delivery_tick:
+            return []
         frames = camera.deliver(tick)
         if not frames:
             return []
@@ -160,6 +174,28 @@ class RobotArena:
         if self.trace:
             self._events += [ArenaEvent(tick, "see", percept_text(p), p.player) for p in percepts]
         return percepts
+
+    def _run_firmware(self, rows: Iterable[int], tick: int) -> None:
+        """The firmware of robots `rows` (in order) that is due: wheel targets, and a kick.
+
+        A firmware is due when a command reached it or its duration or watchdog ends
+        (:meth:`Firmware.due`); the rows cover every one due now, so the others' are skipped
+        as the firmware would skip them.
+        """
+        world = self.world
+        firmware = self.firmware
+        wake = self._firmware_wake_tick if tick < self._firmware_wake_tick else _NEVER
+        for i in rows:
+            fw = firmware[i]
+            if fw.due(tick):
+                left, right = fw.update(tick)
+                world.set_wheel_targets(i, left, right)
+                power = fw.take_kick()
+                if power is not None:
+                    world.kick(i, power)
+            wake = min(wake, fw.wake_tick)
+        self._firmware_fresh.clear()
+        self._firmware_wake_tick = wake
 
     def listen(self, refs: frozenset[PlayerRef]) -> None:
         """Return percepts only for these robots (the host still tracks every robot's pose)."""

@@ -33,6 +33,9 @@ from field_models.protocol import PlayerRef, wrap_angle
 from field_models.robot_physics.config import CameraConfig
 from field_models.seeding import Rng
 
+_NEVER = 1 << 62
+"""A tick that never comes."""
+
 
 @dataclass(frozen=True, slots=True)
 class BallDetection:
@@ -106,6 +109,8 @@ class OverheadCamera:
         self._ball_miss = config.ball_miss_prob
         self._robot_miss = config.robot_miss_prob
         self._n = len(refs)
+        self.next_delivery_tick = _NEVER
+        """The delivery tick of the oldest frame not delivered yet (a huge one when none)."""
 
     def capture_due(self, tick: int) -> bool:
         """Whether a frame is captured at `tick` (ticks that are multiples of the period)."""
@@ -133,6 +138,8 @@ class OverheadCamera:
         else:
             frame = self._noisy_frame(tick, ball_x, ball_y, robot_poses)
         self._pending.append(frame)
+        if len(self._pending) == 1:
+            self.next_delivery_tick = frame.delivery_tick
 
     def deliver(self, tick: int) -> list[Frame]:
         """Frames whose delivery tick has come (at or before `tick`), oldest first."""
@@ -140,6 +147,7 @@ class OverheadCamera:
         out: list[Frame] = []
         while pending and pending[0].delivery_tick <= tick:
             out.append(pending.popleft())
+        self.next_delivery_tick = pending[0].delivery_tick if pending else _NEVER
         return out
 
     def _exact_frame(

@@ -82,7 +82,8 @@ class Firmware:
 
     def receive(self, command: Command, tick: int) -> bool:
         """Take a command that arrived at `tick`; returns whether it was accepted."""
-        if command.robot is not None and command.robot != self.ref:
+        robot = command.robot
+        if robot is not None and robot is not self.ref and robot != self.ref:
             return False
         if self._newest_seq is not None and command.seq <= self._newest_seq:
             return False
@@ -118,6 +119,14 @@ class Firmware:
             self._halt()
             return 0.0, 0.0
         return self._left, self._right
+
+    @property
+    def wake_tick(self) -> int:
+        """The first tick at which :meth:`due` turns true without a new command.
+
+        A huge one when nothing will expire.
+        """
+        return self._wake_tick
 
     @property
     def running(self) -> Command | None:

@@ -182,12 +182,16 @@ class CentralHost:
         # identities (dataclass equality is the costliest part of building a percept).
         seen = [(index.get(d.ref, -1), d.x, d.y, d.ref.team, d.ref.number) for d in frame.robots]
         out: list[Percept] = []
+        hypot, atan2, wrap = math.hypot, math.atan2, wrap_angle
+        heard_lists = self._heard
+        goals = self._goals
         for i, ref in enumerate(self.refs):
+            heard_list = heard_lists[i]
             if only is not None and ref not in only:
-                self._heard[i].clear()
+                heard_list.clear()
                 continue
-            heard = tuple(self._heard[i])
-            self._heard[i].clear()
+            heard = tuple(heard_list)
+            heard_list.clear()
             pose = poses[i]
             if pose is None:
                 out.append(Percept(ref, tick, observed, None, (), heard))
@@ -197,26 +201,25 @@ class CentralHost:
             if ball is not None:
                 dx = ball.x - px
                 dy = ball.y - py
-                seen_ball = SeenBall(math.hypot(dx, dy), wrap_angle(math.atan2(dy, dx) - heading))
+                seen_ball = SeenBall(hypot(dx, dy), wrap(atan2(dy, dx) - heading))
             players = tuple(
-                SeenPlayer(
-                    math.hypot(x - px, y - py),
-                    wrap_angle(math.atan2(y - py, x - px) - heading),
-                    team,
-                    number,
-                )
-                for row, x, y, team, number in seen
-                if row != i
+                [
+                    SeenPlayer(
+                        hypot(x - px, y - py), wrap(atan2(y - py, x - px) - heading), team, number
+                    )
+                    for row, x, y, team, number in seen
+                    if row != i
+                ]
             )
-            goals = tuple(
-                SeenLandmark(
-                    name,
-                    math.hypot(gx - px, gy - py),
-                    wrap_angle(math.atan2(gy - py, gx - px) - heading),
-                )
-                for name, gx, gy in self._goals
+            landmarks = tuple(
+                [
+                    SeenLandmark(
+                        name, hypot(gx - px, gy - py), wrap(atan2(gy - py, gx - px) - heading)
+                    )
+                    for name, gx, gy in goals
+                ]
             )
-            out.append(Percept(ref, tick, observed, seen_ball, players, heard, goals))
+            out.append(Percept(ref, tick, observed, seen_ball, players, heard, landmarks))
         return out
 
     # ------------------------------------------------------------------------ actuation

@@ -83,6 +83,10 @@ class Command:
     rate: float = 0.0
 
 
+_NEVER = 1 << 62
+"""A tick that never comes."""
+
+
 class _Waiting:
     """A queued command and the tick it was sent; mutable so a newer command can take its turn."""
 
@@ -129,6 +133,9 @@ class Link:
         self._queue: deque[_Waiting] = deque()
         self._next_slot = 0
         self._in_flight: deque[tuple[int, Command]] = deque()
+        self.next_due_tick = _NEVER
+        """No :meth:`deliver` before this tick has anything to do (no packet leaves or arrives):
+        a caller may skip it until then."""
         self.sent = 0
         self.lost = 0
         self.delivered = 0
@@ -138,12 +145,15 @@ class Link:
         """Queue `command` at `tick`; it leaves in the first free packet slot at or after `tick`."""
         robot = command.robot
         for waiting in self._queue:
-            if waiting.command.robot == robot:
+            other = waiting.command.robot
+            if other is robot or other == robot:  # identity first: dataclass == is slow
                 waiting.command = command
                 waiting.tick = tick
                 self.superseded += 1
+                self.next_due_tick = min(self.next_due_tick, tick)
                 return
         self._queue.append(_Waiting(command, tick))
+        self.next_due_tick = min(self.next_due_tick, tick)
 
     def deliver(self, tick: int) -> list[Command]:
         """Commands that arrive at `tick` (or earlier, if not yet collected), in order."""
@@ -154,7 +164,15 @@ class Link:
         while flight and flight[0][0] <= tick:
             out.append(flight.popleft()[1])
         self.delivered += len(out)
+        self.next_due_tick = min(self._next_departure(), flight[0][0] if flight else _NEVER)
         return out
+
+    def _next_departure(self) -> int:
+        """The slot the head of the queue leaves in (:data:`_NEVER` for an empty queue)."""
+        if not self._queue:
+            return _NEVER
+        period = self.packet_period_ticks
+        return max(self._next_slot, -(-self._queue[0].tick // period) * period)
 
     def _depart(self, tick: int) -> None:
         """Send the queued commands whose slots come at or before `tick`."""

@@ -61,6 +61,7 @@ class _Drive:
         "control_spin",
         "left",
         "left_target",
+        "moving",
         "right",
         "right_target",
     )
@@ -72,10 +73,22 @@ class _Drive:
         self.control_ptr = control._body
         self.control_moving = False
         self.control_spin = 0.0
+        self.moving = False  # in the world's list of robots to steer
         self.left = 0.0
         self.right = 0.0
         self.left_target = 0.0
         self.right_target = 0.0
+
+    def at_rest(self) -> bool:
+        """Wheels stopped with zero targets and the control body still: nothing to steer."""
+        return (
+            self.left == 0.0
+            and self.right == 0.0
+            and self.left_target == 0.0
+            and self.right_target == 0.0
+            and not self.control_moving
+            and self.control_spin == 0.0
+        )
 
 
 class RobotWorld:
@@ -110,8 +123,16 @@ class RobotWorld:
         self._index = {ref: i for i, ref in enumerate(self.refs)}
         self._noise_rng = noise_rng
         self._noise_ticks = max(1, round(preset.ball.noise_period_s / self.dt_s))
+        # The next tick whose end perturbs the ball (never without a generator).
+        self._noise_tick = self._noise_ticks if noise_rng is not None else -1
+        self._moving: list[_Drive] = []  # robots not at rest, in the robots' order
         self._noise_buf: list[float] = []
         self._space_ptr = self.space._space
+        self.space_step = _space_step
+        """Chipmunk's step, called once per tick as ``space_step(space pointer, dt)``.
+
+        A benchmark may wrap it to time the physics alone (:mod:`.bench`).
+        """
         self._ball_ptr = self.ball._body
         self.space.step(0.0)  # lets pymunk run its one-off body checks before the fast path
 
@@ -203,6 +224,9 @@ class RobotWorld:
         d.control_moving = False
         d.control_spin = 0.0
         d.left = d.right = d.left_target = d.right_target = 0.0
+        if d.moving:
+            d.moving = False
+            self._moving.remove(d)
         self.space.reindex_shapes_for_body(d.body)
 
     def place_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0) -> None:
@@ -226,6 +250,15 @@ class RobotWorld:
         cap = self._max_wheel
         d.left_target = max(-cap, min(cap, left_mps))
         d.right_target = max(-cap, min(cap, right_mps))
+        self._wake(d)
+
+    def drive_bodies(self) -> list[tuple[pymunk.Body, pymunk.Body]]:
+        """Each robot's (body, kinematic control body), in the robots' order.
+
+        For a bare-world benchmark that drives the control bodies itself and steps the space
+        alone (:mod:`.bench`); :meth:`step` would overwrite what it sets.
+        """
+        return [(d.body, d.control) for d in self._drives]
 
     def wheel_speeds(self, index: int) -> tuple[float, float]:
         """Robot `index`'s current (ramped) wheel speeds [m/s], as its encoders read them."""
@@ -261,18 +294,42 @@ class RobotWorld:
     # ------------------------------------------------------------------ stepping
 
     def step(self) -> None:
-        """Advance one tick: ramp the wheels, steer the control bodies, step the solver."""
+        """Advance one tick: ramp the wheels, steer the control bodies, step the solver.
+
+        Only the robots whose wheels turn or are about to (:attr:`_moving`) cost Python here; a
+        robot at rest with zero targets is left to Chipmunk alone.
+        """
+        if self._moving:
+            self._steer()
+        self.space_step(self._space_ptr, self.dt_s)
+        tick = self.tick = self.tick + 1
+        if tick == self._noise_tick:
+            self._noise_tick += self._noise_ticks
+            self._perturb_ball()
+
+    def _steer(self) -> None:
+        """Ramp each moving robot's wheels one tick and point its control body (module docstring).
+
+        Each wheel moves toward its target by at most one ramp step.
+        """
         ramp, track = self._ramp_step, 2.0 * self._half_track
-        for d in self._drives:
+        cos, sin = math.cos, math.sin
+        settled = False
+        for d in self._moving:
             left, right = d.left, d.right
-            if left != d.left_target:
-                left = d.left = _approach(left, d.left_target, ramp)
-            if right != d.right_target:
-                right = d.right = _approach(right, d.right_target, ramp)
+            target = d.left_target
+            if left != target:
+                left = d.left = (
+                    min(target, left + ramp) if left < target else max(target, left - ramp)
+                )
+            target = d.right_target
+            if right != target:
+                right = min(target, right + ramp) if right < target else max(target, right - ramp)
+                d.right = right
             v = 0.5 * (left + right)
             if v != 0.0:
                 heading = _get_angle(d.body_ptr)
-                _set_velocity(d.control_ptr, (v * math.cos(heading), v * math.sin(heading)))
+                _set_velocity(d.control_ptr, (v * cos(heading), v * sin(heading)))
                 d.control_moving = True
             elif d.control_moving:
                 _set_velocity(d.control_ptr, (0.0, 0.0))
@@ -281,10 +338,19 @@ class RobotWorld:
             if spin != d.control_spin:
                 _set_spin(d.control_ptr, spin)
                 d.control_spin = spin
-        _space_step(self._space_ptr, self.dt_s)
-        self.tick += 1
-        if self._noise_rng is not None and self.tick % self._noise_ticks == 0:
-            self._perturb_ball()
+            if left == 0.0 and right == 0.0 and d.left_target == 0.0 and d.right_target == 0.0:
+                settled = True
+        if settled:
+            for d in self._moving:
+                d.moving = not d.at_rest()
+            self._moving = [d for d in self._moving if d.moving]
+
+    def _wake(self, d: _Drive) -> None:
+        """Put `d` among the robots :meth:`step` steers (no-op if it is there already)."""
+        if not d.moving and not d.at_rest():
+            d.moving = True
+            self._moving.append(d)
+            self._moving.sort(key=self._drives.index)  # the robots' order, as before
 
     def _perturb_ball(self) -> None:
         """Ball-motion noise and the stop threshold, every noise period."""
@@ -333,10 +399,3 @@ class RobotWorld:
         """Exact state of the ball and every robot."""
         players = {ref: self.robot_state(i) for i, ref in enumerate(self.refs)}
         return Truth(self.tick, self.tick * self.dt_s, self.ball_state(), players)
-
-
-def _approach(value: float, target: float, step: float) -> float:
-    """Move `value` toward `target` by at most `step`."""
-    if value < target:
-        return min(target, value + step)
-    return max(target, value - step)
