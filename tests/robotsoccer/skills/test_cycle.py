@@ -7,13 +7,23 @@ import math
 import pytest
 
 from field_models.arena import FieldOptions
-from field_models.protocol import RIGHT, Dash, Percept, PlayerRef, SeenBall, Turn
+from field_models.protocol import (
+    RIGHT,
+    Dash,
+    Percept,
+    PlayerRef,
+    SeenBall,
+    SeenLandmark,
+    Turn,
+    wrap_angle,
+)
 from field_models.registry import field_facts
 from robotsoccer.drills.intercept import DEFENDER, InterceptDrill
 from robotsoccer.drills.intercept_batch import batch_reason
-from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial, run_trial
+from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial, run_trial
 from robotsoccer.skills.cycle import CycleDefenderMind, fit_ball
 from robotsoccer.skills.intercept import straight_policy
+from robotsoccer.skills.localise import Localiser
 
 ME = PlayerRef(RIGHT, 1)
 DEG = math.pi / 180.0
@@ -141,3 +151,55 @@ def test_see_is_the_default_client() -> None:
         "intercept", "soccer_server", "soccer_server_1996", drill_options=(("client", "see"),)
     )
     assert [run_trial(spec, i) for i in range(5)] == [run_trial(explicit, i) for i in range(5)]
+
+
+# ----------------------------------------------------------------------------- steady turns
+
+
+def _reversals(steady: bool) -> int:
+    """Turns of more than 10° the other way from the player's last such turn, all players."""
+    options: tuple[tuple[str, DrillOption], ...] = (
+        ("left", "baseline"),
+        ("right", "baseline"),
+        ("half_time_s", 5.0),
+    )
+    if steady:
+        options += (("steady_turns", True),)
+    spec = TrialSpec("match", "soccer_server", "rcssserver_19", drill_options=options)
+    rngs, drill, arena = build_trial(spec, 0)
+    drill.setup(arena, rngs)
+    minds = drill.minds(arena, rngs)
+    heading = {r: arena.player_state(r).heading for r in arena.players}
+    sign = dict.fromkeys(arena.players, 0)
+    count = 0
+
+    def observe(a: object, percepts: list[Percept]) -> None:
+        nonlocal count
+        for r in arena.players:
+            h = arena.player_state(r).heading
+            turn = wrap_angle(h - heading[r])
+            heading[r] = h
+            if abs(turn) > 10.0 * DEG:
+                s = 1 if turn > 0 else -1
+                count += sign[r] == -s
+                sign[r] = s
+
+    TrialLoop(arena, drill, minds, observe).run()
+    return count
+
+
+def test_steady_turns_dither_less_in_a_server_match() -> None:
+    assert _reversals(steady=True) < 0.5 * _reversals(steady=False)
+
+
+def test_localiser_reckons_told_turns_until_two_landmarks_fix_the_heading() -> None:
+    localiser = Localiser([("g l", -52.5, 0.0), ("g r", 52.5, 0.0)])
+    both = (SeenLandmark("g l", 52.5, math.pi), SeenLandmark("g r", 52.5, 0.0))
+    fixed = localiser.update(Percept(ME, 1, 1, None, (), (), both))
+    assert fixed is not None
+    assert (fixed.x, fixed.y, fixed.heading) == pytest.approx((0.0, 0.0, 0.0), abs=1e-9)
+    localiser.turned(0.5)
+    pose = localiser.update(Percept(ME, 2, 2, None, (), (), ()))
+    assert pose is not None and pose.heading == pytest.approx(0.5)
+    again = localiser.update(Percept(ME, 3, 3, None, (), (), ()))
+    assert again is not None and again.heading == pytest.approx(0.5)  # told once, added once
