@@ -169,7 +169,7 @@ class Decision(StrEnum):
     LEAD = "lead"
 
 
-class Client(StrEnum):
+class ClientKind(StrEnum):
     """How the defender's client acts (module docstring, "Defender")."""
 
     SEE = "see"
@@ -498,15 +498,15 @@ class InterceptDrill:
         shot: Shot | str = Shot.DEFENDER,
         launch_speed_mps: float = 0.0,
         launch_speed_max_mps: float = 0.0,
-        client: Client | str = Client.SEE,
+        client: ClientKind | str = ClientKind.SEE,
     ) -> None:
         self.behaviour = check_behaviour(behaviour, model)
-        self.client = choice(Client, client, "client")
+        self.client = choice(ClientKind, client, "client")
         self.decision = choice(Decision, decision, "decision")
         self.shot = choice(Shot, shot, "shot")
         if self.decision is Decision.LEAD and self.behaviour is Behaviour.LOOKUP:
             raise ValueError("decision 'lead' has no lookup table: choose another behaviour")
-        if self.decision is Decision.LEAD and self.client is Client.CYCLE:
+        if self.decision is Decision.LEAD and self.client is ClientKind.CYCLE:
             raise ValueError("client 'cycle' plays the turn decision: use client=see for 'lead'")
         if not (math.isfinite(float(launch_speed_mps)) and float(launch_speed_mps) >= 0.0):
             raise ValueError(f"launch_speed_mps must be >= 0, got {launch_speed_mps!r}")
@@ -716,7 +716,7 @@ class InterceptDrill:
         defender: DefenderMind | CycleDefenderMind | LeadDefenderMind
         if self.decision is Decision.LEAD:
             defender = self._lead_mind(arena, plan, rngs)
-        elif self.client is Client.CYCLE:
+        elif self.client is ClientKind.CYCLE:
             defender = self._cycle_mind(arena, plan, rngs)
         else:
             defender = self._turn_mind(arena, plan, rngs)
