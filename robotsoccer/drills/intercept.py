@@ -58,6 +58,9 @@ TA chosen once at the trigger; "every_see"). By default it stops the ball with i
 body (0.885 m). With ``defender_kick=True`` it clears a ball within reach of an aimable kick with
 power 100 away from its goal. It leaves out turns smaller than three sigmas of the sensor's
 heading noise (a robot stops to spin for a whole camera period on each turn; 0 on the server).
+Option ``client``: ``see`` (default, the paper's client: one decision per see, "turn, then
+dash") or ``cycle`` (a command every cycle from a world model, :mod:`robotsoccer.skills.cycle`;
+TA held, no decision period; it runs on the one-trial path, not the batch).
 
 **Labels** (the coach judges the truth after every tick; ``labels = ("SAVE", "GOAL", "MISS")``).
 Let û be the unit vector from the ball's start to the defender's start, v the ball's velocity
