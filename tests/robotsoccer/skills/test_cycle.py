@@ -203,3 +203,18 @@ def test_localiser_reckons_told_turns_until_two_landmarks_fix_the_heading() -> N
     assert pose is not None and pose.heading == pytest.approx(0.5)
     again = localiser.update(Percept(ME, 3, 3, None, (), (), ()))
     assert again is not None and again.heading == pytest.approx(0.5)  # told once, added once
+
+
+def test_the_cycle_client_saves_more_than_the_see_client_on_rcssserver_19() -> None:
+    def saves(client: str) -> int:
+        spec = TrialSpec(
+            "intercept",
+            "soccer_server",
+            "rcssserver_19",
+            drill_options=(("behaviour", "analytic"), ("client", client)),
+            field=FieldOptions(ball_noise=0.05),
+        )
+        return sum(run_trial(spec, i).label == "SAVE" for i in range(400))
+
+    see, cycle = saves("see"), saves("cycle")
+    assert cycle > see + 20  # 2000 trials: 20.7% and 37.0%
