@@ -189,6 +189,9 @@ class FieldFacts:
             (the robots' host relays any text).
         walled: Walls close the field: the ball bounces back and never leaves it (the robots'
             table). False: the ball can cross the lines, and a referee restarts play.
+        turn_inertia_s_per_m: A turn of a player moving at v [m/s] turns it by the commanded
+            angle / (1 + this · v) (the Soccer Server's inertia moment, per second); 0 where
+            speed does not shorten turns (the robots).
         landmarks: Where the landmarks a percept may name stand, as (name, x [m], y [m]) in
             the field frame: what a client knows of the field to localise itself by.
     """
@@ -211,6 +214,7 @@ class FieldFacts:
     perfect_perception: bool = False
     say_max_chars: int | None = None
     walled: bool = False
+    turn_inertia_s_per_m: float = 0.0
     landmarks: tuple[tuple[str, float, float], ...] = ()
     _hash: int = field(init=False, repr=False, compare=False, default=0)
 

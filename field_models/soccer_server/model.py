@@ -86,6 +86,7 @@ def facts(preset: ServerPreset) -> FieldFacts:
         player_shape="circle",
         perfect_perception=s.perfect,
         say_max_chars=s.say_msg_size,
+        turn_inertia_s_per_m=d.inertia_moment_cycle_per_m * dt,
         landmarks=tuple((m.name, m.x, m.y) for m in landmarks_for(s.landmark_set)),
     )
 

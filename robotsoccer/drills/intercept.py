@@ -58,6 +58,9 @@ TA chosen once at the trigger; "every_see"). By default it stops the ball with i
 body (0.885 m). With ``defender_kick=True`` it clears a ball within reach of an aimable kick with
 power 100 away from its goal. It leaves out turns smaller than three sigmas of the sensor's
 heading noise (a robot stops to spin for a whole camera period on each turn; 0 on the server).
+Option ``client``: ``see`` (default, the paper's client: one decision per see, "turn, then
+dash") or ``cycle`` (a command every cycle from a world model, :mod:`robotsoccer.skills.cycle`;
+TA held, no decision period; it runs on the one-trial path, not the batch).
 
 **Labels** (the coach judges the truth after every tick; ``labels = ("SAVE", "GOAL", "MISS")``).
 Let û be the unit vector from the ball's start to the defender's start, v the ball's velocity
@@ -101,6 +104,7 @@ from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import GoalWatch, Verdict
 from robotsoccer.drills.task_scaling import ReferenceFlight, task_launch
 from robotsoccer.options import choice, duration, flag
+from robotsoccer.skills.cycle import CycleDefenderMind
 from robotsoccer.skills.intercept import (
     AimedShooterMind,
     Behaviour,
@@ -166,6 +170,13 @@ class Decision(StrEnum):
 
     TURN = "turn"
     LEAD = "lead"
+
+
+class ClientKind(StrEnum):
+    """How the defender's client acts (module docstring, "Defender")."""
+
+    SEE = "see"
+    CYCLE = "cycle"
 
 
 class Shot(StrEnum):
@@ -457,6 +468,9 @@ class InterceptDrill:
         launch_speed_max_mps: With `launch_speed_mps`, draw each trial's speed uniformly
             between the two [m/s] (a coach launch); 0: one speed. The plan's numbers
             (arrival time, ...) are those of the middle speed.
+        client: ``see`` (the paper's client: decides at each see, "turn, then dash") or
+            ``cycle`` (a command every cycle from a world model,
+            :mod:`robotsoccer.skills.cycle`; the turn decision only, no decision period).
 
     Raises:
         ValueError: An unknown behaviour, TA mode, launch or scaling, a missing model file
@@ -487,12 +501,16 @@ class InterceptDrill:
         shot: Shot | str = Shot.DEFENDER,
         launch_speed_mps: float = 0.0,
         launch_speed_max_mps: float = 0.0,
+        client: ClientKind | str = ClientKind.SEE,
     ) -> None:
         self.behaviour = check_behaviour(behaviour, model)
+        self.client = choice(ClientKind, client, "client")
         self.decision = choice(Decision, decision, "decision")
         self.shot = choice(Shot, shot, "shot")
         if self.decision is Decision.LEAD and self.behaviour is Behaviour.LOOKUP:
             raise ValueError("decision 'lead' has no lookup table: choose another behaviour")
+        if self.decision is Decision.LEAD and self.client is ClientKind.CYCLE:
+            raise ValueError("client 'cycle' plays the turn decision: use client=see for 'lead'")
         if not (math.isfinite(float(launch_speed_mps)) and float(launch_speed_mps) >= 0.0):
             raise ValueError(f"launch_speed_mps must be >= 0, got {launch_speed_mps!r}")
         self.launch_speed_mps = float(launch_speed_mps)
@@ -531,7 +549,7 @@ class InterceptDrill:
         self.max_time_s = float(max_time_s)
         self.defender_kick = flag("defender_kick", defender_kick)
         self.transfer = flag("transfer", transfer)
-        self.defender_mind: DefenderMind | LeadDefenderMind | None = None
+        self.defender_mind: DefenderMind | CycleDefenderMind | LeadDefenderMind | None = None
         self._aim_offset_trial_rad = self.aim_offset_rad
         self._judge_state: _Judge | None = None
         self._plan: LaunchPlan | None = None
@@ -698,9 +716,11 @@ class InterceptDrill:
     def minds(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
         """The defender's behaviour, and the shooter when it launches the ball."""
         plan = self.plan(arena)
-        defender: DefenderMind | LeadDefenderMind
+        defender: DefenderMind | CycleDefenderMind | LeadDefenderMind
         if self.decision is Decision.LEAD:
             defender = self._lead_mind(arena, plan, rngs)
+        elif self.client is ClientKind.CYCLE:
+            defender = self._cycle_mind(arena, plan, rngs)
         else:
             defender = self._turn_mind(arena, plan, rngs)
         self.defender_mind = defender
@@ -737,6 +757,27 @@ class InterceptDrill:
             kickable_distance_m=plan.kickable_distance_m if self.defender_kick else None,
             turn_tolerance_rad=plan.turn_tolerance_rad,
             decision_period_ticks=decision_ticks(plan, arena.facts),
+        )
+
+    def _cycle_mind(self, arena: Arena, plan: LaunchPlan, rngs: TrialRngs) -> CycleDefenderMind:
+        """The TA defender on a per-cycle client (:mod:`robotsoccer.skills.cycle`).
+
+        Raises:
+            ValueError: The plan sets a decision period (the ``task`` scaling), or TA is
+                chosen at every see (the cycle client holds it).
+        """
+        if decision_ticks(plan, arena.facts):
+            raise ValueError("client 'cycle' acts every cycle: this plan sets a decision period")
+        if self.ta_mode is not TaMode.HOLD:
+            raise ValueError("client 'cycle' holds TA: use ta_mode=hold")
+        policy = make_policy(
+            self.behaviour, rngs["policy"], self.model, self.distance_factor(arena.facts)
+        )
+        return CycleDefenderMind(
+            policy,
+            arena.facts,
+            plan.trigger_distance_m,
+            kickable_distance_m=plan.kickable_distance_m if self.defender_kick else None,
         )
 
     def judge(self, arena: Arena) -> Verdict | None:

@@ -65,6 +65,7 @@ from robotsoccer.drills.intercept import (
     SAVE_SPEED_PER_LENGTH,
     SHOOTER,
     STOPPED_SHORT,
+    ClientKind,
     Decision,
     InterceptDrill,
     Launch,
@@ -123,6 +124,8 @@ def batch_reason(spec: TrialSpec) -> str | None:
     assert isinstance(drill, InterceptDrill)
     if drill.defender_kick:
         return "the defender's clearing kick reads landmarks, which the batch does not see"
+    if drill.client is not ClientKind.SEE:
+        return "the batch plays the see-triggered client"
     if drill.decision is not Decision.TURN:
         return "the batch plays the paper's turn-angle decision, not the lead"
     if drill.shot is not Shot.DEFENDER:

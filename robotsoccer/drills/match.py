@@ -113,6 +113,9 @@ class MatchDrill(LayeredDrill):
         players: Players per side (0: 11 on an open field, 5 on a walled one).
         half_time_s: One half [s].
         transfer: Accept a net or tree trained on another field model or preset.
+        steady_turns: The minds reckon their turns into the heading between landmark fixes and
+            do not turn back within a short hold (:attr:`~robotsoccer.skills.team.TeamSetup.
+            steady_turns`); False (default): the 1996 client's turning.
 
     Raises:
         ValueError: An unknown team kind, a layered team without its model files, an unknown
@@ -131,7 +134,9 @@ class MatchDrill(LayeredDrill):
         players: int | str = 0,
         half_time_s: float | str = HALF_TIME_S,
         transfer: bool | str = False,
+        steady_turns: bool | str = False,
     ) -> None:
+        self.steady_turns = flag("steady_turns", steady_turns)
         self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
         layered = TeamKind.LAYERED in self.kinds.values()
         if layered and not (net and tree):
@@ -290,6 +295,7 @@ class MatchDrill(LayeredDrill):
             spin_accel_radps2=facts.player_accel_mps2 / facts.pitch.player_radius_m,
             sensor_period_s=facts.sensor_period_s,
             ball_law=facts.ball,
+            steady_turns=self.steady_turns,
         )
 
     # ------------------------------------------------------------------ the coach

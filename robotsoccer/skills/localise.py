@@ -35,6 +35,15 @@ class Localiser:
     def __init__(self, landmarks: Sequence[tuple[str, float, float]]) -> None:
         self.known = {name: (x, y) for name, x, y in landmarks}
         self.pose: Pose | None = None
+        self._turned = 0.0  # turns told since the last heading fix (:meth:`turned`)
+
+    def turned(self, angle_rad: float) -> None:
+        """A turn the player commanded: added to the kept heading until two landmarks fix it.
+
+        Only callers that want dead reckoning call it (team minds with steady turns); the
+        others keep the last heading as it was.
+        """
+        self._turned += angle_rad
 
     def update(self, percept: Percept) -> Pose | None:
         """The pose this percept gives (or the last one, when it gives none)."""
@@ -47,9 +56,15 @@ class Localiser:
                 marks.append((where[0], where[1], ex, ey, mark.distance_m))
         if len(marks) >= 2:
             heading = _heading_from_pair(marks)
+            self._turned = 0.0
         elif marks and self.pose is not None:
-            heading = self.pose.heading
+            heading = wrap_angle(self.pose.heading + self._turned)
+            self._turned = 0.0
         else:
+            if self.pose is not None and self._turned:
+                pose = self.pose
+                self.pose = Pose(pose.x, pose.y, wrap_angle(pose.heading + self._turned))
+                self._turned = 0.0
             return self.pose
         c, s = math.cos(heading), math.sin(heading)
         # Near landmarks weigh more: the server quantises log-distance, so far ones err more.

@@ -47,6 +47,12 @@ from robotsoccer.skills.localise import Localiser, Pose
 from robotsoccer.skills.passing import PassEvaluator, view_arrays
 from robotsoccer.skills.setplay import KickPowers, opponent_in_path
 
+REVERSE_HOLD_TICKS = 10
+"""With steady turns, a turn the other way within this many ticks of the last needs ..."""
+REVERSE_MIN_RAD = math.radians(60.0)
+"""... more than this (a ball that moved behind the player still turns it)."""
+MEMORY_TICKS = 20
+"""With steady turns, a ball seen this recently is trusted where it was (going home)."""
 SEARCH_TURN_RAD = math.radians(60.0)
 """A player that sees no ball turns this far per decision to find it."""
 FACING_RAD = math.radians(12.0)
@@ -98,6 +104,14 @@ class TeamSetup:
             half-size [rad/s²].
         sensor_period_s: Time between two percepts [s] (the lead's velocity fit).
         ball_law: How the free ball slows down (the lead's prediction); None: it does not.
+        steady_turns: Turn without dithering (issue 28): a turn is added to the heading the
+            localiser keeps until two landmarks fix it again, and a turn the other way from the
+            last one within :data:`REVERSE_HOLD_TICKS` is left out unless it exceeds
+            :data:`REVERSE_MIN_RAD`, and a player facing where it last saw the ball without
+            seeing it forgets that place (it searches on, one way), and one that is not the
+            chaser and saw the ball within :data:`MEMORY_TICKS` goes on home instead of turning
+            back to look; a player home stays so until twice the home tolerance away.
+            False: the paper's client (turns forgotten until seen).
     """
 
     attack_right: bool
@@ -120,6 +134,7 @@ class TeamSetup:
     spin_accel_radps2: float
     sensor_period_s: float = 0.1
     ball_law: BallLaw | None = None
+    steady_turns: bool = False
 
     def turn_ticks(self, angle_rad: float) -> int:
         """Ticks until a percept shows a turn by `angle_rad` done: latency plus the spin.
@@ -187,6 +202,9 @@ class TeamMind:
         self._previous_xy: tuple[float, float] | None = None
         self._spell_kicked = ""  # what it kicked in this spell on the ball
         self._hold_until = -1  # percepts sampled before this tick predate the last turn
+        self._last_turn = (-REVERSE_HOLD_TICKS - 1, 0.0)  # (tick, angle) with steady turns
+        self._seen_tick = -MEMORY_TICKS - 1  # the last tick it saw the ball
+        self._at_home = False  # with steady turns: arrived home and not yet pushed off it
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """One decision (module docstring), its turns remembered until percepts show them."""
@@ -196,10 +214,26 @@ class TeamMind:
             # with the last decision (an empty one keeps it, on the robots' host).
             return ()
         actions = self._decide(percept)
+        if self.setup.steady_turns:
+            actions = self._steady(percept.tick, actions)
         for action in actions:
             if isinstance(action, Turn):
                 self._hold_until = percept.tick + self.setup.turn_ticks(action.angle_rad)
                 break
+        return actions
+
+    def _steady(self, tick: int, actions: tuple[Action, ...]) -> tuple[Action, ...]:
+        """Leave out a small turn back within the hold; reckon the turn kept into the heading."""
+        for i, action in enumerate(actions):
+            if not isinstance(action, Turn):
+                continue
+            angle = action.angle_rad
+            back = self._last_turn[1] * angle < 0.0 and abs(angle) <= REVERSE_MIN_RAD
+            if back and tick - self._last_turn[0] <= REVERSE_HOLD_TICKS:
+                return actions[:i] + actions[i + 1 :]
+            self._last_turn = (tick, angle)
+            self.localiser.turned(angle)
+            break
         return actions
 
     def _decide(self, percept: Percept) -> tuple[Action, ...]:
@@ -208,6 +242,7 @@ class TeamMind:
         if ball is None:
             self._previous_bd = None
             return self._no_ball(percept, pose)
+        self._seen_tick = percept.tick
         if pose is not None:
             heading = pose.heading + ball.angle_rad
             self._ball_xy = (
@@ -398,7 +433,13 @@ class TeamMind:
         tx, ty = self._home_target()
         dx, dy = tx - pose.x, ty - pose.y
         self.intent = "home"
-        if math.hypot(dx, dy) > self.setup.home_tolerance_m:
+        tolerance = self.setup.home_tolerance_m
+        if self.setup.steady_turns:  # hysteresis: home until twice the tolerance away
+            self._at_home = math.hypot(dx, dy) <= tolerance * (2.0 if self._at_home else 1.0)
+            far = not self._at_home
+        else:
+            far = math.hypot(dx, dy) > tolerance
+        if far:
             angle = wrap_angle(math.atan2(dy, dx) - pose.heading)
             if abs(angle) > 2.0 * FACING_RAD:
                 return (Turn(angle), Dash(80.0))
@@ -425,6 +466,13 @@ class TeamMind:
 
     def _no_ball(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...]:
         remembered = self._ball_xy
+        recent = percept.tick - self._seen_tick <= MEMORY_TICKS
+        if self.setup.steady_turns and recent and not self.chasing and pose is not None:
+            # Steady turns: a player that turned away from the ball to go home trusts where it
+            # saw it, and goes on home rather than turning back to look (and away again).
+            home = self._go_home(percept, pose)
+            if self.intent == "home" and home:
+                return home
         if remembered is not None and pose is not None:
             # Turn toward where the ball was last seen (a search with a memory).
             angle = wrap_angle(
@@ -433,5 +481,7 @@ class TeamMind:
             if abs(angle) > FACING_RAD:
                 self.intent = "search"
                 return (Turn(angle),)
+            if self.setup.steady_turns:
+                self._ball_xy = None  # facing where it was and not seeing it: it is not there
         self.intent = "search"
         return (Turn(SEARCH_TURN_RAD),)
