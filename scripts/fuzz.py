@@ -45,6 +45,7 @@ from field_models.commands import CommandParseError, parse_command, render_comma
 from field_models.presets import PRESET_DIR, Bounds, PresetError, bounds_of, range_problem
 from field_models.protocol import Dash, Kick, Say, Turn
 from field_models.robot_physics.config import RobotPhysicsPreset, load_preset
+from field_models.soccer_server import server_conf
 from field_models.soccer_server.messages import MessageParseError, parse_sexpr
 from field_models.soccer_server.params import DynamicsParams, load_server_preset
 from field_models.soccer_server.sensing_params import SensingParams
@@ -335,7 +336,7 @@ class Fuzz:
         lines = [f"server::{n} = {v}" for n, v in self._settings(rng)]
         if rng.random() < 0.2:
             lines.insert(rng.randrange(len(lines) + 1), text(rng, 30))
-        preset = load_server_preset(str(self._file(case, ".conf", "\n".join(lines) + "\n")))
+        preset = server_conf.load_preset(str(self._file(case, ".conf", "\n".join(lines) + "\n")))
         _in_range(preset.dynamics)
         _in_range(preset.sensing)
         return "ok"
@@ -347,7 +348,7 @@ class Fuzz:
         if rng.random() < 0.2:
             i = rng.randrange(len(message))
             message = message[:i] + text(rng, 5) + message[i:]
-        preset = load_server_preset(message)
+        preset = server_conf.load_preset(message)
         _in_range(preset.dynamics)
         _in_range(preset.sensing)
         return "ok"
@@ -358,7 +359,7 @@ class Fuzz:
         if rng.random() < 0.5:
             load_preset(str(self._file(case, ".toml", data)))
         else:
-            load_server_preset(str(self._file(case, ".conf", data)))
+            server_conf.load_preset(str(self._file(case, ".conf", data)))
         return "ok"
 
     def command(self, rng: random.Random, case: int) -> str:

@@ -14,7 +14,8 @@ from field_models.batch_arena import BatchArena
 from field_models.protocol import PlayerRef
 from field_models.seeding import StreamBatch, TrialRngs
 from field_models.soccer_server.landmarks import landmarks_for
-from field_models.soccer_server.params import ServerPreset, load_server_preset
+from field_models.soccer_server.params import ServerPreset
+from field_models.soccer_server.server_conf import load_preset
 
 NAME = "soccer_server"
 """The registered name."""
@@ -34,7 +35,7 @@ def load(preset: str, options: FieldOptions) -> ServerPreset:
             set), or a ball-noise period other than the 100 ms cycle (``ball_rand`` acts once
             per cycle, spec §1.3).
     """
-    loaded = load_server_preset(preset)
+    loaded = load_preset(preset)
     if options.sensor_latency_s is not None:
         raise ValueError(f"{NAME} has no sensor latency to set (a see shows its own cycle)")
     period = options.ball_noise_period_s

@@ -242,23 +242,27 @@ class ServerPreset:
         return dataclasses.replace(self, sensing=self.sensing.replace(**changes))
 
 
+def is_server_conf(name_or_path: str) -> bool:
+    """Whether a preset argument is a real server's configuration (``.conf``, ``server_param``)."""
+    return name_or_path.lstrip().startswith("(server_param") or name_or_path.endswith(".conf")
+
+
 def load_server_preset(name_or_path: str = DEFAULT_PRESET) -> ServerPreset:
     """Load a Soccer Server preset by name (``soccer_server_1996``, ``rcssserver_19``) or path.
 
     Keys ending in ``_deg`` fill the record's ``_rad`` field of the same stem, converted once.
     A file may start from another preset with ``base = "<name>"`` and state only what differs.
-    A real server's configuration loads too, over the ``rcssserver_19`` preset: a path ending
-    in ``.conf`` (a ``server.conf`` file) or the text of a ``(server_param ...)`` message
-    (:func:`~field_models.soccer_server.server_conf.load_server_conf`).
+    A real server's configuration (a ``server.conf`` file, a ``(server_param ...)`` message)
+    is read by :func:`field_models.soccer_server.server_conf.load_preset`, which takes either.
 
     Raises:
         PresetError: naming the file and the key when the file is missing or wrong.
     """
-    if name_or_path.lstrip().startswith("(server_param") or name_or_path.endswith(".conf"):
-        # Imported here: server_conf builds on this module's records.
-        from field_models.soccer_server.server_conf import load_server_conf
-
-        return load_server_conf(name_or_path).preset
+    if is_server_conf(name_or_path):
+        raise PresetError(
+            f"{name_or_path[:60]}: a real server's configuration, not a preset file: "
+            "load it with server_conf.load_preset"
+        )
     path = preset_path(name_or_path, "soccer_server")
     table = read_preset(path, "soccer_server")
     unknown = sorted(set(table) - {"name", "era", "dynamics", "sensing"})

@@ -51,6 +51,7 @@ from field_models.soccer_server.messages import MessageParseError, Quoted, parse
 from field_models.soccer_server.params import (
     DynamicsParams,
     ServerPreset,
+    is_server_conf,
     load_server_preset,
 )
 from field_models.soccer_server.sensing_params import SensingParams
@@ -490,6 +491,21 @@ class ServerConf:
     preset: ServerPreset
     applied: tuple[str, ...]
     ignored: tuple[str, ...]
+
+
+def load_preset(name_or_path: str) -> ServerPreset:
+    """Any Soccer Server preset argument: a name or TOML file, or a real server's configuration.
+
+    A configuration is a path ending in ``.conf`` or the text of a ``(server_param ...)``
+    message, loaded over the ``rcssserver_19`` preset by :func:`load_server_conf`. This is
+    what the registry entry and the CLI's ``--field-preset`` read.
+
+    Raises:
+        PresetError: naming the file (or the message) and the key.
+    """
+    if is_server_conf(name_or_path):
+        return load_server_conf(name_or_path).preset
+    return load_server_preset(name_or_path)
 
 
 def load_server_conf(

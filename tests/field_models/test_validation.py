@@ -17,6 +17,7 @@ import pytest
 from field_models.arena import FieldOptions
 from field_models.presets import MAX_PRESET_BYTES, PresetError, RecordError, bounds_of
 from field_models.robot_physics.config import RobotPhysicsPreset, load_preset
+from field_models.soccer_server import server_conf
 from field_models.soccer_server.params import ServerPreset, load_server_preset
 
 
@@ -124,7 +125,7 @@ def test_no_acceleration_cap_is_still_written_inf() -> None:
     ],
 )
 def test_an_overflowing_server_conf_number_is_refused(tmp_path: Path, line: str, key: str) -> None:
-    message = _error(load_server_preset, f"{line}\n", tmp_path, "server.conf")
+    message = _error(server_conf.load_preset, f"{line}\n", tmp_path, "server.conf")
     assert f"server.conf:1: key '{key}'" in message and len(message) < 300
 
 
@@ -134,7 +135,7 @@ def test_an_overflowing_server_conf_number_is_refused(tmp_path: Path, line: str,
 )
 def test_an_overflowing_server_param_number_is_refused(text: str) -> None:
     with pytest.raises(PresetError, match="finite"):
-        load_server_preset(text)
+        server_conf.load_preset(text)
 
 
 def test_files_that_are_not_presets_are_refused(tmp_path: Path) -> None:
@@ -157,7 +158,7 @@ def test_files_that_are_not_presets_are_refused(tmp_path: Path) -> None:
     with pytest.raises(PresetError, match="cannot read"):
         load_preset(str(tmp_path))  # a folder
     with pytest.raises(PresetError, match="not a server configuration"):
-        load_server_preset(str(huge.rename(tmp_path / "huge.conf")))
+        server_conf.load_preset(str(huge.rename(tmp_path / "huge.conf")))
 
 
 @pytest.mark.skipif(not Path("/dev/zero").exists(), reason="no /dev/zero")

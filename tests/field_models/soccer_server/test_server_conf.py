@@ -18,6 +18,7 @@ from field_models.soccer_server.server_conf import (
     MESSAGE_SOURCE,
     SERVER_PARAMS,
     STR_PARAMS,
+    load_preset,
     load_server_conf,
     parse_server_conf,
 )
@@ -69,8 +70,10 @@ def test_server_conf_of_todays_defaults_is_the_rcssserver_19_preset() -> None:
     assert (loaded.preset.name, loaded.preset.era) == ("rcssserver_19_defaults", "19")
     assert loaded.preset.source == str(DEFAULTS)
     assert len(loaded.applied) + len(loaded.ignored) == len(SERVER_PARAMS)
-    # The CLI's --field-preset goes through load_server_preset: a .conf path loads the same.
-    assert load_server_preset(str(DEFAULTS)) == loaded.preset
+    # The CLI's --field-preset goes through load_preset: a .conf path loads the same.
+    assert load_preset(str(DEFAULTS)) == loaded.preset
+    with pytest.raises(PresetError, match="not a preset file: load it with"):
+        load_server_preset(str(DEFAULTS))
 
 
 def test_every_server_parameter_we_model_comes_from_the_file() -> None:
@@ -146,7 +149,7 @@ def test_server_param_changes_exactly_what_it_sets() -> None:
     )
     assert loaded.ignored == ("stamina_max", "landmark_file")
     assert (preset.name, preset.source) == ("server_param", MESSAGE_SOURCE)
-    assert load_server_preset(text) == preset
+    assert load_preset(text) == preset
 
 
 def test_dash_parameters_in_degrees_become_radians() -> None:
@@ -201,7 +204,7 @@ def conf_error(tmp_path: Path, text: str) -> str:
     path = tmp_path / "server.conf"
     path.write_text(text)
     with pytest.raises(PresetError) as err:
-        load_server_preset(str(path))
+        load_preset(str(path))
     message = str(err.value)
     assert str(path) in message
     return message
@@ -249,7 +252,7 @@ def test_a_wrong_server_param_message_names_the_key() -> None:
         ("(server_param (ball_decay 0.9)", ["not a server_param message"]),
     ]:
         with pytest.raises(PresetError) as err:
-            load_server_preset(text)
+            load_preset(text)
         for fragment in [MESSAGE_SOURCE, *fragments]:
             assert fragment in str(err.value), (text, str(err.value))
 
@@ -260,7 +263,7 @@ def test_a_file_holding_a_server_param_message_and_a_missing_file(tmp_path: Path
     loaded = load_server_conf(path)
     assert loaded.preset.dynamics.player_decay == 0.5 and loaded.ignored == ("wind_force",)
     with pytest.raises(PresetError, match="not found"):
-        load_server_preset(str(tmp_path / "absent.conf"))
+        load_preset(str(tmp_path / "absent.conf"))
 
 
 def test_a_loaded_base_preset_is_accepted() -> None:
