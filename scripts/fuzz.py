@@ -52,7 +52,7 @@ from field_models.soccer_server.sensing_params import SensingParams
 from field_models.soccer_server.server_conf import SERVER_PARAMS
 from learning.features import ModelFileError
 from learning.lookup import LookupTable
-from robotsoccer import cli
+from robotsoccer.cli import options as cli
 from robotsoccer.envs import InterceptVectorEnv, pass_parallel_env
 from robotsoccer.envs.intercept import InterceptEnv
 from robotsoccer.replay.rcg import read_rcg

@@ -63,7 +63,7 @@ MODEL_PACKAGES = MODEL_NAMES | {"rcssserver"}
 also the real server program's, which strings above the line may name, so it is not searched
 for in strings."""
 PRESET_CLASSES = {"RobotPhysicsPreset", "ServerPreset"}
-MAY_NAME_MODELS = {Path("robotsoccer/cli.py")}
+MAY_NAME_MODELS = {Path("robotsoccer/cli/options.py"), Path("robotsoccer/cli/commands/serve.py")}
 """Above the line only the CLI names concrete field models (the registry lives below it)."""
 
 

@@ -1,0 +1,7 @@
+"""``python -m robotsoccer.cli``: the console script."""
+
+import sys
+
+from robotsoccer.cli import main
+
+sys.exit(main())

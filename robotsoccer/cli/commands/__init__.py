@@ -1,0 +1,1 @@
+"""One module per group of commands; :data:`robotsoccer.cli.COMMANDS` maps names to them."""

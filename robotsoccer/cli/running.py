@@ -1,0 +1,93 @@
+"""What every command does around its work.
+
+One-line failures, the spec a command's options describe, a demo's tally, a clock for the log.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import os
+import sys
+import time
+from collections import Counter
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
+
+from field_models.arena import FieldOptions
+from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial
+from robotsoccer.stats import wilson_interval
+
+if TYPE_CHECKING:
+    pass
+
+
+def fail(status: int, message: str) -> int:
+    """Print `message` as one line on stderr (its first line) and return the exit status."""
+    first = message.strip().splitlines()[0] if message.strip() else "failed"
+    with contextlib.suppress(BrokenPipeError):  # stderr closed too: nothing left to tell
+        print(f"robotsoccer: error: {first}", file=sys.stderr)
+    return status
+
+
+def silence_stdout() -> None:
+    """After the reader closed the pipe, send what is left to /dev/null (no second error)."""
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, sys.stdout.fileno())
+
+
+def spec_from(args: argparse.Namespace, **extra: Any) -> TrialSpec:
+    """The TrialSpec a command's field and drill options describe."""
+    field = FieldOptions(perfect_perception=args.perfect_perception, ball_noise=args.ball_noise)
+    spec = TrialSpec(
+        drill=args.drill,
+        field_model=args.field,
+        preset=args.field_preset,
+        seed=args.seed,
+        field=field,
+        **extra,
+    )
+    return spec.with_options(**dict(args.option))
+
+
+def check_spec(spec: TrialSpec) -> None:
+    """Set trial 0 up front so a bad preset, option or model fails here in one line."""
+    rngs, drill, arena = build_trial(spec, 0)
+    drill.setup(arena, rngs)
+    drill.minds(arena, rngs)
+
+
+class Tally:
+    """Counts of a run's labels and its simulated time, built as results arrive."""
+
+    def __init__(self) -> None:
+        self.labels: Counter[str] = Counter()
+        self.n = 0
+        self.simulated_s = 0.0
+
+    def add(self, result: TrialResult) -> None:
+        """Count one result."""
+        self.labels[result.label] += 1
+        self.n += 1
+        self.simulated_s += result.time_s
+
+    def table(self, labels: Sequence[str], title: str) -> str:
+        """A plain-text table: each label's count, share and 95% Wilson interval."""
+        n = self.n
+        lines = [title, f"{'label':<8}{'count':>7}{'share':>9}   95% interval"]
+        for label in list(labels) + sorted(set(self.labels) - set(labels)):
+            k = self.labels.get(label, 0)
+            low, high = wilson_interval(k, n)
+            share = 100.0 * k / n if n else 0.0
+            lines.append(f"{label:<8}{k:>7}{share:>8.1f}%   [{100 * low:.1f}, {100 * high:.1f}]")
+        return "\n".join(lines)
+
+
+def clock_log() -> Callable[[str], None]:
+    """A log that prefixes each line with the seconds since it was made."""
+    start = time.perf_counter()
+
+    def log(line: str) -> None:
+        print(f"[{time.perf_counter() - start:6.1f} s] {line}", flush=True)
+
+    return log
