@@ -17,6 +17,8 @@ from robotsoccer.runs.pool import (
 from robotsoccer.runs.ray_backend import IN_FLIGHT_PER_CPU, MISSING_RAY, execute_ray
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 
+pytestmark = pytest.mark.ray  # a Ray instance per module: .ci/run keeps it apart
+
 INTERCEPT = TrialSpec(drill="intercept", field_model="soccer_server", seed=3)
 SHOOTOUT = TrialSpec(drill="shootout", field_model="robot_physics", seed=3)
 
