@@ -111,7 +111,9 @@ def test_stopping_early_cancels_the_tasks_still_out(ray_instance, monkeypatch) -
     chunks = execute_ray(INTERCEPT, ([i] for i in range(40)), workers=2, run_chunk=run_chunk)
     assert len(next(chunks)) == 1
     chunks.close()  # what a Ctrl-C in run_trials does: the finally cancels the rest
-    assert len(cancelled) == IN_FLIGHT_PER_CPU * 2 - 1  # the chunks still out, not all 40
+    # The chunks still out, not all 40: those not finished by now (a finished one is not
+    # cancelled: ray_backend._cancel says why).
+    assert 1 <= len(cancelled) <= IN_FLIGHT_PER_CPU * 2 - 1
     monkeypatch.undo()
     again = run_trials(INTERCEPT, 4, workers=2, progress=False, backend="ray")
     assert again == run_trials(INTERCEPT, 4, workers=1, progress=False)
