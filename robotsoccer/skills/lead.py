@@ -153,6 +153,19 @@ def run_distance(time_s: float, top_speed_mps: float, accel_mps2: float) -> floa
     return 0.5 * top_speed_mps * ramp + top_speed_mps * (time_s - ramp)
 
 
+def ahead_of(ball: Point, velocity: Point, lead_s: float, law: BallLaw | None) -> Point:
+    """Where a ball at `ball` moving at `velocity` is `lead_s` later [m].
+
+    Along its velocity, slowing by the field's law (None: it keeps its speed); itself for a
+    lead of 0 or less or a ball at rest.
+    """
+    speed = math.hypot(*velocity)
+    if lead_s <= 0.0 or speed == 0.0:
+        return ball
+    along = speed * lead_s if law is None else law.distance_in(speed, lead_s)
+    return ball[0] + velocity[0] / speed * along, ball[1] + velocity[1] / speed * along
+
+
 def track_angle(ball: Point, velocity: Point, defender: Point) -> float:
     """Angle at the ball from its velocity to the line ball -> defender [rad, CCW positive].
 
@@ -301,12 +314,7 @@ class LeadDefenderMind:
 
     def _aim(self, ball: Point, velocity: Point) -> Point:
         """The ball's predicted position the lead ahead of its newest sighting."""
-        ahead = self._lead_s
-        speed = math.hypot(*velocity)
-        if ahead <= 0.0 or speed == 0.0:
-            return ball
-        along = self.facts.ball.distance_in(speed, ahead)
-        return ball[0] + velocity[0] / speed * along, ball[1] + velocity[1] / speed * along
+        return ahead_of(ball, velocity, self._lead_s, self.facts.ball)
 
     def _toward(self, angle: float, bd: float, percept: Percept) -> tuple[Action, ...]:
         """Clear the ball when in reach; else turn toward `angle` and dash (after the trigger)."""

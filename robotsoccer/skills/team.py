@@ -42,7 +42,13 @@ from field_models.arena import BallLaw
 from field_models.protocol import Action, Dash, Kick, Percept, SeenPlayer, Turn, wrap_angle
 from learning.pass_features import pass_attributes, passer_attributes, unknown_half
 from robotsoccer.skills.intercept import TurnPolicy
-from robotsoccer.skills.lead import BallTrack, LeadPolicy, track_angle, velocity_window
+from robotsoccer.skills.lead import (
+    BallTrack,
+    LeadPolicy,
+    ahead_of,
+    track_angle,
+    velocity_window,
+)
 from robotsoccer.skills.localise import Localiser, Pose
 from robotsoccer.skills.passing import PassEvaluator, view_arrays
 from robotsoccer.skills.setplay import KickPowers, opponent_in_path
@@ -417,13 +423,8 @@ class TeamMind:
         if bd > self.setup.trigger_distance_m:
             return None
         angle = track_angle(ball, velocity, (pose.x, pose.y))
-        lead = max(0.0, self.lead(bd, angle, previous))
-        speed = math.hypot(*velocity)
-        law = self.setup.ball_law
-        along = speed * lead if law is None else law.distance_in(speed, lead)
-        if speed > 0.0:
-            ball = (ball[0] + velocity[0] / speed * along, ball[1] + velocity[1] / speed * along)
-        return math.atan2(ball[1] - pose.y, ball[0] - pose.x) - pose.heading
+        aim = ahead_of(ball, velocity, self.lead(bd, angle, previous), self.setup.ball_law)
+        return math.atan2(aim[1] - pose.y, aim[0] - pose.x) - pose.heading
 
     def _go_home(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...]:
         ball = percept.ball
