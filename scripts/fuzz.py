@@ -55,7 +55,7 @@ from learning.lookup import LookupTable
 from robotsoccer.cli import options as cli
 from robotsoccer.envs import InterceptVectorEnv, pass_parallel_env
 from robotsoccer.envs.intercept import InterceptEnv
-from robotsoccer.replay.rcg import read_rcg
+from robotsoccer.replay.rcg_read import read_rcg
 from robotsoccer.runs.runner import TrialSpec, run_trial
 
 NASTY = [
