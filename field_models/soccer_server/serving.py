@@ -46,16 +46,11 @@ from field_models.commands import parse_command as parse_action
 from field_models.protocol import LEFT, RIGHT, Action, BodyState, PlayerRef, Say
 from field_models.seeding import TrialRngs
 from field_models.soccer_server.dynamics import PLAY_MODES, SoccerServerModel
+from field_models.soccer_server.hearing import HearInfo, deliver_says, say_allowed
 from field_models.soccer_server.messages import SExpr, render_hear, render_see
 from field_models.soccer_server.params import ServerPreset
-from field_models.soccer_server.sensing import (
-    HearInfo,
-    SeeInfo,
-    SeeTimer,
-    deliver_says,
-    observe,
-    say_allowed,
-)
+from field_models.soccer_server.see_timing import SeeTimer
+from field_models.soccer_server.sensing import SeeInfo, observe
 from field_models.soccer_server.sensing_params import SensingParams
 from field_models.soccer_server.wire import (
     ILLEGAL_FORM,
