@@ -27,12 +27,8 @@ Typical use (noise from the trial's own generator)::
 """
 
 from field_models.soccer_server.batch import BatchSoccerServer
-from field_models.soccer_server.dynamics import (
-    PLAY_MODES,
-    SoccerServerModel,
-    dash_rate,
-    kick_effectiveness,
-)
+from field_models.soccer_server.cycle_rules import PLAY_MODES, dash_rate, kick_effectiveness
+from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.params import (
     DynamicsParams,
     ServerPreset,

@@ -29,7 +29,7 @@ import numpy as np
 
 from field_models.protocol import BodyState, PlayerRef, end_line_crossing, wrap_angle
 from field_models.seeding import Rng, StreamBatch
-from field_models.soccer_server.dynamics import (
+from field_models.soccer_server.cycle_rules import (
     AFTER_GOAL_MODES,
     BEFORE_KICK_OFF,
     COLLISION_PASSES,
@@ -76,7 +76,7 @@ class BatchSoccerServer:
         x, y: Positions (K, N+1) [m]. vx, vy: stored velocities (K, N+1) [m/cycle].
         heading: Body angles (K, N+1) [rad]; column 0 (the ball) stays 0.
         mode: Play-mode code per trial, an index into
-            :data:`~field_models.soccer_server.dynamics.PLAY_MODES`.
+            :data:`~field_models.soccer_server.cycle_rules.PLAY_MODES`.
         score_left, score_right: Goals per trial.
     """
 
@@ -270,7 +270,7 @@ class BatchSoccerServer:
         """Queue ``(dash power direction)`` for player row `i`; returns the trials that took it.
 
         Power and direction are clamped (and the direction rounded) as in the single model
-        (:func:`~field_models.soccer_server.dynamics.dash_direction`).
+        (:func:`~field_models.soccer_server.cycle_rules.dash_direction`).
         """
         p = self.params
         power = np.clip(power, p.min_dash_power, p.max_dash_power)
@@ -695,7 +695,7 @@ def _ranks(keys: np.ndarray) -> np.ndarray:
 def _separate(
     ax: np.ndarray, ay: np.ndarray, bx: np.ndarray, by: np.ndarray, reach: float, reach2: float
 ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
-    """Vectorised ``dynamics._separate``: same operations, same order."""
+    """Vectorised ``collisions._separate``: same operations, same order."""
     mx, my = (ax + bx) / 2.0, (ay + by) / 2.0
     ux, uy, wx, wy = ax - mx, ay - my, bx - mx, by - my
     half = reach / 2.0 + EPS
@@ -718,7 +718,7 @@ def _separate(
 def _push_from(
     bx: np.ndarray, by: np.ndarray, dx: np.ndarray, dy: np.ndarray, dist: float
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Vectorised ``dynamics._push_from``."""
+    """Vectorised ``collisions._push_from``."""
     r = np.sqrt(dx * dx + dy * dy)
     with np.errstate(divide="ignore", invalid="ignore"):
         return (

@@ -45,7 +45,8 @@ from field_models.commands import CommandParseError
 from field_models.commands import parse_command as parse_action
 from field_models.protocol import LEFT, RIGHT, Action, BodyState, PlayerRef, Say
 from field_models.seeding import TrialRngs
-from field_models.soccer_server.dynamics import PLAY_MODES, SoccerServerModel
+from field_models.soccer_server.cycle_rules import PLAY_MODES
+from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.hearing import HearInfo, deliver_says, say_allowed
 from field_models.soccer_server.messages import SExpr, render_hear, render_see
 from field_models.soccer_server.params import ServerPreset
