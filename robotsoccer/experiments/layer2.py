@@ -39,7 +39,9 @@ import numpy as np
 from learning.pass_boost import PassBoost, fit_pass_boost, save_pass_boost
 from learning.pass_dataset import PassDataset
 from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
-from learning.pass_tree import LABELS, PassTree, fit_pass_tree, save_pass_tree
+from learning.pass_tree import LABELS, PassTree
+from learning.pass_tree_file import save_pass_tree
+from learning.pass_tree_grow import fit_pass_tree
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
 from robotsoccer.experiments.report import (

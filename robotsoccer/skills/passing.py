@@ -57,9 +57,8 @@ import numpy as np
 from field_models.arena import BallLaw
 from field_models.protocol import Action, Kick, Mind, Percept, Say, SeenPlayer, Turn, wrap_angle
 from field_models.seeding import Rng
+from learning.pass_codec import decode_view, encode_view
 from learning.pass_features import (
-    decode_view,
-    encode_view,
     pass_attributes,
     passer_attributes,
     receiver_attributes,
