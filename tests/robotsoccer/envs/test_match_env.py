@@ -155,7 +155,7 @@ def test_the_holders_mask_opens_kicks_and_passes_to_teammates_it_sees() -> None:
     assert names[PASS_BASE:] == ("PASS_1", "PASS_2", "PASS_3")
     held = 0
     for seed in range(6):
-        observations, infos = env.reset(seed=seed)
+        observations, _ = env.reset(seed=seed)
         while env.agents:
             for agent in env.agents:
                 mask = observations[agent]["action_mask"]
