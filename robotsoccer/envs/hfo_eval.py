@@ -145,14 +145,21 @@ def goal_rate(
     return result
 
 
+TABLE_HEAD = (
+    "| holder's choice | field | n | goals | goal rate [95% CI] | other outcomes "
+    "| holder decisions | CPU s |\n|---|---|---|---|---|---|---|---|"
+)
+"""The head of :func:`table_row`'s table."""
+
+
 def table_row(name: str, field_model: str, result: GoalRate) -> str:
-    """One markdown row: policy, field, n, goals, rate with its interval, other outcomes."""
+    """One markdown row: policy, field, n, goals, rate and interval, other outcomes, choices."""
     low, high = result.interval
     others = ", ".join(f"{k} {v}" for k, v in result.outcomes.items() if k != GOAL)
     return (
         f"| {name} | {field_model} | {result.episodes} | {result.goals} | "
         f"{100 * result.rate:.1f}% [{100 * low:.1f}, {100 * high:.1f}] | {others} | "
-        f"{result.cpu_s:.0f} |"
+        f"{result.holder_choices} | {result.cpu_s:.0f} |"
     )
 
 
@@ -163,8 +170,7 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--fields", nargs="*", default=list(DEFAULT_FIELDS))
     args = parser.parse_args(argv)
-    print("| holder's choice | field | n | goals | goal rate [95% CI] | other outcomes | CPU s |")
-    print("|---|---|---|---|---|---|---|")
+    print(TABLE_HEAD)
     for field_model in args.fields:
         for name, policy in (("hand-written (AUTO)", handwritten),
                              ("uniform random kick", RandomHolder(args.seed))):  # fmt: skip
