@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from pettingzoo.test import parallel_api_test
 
-from field_models.protocol import LEFT
+from field_models.protocol import LEFT, PlayerRef
 from robotsoccer.envs import (
     HalfFieldOffenseEnv,
     MatchParallelEnv,
@@ -228,4 +228,22 @@ def test_goal_rates_are_reproducible_and_policies_only_choose_open_kicks() -> No
     assert picks == {Macro.SHOOT, Macro.DRIBBLE, PASS_BASE + 1}
     with pytest.raises(ValueError, match="goal_rate's own"):
         goal_rate(handwritten, "soccer_server", episodes=1, controlled="all")
-    assert LEFT == "left"
+
+
+@pytest.mark.parametrize("field_model", FIELDS)
+def test_a_held_primitive_drives_the_player_and_frames_are_drawn(field_model: str) -> None:
+    """FORWARD, held for ten steps, carries the agent's player forward; STOP keeps it."""
+    moved = {}
+    for action in (0, 1):  # STOP, FORWARD
+        env = short_match(field_model, action="primitives", controlled=["left_2"],
+                          render_mode="rgb_array")  # fmt: skip
+        env.reset(seed=0)
+        start = env._arena.truth().players[PlayerRef(LEFT, 2)] if env._arena else None
+        for _ in range(10):
+            env.step({"left_2": action})
+        assert env._arena is not None and start is not None
+        end = env._arena.truth().players[PlayerRef(LEFT, 2)]
+        moved[action] = (end.x - start.x) / env.facts.unit_m
+        frame = env.render()
+        assert frame.ndim == 3 and frame.shape[2] == 3
+    assert moved[0] == 0.0 and moved[1] > 2.0  # units: it ran, facing +x at kick-off
