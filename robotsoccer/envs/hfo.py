@@ -59,7 +59,7 @@ from robotsoccer.drills.base import Drill, GoalWatch, Verdict
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.passing import control_reach
 from robotsoccer.drills.referee import TOUCH_PERIOD_S
-from robotsoccer.envs.match import PlayParallelEnv, _controlled
+from robotsoccer.envs.match import PlayParallelEnv, controlled_players
 from robotsoccer.skills.team import TeamMind, TeamSetup
 
 GOAL = "GOAL"
@@ -306,7 +306,7 @@ class HalfFieldOffenseEnv(PlayParallelEnv):
         self.limits = (max_time_s, untouched_time_s)
         everyone = self._new_drill().players()
         teams = {"offense": LEFT, "defense": RIGHT}
-        chosen = _controlled(controlled, everyone, teams)
+        chosen = controlled_players(controlled, everyone, teams)
         super().__init__(field_model, preset, everyone, chosen, **options)
 
     def _new_drill(self) -> Drill:

@@ -555,7 +555,7 @@ class MatchParallelEnv(PlayParallelEnv):
         facts = field_facts(field_model, preset, FieldOptions(perfect_perception=perfect,
                                                               all_landmarks=True))  # fmt: skip
         everyone = probe.players_for(facts)
-        super().__init__(field_model, preset, everyone, _controlled(controlled, everyone),
+        super().__init__(field_model, preset, everyone, controlled_players(controlled, everyone),
                          **options)  # fmt: skip
 
     def _new_drill(self) -> Drill:
@@ -586,7 +586,7 @@ def _match(drill: Drill) -> MatchDrill:
     return drill
 
 
-def _controlled(
+def controlled_players(
     controlled: str | Sequence[str],
     everyone: tuple[PlayerRef, ...],
     teams: dict[str, str] | None = None,
