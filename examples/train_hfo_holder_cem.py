@@ -29,6 +29,7 @@ import numpy.typing as npt
 
 from robotsoccer.envs.hfo_eval import (
     TABLE_HEAD,
+    GoalRate,
     RandomHolder,
     goal_rate,
     handwritten,
@@ -94,8 +95,8 @@ def observation_size(field: str) -> int:
     return int(space["observation"].shape[0])  # type: ignore[index]
 
 
-def main() -> None:
-    """Train, then print the held-out table."""
+def main(argv: list[str] | None = None) -> dict[str, GoalRate]:
+    """Train, then print the held-out table; return its rows by policy name."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--field", default="soccer_server")
     parser.add_argument("--iterations", type=int, default=12)
@@ -103,19 +104,21 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=60, help="training episodes per policy")
     parser.add_argument("--test-episodes", type=int, default=500)
     parser.add_argument("--seed", type=int, default=0)
-    args = parser.parse_args()
+    args = parser.parse_args(argv)
     start = time.perf_counter()
     mean = train(args.field, args.iterations, args.population, args.episodes, args.seed)
     trained_s = time.perf_counter() - start
     print(f"trained in {trained_s:.0f} s (wall)")
     print(TABLE_HEAD)
+    rows: dict[str, GoalRate] = {}
     for name, policy in (
         ("hand-written (AUTO)", handwritten),
         ("uniform random kick", RandomHolder(0)),
         ("CEM linear (mean)", LinearHolder(mean)),
     ):
-        result = goal_rate(policy, args.field, args.test_episodes, 0)
+        result = rows[name] = goal_rate(policy, args.field, args.test_episodes, 0)
         print(table_row(name, args.field, result), flush=True)
+    return rows
 
 
 if __name__ == "__main__":
