@@ -35,8 +35,6 @@ from robotsoccer.envs.hfo import GOAL, OUTCOMES, HalfFieldOffenseEnv
 from robotsoccer.envs.macros import KICKS, PASS_BASE, Macro
 from robotsoccer.stats import wilson_interval
 
-DEFAULT_FIELDS = ("soccer_server", "robot_physics")
-"""The field models :func:`main` measures by default (the in-process ones)."""
 Policy = Callable[[npt.NDArray[np.float32], npt.NDArray[np.int8]], int]
 """The ball holder's choice: (percept vector, macro mask) -> macro index."""
 
@@ -168,8 +166,12 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--episodes", type=int, default=500)
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--fields", nargs="*", default=list(DEFAULT_FIELDS))
+    parser.add_argument("--fields", nargs="*", default=None)
     args = parser.parse_args(argv)
+    if args.fields is None:  # the in-process engines, as robotsoccer bench times them
+        from robotsoccer.bench import drill_models
+
+        args.fields = list(drill_models())
     print(TABLE_HEAD)
     for field_model in args.fields:
         for name, policy in (("hand-written (AUTO)", handwritten),

@@ -186,7 +186,7 @@ class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
         self._action_spaces = {a: self._action_space(ref) for a, ref in self.refs.items()}
         self._experiment_seed: int | None = None
         self._next_episode = 0
-        self._episode: _Episode | None = None
+        self._episode: _PlayEpisode | None = None
         self._arena: Arena | None = None  # the last episode's, for render()
 
     # ------------------------------------------------------------------ the subclass's part
@@ -261,7 +261,7 @@ class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
         for _ in range(SKIP_LIMIT):
             index = self._next_episode
             self._next_episode += 1
-            episode = _Episode(self, self._experiment_seed, index)
+            episode = _PlayEpisode(self, self._experiment_seed, index)
             self._arena = episode.arena
             if episode.advance() is None:
                 self._episode = episode
@@ -335,7 +335,7 @@ class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
 
     # ------------------------------------------------------------------ helpers
 
-    def _checked(self, agent: str, value: Any, episode: _Episode) -> int | tuple[Action, ...]:
+    def _checked(self, agent: str, value: Any, episode: _PlayEpisode) -> int | tuple[Action, ...]:
         """An action checked against the agent's space (and its mask when it decides)."""
         if self.action_mode != "macro":
             top = self.facts.player_top_speed_mps
@@ -369,7 +369,7 @@ class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
         }
 
     def _infos(
-        self, episode: _Episode, agents: list[str], end: dict[str, Any]
+        self, episode: _PlayEpisode, agents: list[str], end: dict[str, Any]
     ) -> dict[str, dict[str, Any]]:
         common = {
             "tick": episode.arena.tick,
@@ -389,7 +389,7 @@ class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
         }
 
 
-class _Episode:
+class _PlayEpisode:
     """One episode: the drill, its arena and minds, the loop with a pause at every decision."""
 
     def __init__(self, env: PlayParallelEnv, seed: int, index: int) -> None:
