@@ -10,7 +10,9 @@
   :func:`~robotsoccer.envs.passing.pass_parallel_env`;
 * :mod:`robotsoccer.envs.match` — a whole match, every player (or some) an agent, in the
   field's own actions or the team minds' macro-actions (:mod:`robotsoccer.envs.macros`), as a
-  PettingZoo parallel environment, :func:`~robotsoccer.envs.match.match_parallel_env`;
+  PettingZoo parallel environment, :func:`~robotsoccer.envs.match.match_parallel_env`, on the
+  loop it shares with half-field offense (:mod:`robotsoccer.envs.play`, agent names in
+  :mod:`robotsoccer.envs.agents`);
 * :mod:`robotsoccer.envs.hfo` — half-field offense in HFO's shape (attackers against defenders
   and a goalie), :func:`~robotsoccer.envs.hfo.half_field_offense_env`, and
   :mod:`robotsoccer.envs.hfo_eval`, the attackers' goal rate for a ball-holder policy;

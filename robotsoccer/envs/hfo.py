@@ -4,7 +4,7 @@ Hausknecht et al.'s HFO (2016) is the standard multi-agent RoboCup benchmark: at
 score on one half against defenders and a goalie. :class:`HalfFieldOffenseEnv`
 (``half_field_offense_env("soccer_server")``) poses it on our field models, with the match's
 team minds (:mod:`robotsoccer.skills.team`) for every player not controlled, on the loop,
-observations, actions and rewards of :class:`~robotsoccer.envs.match.PlayParallelEnv` (see
+observations, actions and rewards of :class:`~robotsoccer.envs.play.PlayParallelEnv` (see
 there: steps, ``"commands"``/``"primitives"``/``"macro"`` actions, percept vectors, reward
 terms, seeds).
 
@@ -59,7 +59,8 @@ from robotsoccer.drills.base import Drill, GoalWatch, Verdict
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.passing import control_reach
 from robotsoccer.drills.referee import TOUCH_PERIOD_S
-from robotsoccer.envs.match import PlayParallelEnv, controlled_players
+from robotsoccer.envs.agents import controlled_players
+from robotsoccer.envs.play import PlayParallelEnv
 from robotsoccer.skills.team import TeamMind, TeamSetup
 
 GOAL = "GOAL"
@@ -265,7 +266,7 @@ class HalfFieldOffenseEnv(PlayParallelEnv):
         untouched_time_s: Ends an episode whose ball nobody touched this long [s] (None:
             :data:`UNTOUCHED_PERIODS` sensor periods).
         **options: ``action``, ``reward_weights``, ``perfect_perception``, ``turn_step_rad``,
-            ``render_mode`` (:class:`~robotsoccer.envs.match.PlayParallelEnv`).
+            ``render_mode`` (:class:`~robotsoccer.envs.play.PlayParallelEnv`).
 
     Raises:
         ValueError: Counts out of range, a time that is not a finite number > 0, an unknown

@@ -33,6 +33,7 @@ mind does.
 from __future__ import annotations
 
 from enum import IntEnum
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -103,6 +104,23 @@ def _teammate(percept: Percept, number: int) -> SeenPlayer | None:
         if seen.team == own and seen.number == number:
             return seen
     return None
+
+
+def checked_macro(agent: str, value: Any, count: int) -> int:
+    """`agent`'s macro action `value` as an index in 0..count-1.
+
+    Raises:
+        ValueError: Not one integer, or out of range.
+    """
+    array = np.asarray(value) if not isinstance(value, str | bytes) else None
+    if array is None or array.shape not in ((), (1,)) or not np.issubdtype(array.dtype, np.integer):
+        raise ValueError(
+            f"{agent}'s action is a macro, an integer in 0..{count - 1}, got {value!r:.60}"
+        )
+    index = int(array.reshape(()))
+    if not 0 <= index < count:
+        raise ValueError(f"{agent}'s macro must be in 0..{count - 1}, got {index}")
+    return index
 
 
 class MacroMind(TeamMind):
