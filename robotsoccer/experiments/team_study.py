@@ -10,9 +10,12 @@ on how many workers played the games (the determinism test). A round's explorati
 :func:`learning.tpot.epsilon_at` of its first game, linear from
 :attr:`TeamPlan.epsilon_start` to :attr:`TeamPlan.epsilon_end`.
 
-Each round's games are the match drill's trials through the usual pool (seed
-``seed * ROUND_SEED_STRIDE + round``), streamed to ``train/round_<r>/<side>/results.csv``; the
-table after each round is ``train/tables/round_<r>.npz``, and the last one is
+Each round's games are the match drill's trials (seed ``seed * ROUND_SEED_STRIDE + round``,
+trial index = the game's place in its side's share of the round), played by one pool of worker
+processes kept for the whole training: a pool per round would load the layers and the field's
+launch plan again in fresh workers every round. Every game goes to ``train/games.json`` with
+its goals and rewards; the table each round played is ``train/tables/round_<r>_in.npz``, and
+the last one is
 ``models/<field>/tpot_table.npz`` with its provenance (seed, games, plan, code version, the
 tree's and net's digests).
 
@@ -28,8 +31,10 @@ from __future__ import annotations
 
 import json
 import math
+import signal
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
@@ -47,7 +52,6 @@ from learning.tpot import (
 )
 from robotsoccer.drills.match import FORMATIONS, layer3_experiences
 from robotsoccer.experiments.match import (
-    SIDES,
     Game,
     game_from,
     mean_interval,
@@ -55,9 +59,9 @@ from robotsoccer.experiments.match import (
     series_specs,
     summary_lines,
 )
-from robotsoccer.runs.pool import run_trials
+from robotsoccer.runs.pool import worker_context
 from robotsoccer.runs.provenance import code_version, file_digest
-from robotsoccer.runs.runner import TrialSpec
+from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 from robotsoccer.skills.layer3 import DESTINATIONS
 
 ROUND_SEED_STRIDE = 1_000_003
@@ -177,8 +181,6 @@ def train(
     *,
     workers: int,
     log: Callable[[str], None],
-    resume: bool = False,
-    progress: bool = False,
 ) -> Training:
     """Learn a layer-3 table against the baseline (module docstring) into `out`."""
     options = dict(base.drill_options)
@@ -208,64 +210,13 @@ def train(
     tables.mkdir(parents=True, exist_ok=True)
     played: list[TrainingGame] = []
     start = time.perf_counter()
-    for r in range(plan.rounds):
-        first = r * plan.games_per_round
-        n = min(plan.games_per_round, plan.training_games - first)
-        epsilon = epsilon_at(first, plan.training_games, plan.epsilon_start, plan.epsilon_end)
-        current = save_table(table, tables / f"round_{r:04d}_in.npz")
-        spec = TrialSpec(
-            drill=base.drill,
-            field_model=base.field_model,
-            preset=base.preset,
-            seed=base.seed * ROUND_SEED_STRIDE + r,
-            field=base.field,
-        ).with_options(
-            **(
-                options
-                | {
-                    "tpot": str(current),
-                    "explore": epsilon,
-                    "learn": True,
-                    "half_time_s": plan.half_time_s,
-                }
+    with _Games(workers) as pool:
+        for r in range(plan.rounds):
+            _train_round(base, plan, r, table, tables, pool, played, options)
+            log(
+                f"  round {r + 1}/{plan.rounds}: {len(played)} games, "
+                f"epsilon {played[-1].epsilon:.3f}, {int(table.n.sum())} updates"
             )
-        )
-        counts = ((n + 1) // 2, n // 2)
-        for side, side_spec, k in zip(
-            SIDES, series_specs(spec, ("layer3", "baseline")), counts, strict=False
-        ):
-            if k == 0:
-                continue
-            folder = out / "train" / f"round_{r:04d}" / side
-            folder.mkdir(parents=True, exist_ok=True)
-            results = run_trials(
-                side_spec,
-                k,
-                workers=workers,
-                results_path=folder / "results.csv",
-                resume=resume,
-                progress=progress,
-            )
-            team = LEFT if side == SIDES[0] else RIGHT
-            for result in results:
-                game = game_from(result, side == SIDES[0])
-                mine = [e for t, e in layer3_experiences(result.data) if t == team]
-                for experience in mine:
-                    update(table, experience)
-                played.append(
-                    TrainingGame(
-                        len(played),
-                        epsilon,
-                        game.layered["goals"],
-                        game.baseline["goals"],
-                        len(mine),
-                    )
-                )
-        table.provenance["games"] = len(played)
-        log(
-            f"  round {r + 1}/{plan.rounds}: {len(played)} games, epsilon {epsilon:.3f}, "
-            f"{int(table.n.sum())} updates"
-        )
     wall = time.perf_counter() - start
     field_dir = out / "models" / base.field_model
     field_dir.mkdir(parents=True, exist_ok=True)
@@ -273,6 +224,82 @@ def train(
     table.provenance["workers"] = workers
     path = save_table(table, field_dir / "tpot_table.npz")
     return Training(table, path, played, wall)
+
+
+class _Games:
+    """Plays games (``run_trial``) in this process or in one pool kept across rounds."""
+
+    def __init__(self, workers: int) -> None:
+        self.workers = workers
+        self.pool: ProcessPoolExecutor | None = None
+
+    def __enter__(self) -> _Games:
+        if self.workers > 1:
+            self.pool = ProcessPoolExecutor(
+                max_workers=self.workers, mp_context=worker_context(), initializer=_quiet
+            )
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self.pool is not None:
+            self.pool.shutdown(cancel_futures=True)
+
+    def play(self, games: list[tuple[TrialSpec, int]]) -> list[TrialResult]:
+        """The results of `games` (spec, trial index), in their order."""
+        if self.pool is None:
+            return [run_trial(spec, i) for spec, i in games]
+        futures = [self.pool.submit(run_trial, spec, i) for spec, i in games]
+        return [f.result() for f in futures]
+
+
+def _quiet() -> None:
+    """Workers leave Ctrl-C to the parent."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _train_round(
+    base: TrialSpec,
+    plan: TeamPlan,
+    r: int,
+    table: TpotTable,
+    tables: Path,
+    pool: _Games,
+    played: list[TrainingGame],
+    options: dict[str, Any],
+) -> None:
+    """Round `r`: its games with the current table, then their rewards into it (in order)."""
+    first = r * plan.games_per_round
+    n = min(plan.games_per_round, plan.training_games - first)
+    epsilon = epsilon_at(first, plan.training_games, plan.epsilon_start, plan.epsilon_end)
+    current = save_table(table, tables / f"round_{r:04d}_in.npz")
+    spec = TrialSpec(
+        drill=base.drill,
+        field_model=base.field_model,
+        preset=base.preset,
+        seed=base.seed * ROUND_SEED_STRIDE + r,
+        field=base.field,
+    ).with_options(
+        **(
+            options
+            | {"tpot": str(current), "explore": epsilon, "learn": True,
+               "half_time_s": plan.half_time_s}
+        )
+    )  # fmt: skip
+    left, right = series_specs(spec, ("layer3", "baseline"))
+    games = [(left, i) for i in range((n + 1) // 2)] + [(right, i) for i in range(n // 2)]
+    for (side_spec, _), result in zip(games, pool.play(games), strict=True):
+        on_left = side_spec is left
+        game = game_from(result, on_left)
+        team = LEFT if on_left else RIGHT
+        mine = [e for t, e in layer3_experiences(result.data) if t == team]
+        for experience in mine:
+            update(table, experience)
+        played.append(
+            TrainingGame(
+                len(played), epsilon, game.layered["goals"], game.baseline["goals"], len(mine)
+            )
+        )
+    table.provenance["games"] = len(played)
 
 
 # ----------------------------------------------------------------------------- reports
@@ -358,8 +385,7 @@ def run_team_study(
     lines = [f"## Layer 3: TPOT-RL on {base.field_model} ({plan.name} plan), seed {base.seed}", ""]
     if table is None:
         log(f"training: {plan.training_games} games against the baseline")
-        training = train(base, plan, out, workers=workers, log=log, resume=resume,
-                         progress=progress)  # fmt: skip
+        training = train(base, plan, out, workers=workers, log=log)
         table_path, learned = training.path, training.table
         games = training.games
         total = sum(g.experiences for g in games)
