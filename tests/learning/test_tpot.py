@@ -132,7 +132,7 @@ def test_a_corrupt_or_foreign_table_is_refused(tmp_path: Path) -> None:
     wrong = tmp_path / "wrong.npz"
     np.savez(wrong, q=np.zeros((2, 3, 7)), n=np.zeros((2, 3, 7), dtype=np.int64),
              header=np.array(header))  # fmt: skip
-    with pytest.raises(ValueError, match="features or actions|Q table"):
+    with pytest.raises(ValueError, match=r"features or actions|Q table"):
         load_table(wrong)
     with pytest.raises(ValueError, match="finite"):
         TpotTable(np.full((1, 3, 8), np.nan), np.zeros((1, 3, 8), dtype=np.int64))
