@@ -12,12 +12,11 @@ on how many workers played the games (the determinism test). A round's explorati
 
 Each round's games are the match drill's trials (seed ``seed * ROUND_SEED_STRIDE + round``,
 trial index = the game's place in its side's share of the round), played by one pool of worker
-processes kept for the whole training: a pool per round would load the layers and the field's
-launch plan again in fresh workers every round. Every game goes to ``train/games.json`` with
-its goals and rewards; the table each round played is ``train/tables/round_<r>_in.npz``, and
-the last one is
-``models/<field>/tpot_table.npz`` with its provenance (seed, games, plan, code version, the
-tree's and net's digests).
+processes kept for the whole training, so the workers keep what they loaded (the layers, the
+field's launch plan) from round to round. Every game goes to ``train/games.json`` with its
+goals and how many rewards it fixed; the table each round played is
+``train/tables/round_<r>_in.npz``, and the last one is ``models/<field>/tpot_table.npz`` with
+its provenance (seed, games, plan, code version, the tree's and net's digests).
 
 **Learning curves**: goals for and against per training game, in blocks of games with 95%
 intervals (table and plot).

@@ -29,7 +29,7 @@ The reward is fixed by a goal (the referee's call, which rcssserver sends to eve
 ``hear`` message; here the match drill relays it: :meth:`TpotBallPolicy.goal`), by
 :data:`learning.tpot.HORIZON_S` passing, by the player's next layer-3 action, or by the end of
 the game (:meth:`TpotBallPolicy.finish`). While learning, each fixed reward becomes an
-:class:`~learning.tpot.Experience`; the table itself changes only between games (the series
+:class:`~learning.tpot.Experience`; the table itself changes only between games (the training
 runner applies the games' experiences in a fixed order: results do not depend on how many
 workers played them).
 """
