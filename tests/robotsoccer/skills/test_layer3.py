@@ -110,3 +110,40 @@ def test_a_goal_fixes_every_pending_reward_and_the_horizon_fixes_one() -> None:
 
 def test_without_a_pose_the_policy_leaves_the_decision_to_the_layered_rule() -> None:
     assert policy(0.9).decide(7, percept(), None, (0.0, 0.0)) is None
+
+
+class Recording:
+    """A ball policy that records what the mind asks and tells it."""
+
+    def __init__(self) -> None:
+        self.asked = 0
+        self.seen: list[tuple[int, int, tuple[float, float] | None]] = []
+
+    def decide(
+        self, number: int, percept: Percept, pose: Pose | None, ball_xy: tuple[float, float] | None
+    ) -> tuple[str, tuple[Kick, ...]]:
+        self.asked += 1
+        return ("tpot test", (Kick(42.0, 0.25),))
+
+    def observe(self, number: int, tick: int, ball_xy: tuple[float, float] | None) -> None:
+        self.seen.append((number, tick, ball_xy))
+
+
+def test_the_mind_asks_its_ball_policy_only_where_it_would_pass_and_once_a_spell() -> None:
+    from robotsoccer.skills.team import TeamMind
+    from tests.robotsoccer.skills.test_team import percept as team_percept
+    from tests.robotsoccer.skills.test_team import setup
+
+    ball = SeenBall(0.5, 0.0)
+    free = Recording()
+    mind = TeamMind(7, setup(), ball_policy=free)
+    mind.act(team_percept(-20.0, 0.0, 0.0, ball=ball))  # nobody in the path: it dribbles
+    assert mind.intent == "dribble" and free.asked == 0
+    assert free.seen == [(7, 10, pytest.approx((-19.5, 0.0)))]
+    blocked = Recording()
+    mind = TeamMind(7, setup(), ball_policy=blocked)
+    foe = SeenPlayer(5.0, 0.0, RIGHT, 3)
+    for tick in (10, 11):  # the ball still in reach at the next percept: the same kick
+        (kick,) = mind.act(team_percept(-20.0, 0.0, 0.0, ball=ball, players=(foe,), tick=tick))
+        assert kick == Kick(42.0, 0.25) and mind.intent == "tpot test"
+    assert blocked.asked == 1 and mind.passes == 1
