@@ -108,6 +108,8 @@ SPOTS: dict[PlayerRef, tuple[float, float]] = {
     GOALIE: (50.5, 0.0),
 }
 """Where each player stands before its jitter [units] (module docstring; ours)."""
+ROBOT_SPOTS: dict[PlayerRef, tuple[float, float]] = {**SPOTS, WINGER: (26.0, 25.0)}
+"""The robots' spots: the winger stands level with the first receivers (module docstring)."""
 PLAYERS = tuple(SPOTS)
 STAGES = (FIRST_RECEIVERS, (WINGER,), LAST_RECEIVERS)
 """Who completes the play's first, second and third pass."""
@@ -202,7 +204,8 @@ class SetPlayDrill(LayeredDrill):
         x_lim = pitch.half_length_m - 2.0 * pitch.player_radius_m
         y_lim = pitch.half_width_m - 2.0 * pitch.player_radius_m
         spots: dict[PlayerRef, tuple[float, float]] = {}
-        for ref, (sx, sy) in SPOTS.items():
+        spots_units = SPOTS if coach_kicks(facts, plan) is None else ROBOT_SPOTS
+        for ref, (sx, sy) in spots_units.items():
             dx, dy = (float(rng.uniform(-JITTER_UNITS, JITTER_UNITS)) for _ in range(2))
             x = min(max((sx + dx) * unit, -x_lim), x_lim)
             y = min(max((sy + dy) * unit, -y_lim), y_lim)
