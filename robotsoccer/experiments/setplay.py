@@ -23,7 +23,8 @@ study's configuration is refused), a few rerun recordings under ``recordings/<mo
 ``report.md``: per field and condition the number of plays, the shares of plays completing at
 least 1, 2 and 3 of the play's passes and exactly 1, 2 or 3, shots, goals and the labels of
 :class:`robotsoccer.drills.setplay.SetPlayDrill`, each with its 95% Wilson interval, and the
-differences of each other condition from the baseline, paired play by play. Every number in it comes from the run.
+differences of each other condition from the baseline, paired play by play. Every number in it
+comes from the run.
 
 The study names no field model: the caller passes the (model, preset) pairs.
 """

@@ -35,10 +35,10 @@ from robotsoccer.skills.setplay import (
     BallTracker,
     Heading,
     arrives,
-    reach_entry,
     chase,
     dribble,
     opponent_in_path,
+    reach_entry,
     shoot,
 )
 
@@ -247,6 +247,7 @@ def test_a_first_time_kick_is_bent_round_the_body_not_tapped() -> None:
     ball = percept((0.081, 0.3), tick=20)
     # Straight back through the body: a ball at rest would be tapped aside first.
     tap, real = tracker.aim(ball, 1.2, math.pi)
+    assert tap is not None
     assert not real
     at = (0.081 * math.cos(0.3), 0.081 * math.sin(0.3))
     kick, real = tracker.aim(ball, 1.2, math.pi, first_time=at)
