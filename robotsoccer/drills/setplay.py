@@ -18,6 +18,16 @@ the trial's ``"placement"`` stream and faces the ball:
 * two last receivers (left 5, 6) near the goal, each with a defender (right 5, 6) beside it,
   and a goalie (right 7) in front of the goal.
 
+**On the robots** (:data:`ROBOT_SPOTS`) the same spots in units of the table (1 unit =
+2.74 m / 105 = 2.6 cm), but the winger stands level with the first receivers, at (26, 25)
+instead of (32, 25). A receiver kicks the ball on first time (below), and a ball turned by
+less than about 50° from its track runs back into the receiver's own body (it meets the ball
+about 3 units from its centre, and the body with the ball clears 2.3 units). Seen from the
+receiver on the winger's side (left 2, the tree's usual choice), the winger at (32, 25) lies
+about 16° off the first pass's track (from where the starter stops, about (8, 0)); at (26, 25)
+about 36°, which the kick reaches by bending round the body. README "The set play (measured)"
+gives the plays of both spots.
+
 **The play** (:mod:`robotsoccer.skills.setplay`): the starter dribbles toward the goal until it
 sees an opponent within :data:`BLOCKED_UNITS` in its path (the paper's "predetermined
 distance"), stops the ball, turns until both its receivers (left 2, 3) are in view and passes
@@ -32,13 +42,25 @@ and net), triggered by the ball's distance as in the drill of §5.
 sensor periods, but no faster than half the speed a player comes up to the ball at; that
 speed is the one it can stop from, after seeing the ball its sensor latency late, within half
 its kick margin (:func:`stop_speed`; it matters on the robots, whose wheels brake slowly
-and whose camera lags). Passes are layer 1's launch, shots full power.
+and whose camera lags). Passes are layer 1's launch on the Soccer Server and the robot's top
+speed on the robots (:func:`pass_speed`), shots full power.
+
+**Defenders** (option ``defenders``): ``same`` (the default) gives the defenders and goalie
+the attackers' layer 1, as the paper's set play does (§7: "the defenders are all equipped with
+the same ball-interception skill as the receivers"); a behaviour name gives them that one
+whatever the attackers use (``straight``: the baseline's defenders facing layered attackers).
+The winger, uncovered, starts its layer 1 on the cue wherever the ball is on the robots; on
+the Soccer Server it keeps the drill's trigger distance.
 
 **Kicks.** Where the players have an aimable kick (the Soccer Server), they kick. Where they
 do not (the 1997 robots pushed the ball), the coach stands in for the kicker, as layer 1 and
 layer 2's drills launch the ball on that field: a ``Kick`` a set-play attacker sends is not
-passed to the robot but carried out by the coach in the same tick, if that player is then
-within kick reach of the ball: the ball's velocity gains the kick's speed (its power times
+passed to the robot but carried out by the coach, at the first tick within
+:data:`ARMED_PERIODS` sensor period of the one it was sent on at which that player is within
+kick reach of the ball (a kicker that fires when the ball reaches it; the robot's next
+decision comes a camera period later, so a receiver can kick a pass on first time: it sends
+the kick as it sees the ball about to come into reach): the ball's velocity gains the kick's
+speed (its power times
 :attr:`~robotsoccer.drills.intercept.LaunchPlan.launch_speed_mps` / the plan's power, layer
 1's launch at full power) along the player's heading plus the kick's direction, as the
 server's kick adds to the ball's velocity. The kick reach there is touching plus

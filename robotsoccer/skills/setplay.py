@@ -26,6 +26,19 @@ until a percept shows its last kick (:meth:`BallTracker.fresh`). It comes up to 
 slowly enough to stop beside it, and stands with a dash of no power (:data:`STAND`): a robot
 would otherwise drive on into the ball. On the Soccer Server (no latency) these change nothing.
 
+**A camera** (the robots: a pose from the goals in every percept, :attr:`BallSense.track_window`
+> 0). A receiver then keeps the ball's velocity in the field frame, fitted to the camera's
+sightings once a full window of them follows the last kick (:class:`CameraBall`; dead
+reckoning from the announced pass until then), and reckons its own heading now from the
+camera's last two poses rather than from the turns it commanded (a robot carries a turn out
+only in part before its next command). It meets the pass with layer 1, stands still for the
+last :data:`SET_PERIODS` periods (so that the heading its kick is aimed by is known), and sends
+its kick on first time as soon as the ball will come into reach within a period
+(:func:`reach_entry`): the drill's coach fires it when the ball gets there. A first-time kick
+whose path would run back into the body is bent round it (:meth:`BallTracker.aim`). It checks
+afterwards that the ball went, and meets it again if not. Carriers dribble by dead reckoning
+(their own kicks), as on the server; a winger uses the camera while it collects.
+
 Skills, each a small function of one percept:
 
 * :func:`chase` — face the ball and run at it (the approach of a dribble);
