@@ -75,6 +75,7 @@ import math
 from field_models.arena import ArenaEvent
 from field_models.commands import server_degrees
 from field_models.protocol import (
+    TWO_PI,
     Action,
     Dash,
     Heard,
@@ -91,6 +92,12 @@ from field_models.protocol import (
 from field_models.robot_physics.camera import Frame
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.link import Command, Link, Primitive
+from field_models.robot_physics.records import positional_maker
+
+_make_percept = positional_maker(Percept)
+_make_ball = positional_maker(SeenBall)
+_make_player = positional_maker(SeenPlayer)
+_make_landmark = positional_maker(SeenLandmark)
 
 PUSH_HALF_ANGLE_RAD = 0.2
 """A kicker-less robot pushes the ball only when the kick direction is this close to its heading
@@ -182,7 +189,11 @@ class CentralHost:
         # identities (dataclass equality is the costliest part of building a percept).
         seen = [(index.get(d.ref, -1), d.x, d.y, d.ref.team, d.ref.number) for d in frame.robots]
         out: list[Percept] = []
-        hypot, atan2, wrap = math.hypot, math.atan2, wrap_angle
+        hypot, atan2 = math.hypot, math.atan2
+        # wrap_angle inlined below (the same comparisons and arithmetic, field_models.protocol).
+        pi, two_pi = math.pi, TWO_PI
+        make_percept, make_ball = _make_percept, _make_ball
+        make_player, make_landmark = _make_player, _make_landmark
         heard_lists = self._heard
         goals = self._goals
         for i, ref in enumerate(self.refs):
@@ -194,32 +205,39 @@ class CentralHost:
             heard_list.clear()
             pose = poses[i]
             if pose is None:
-                out.append(Percept(ref, tick, observed, None, (), heard))
+                out.append(make_percept(ref, tick, observed, None, (), heard, ()))
                 continue
             px, py, heading = pose
             seen_ball = None
             if ball is not None:
                 dx = ball.x - px
                 dy = ball.y - py
-                seen_ball = SeenBall(hypot(dx, dy), wrap(atan2(dy, dx) - heading))
-            players = tuple(
-                [
-                    SeenPlayer(
-                        hypot(x - px, y - py), wrap(atan2(y - py, x - px) - heading), team, number
-                    )
-                    for row, x, y, team, number in seen
-                    if row != i
-                ]
+                a = atan2(dy, dx) - heading
+                if not -pi <= a < pi:
+                    a = (a + pi) % two_pi - pi
+                seen_ball = make_ball(hypot(dx, dy), a, None, None)
+            players = []
+            for row, x, y, team, number in seen:
+                if row != i:
+                    dx = x - px
+                    dy = y - py
+                    a = atan2(dy, dx) - heading
+                    if not -pi <= a < pi:
+                        a = (a + pi) % two_pi - pi
+                    players.append(make_player(hypot(dx, dy), a, team, number))
+            landmarks = []
+            for name, gx, gy in goals:
+                dx = gx - px
+                dy = gy - py
+                a = atan2(dy, dx) - heading
+                if not -pi <= a < pi:
+                    a = (a + pi) % two_pi - pi
+                landmarks.append(make_landmark(name, hypot(dx, dy), a))
+            out.append(
+                make_percept(
+                    ref, tick, observed, seen_ball, tuple(players), heard, tuple(landmarks)
+                )
             )
-            landmarks = tuple(
-                [
-                    SeenLandmark(
-                        name, hypot(gx - px, gy - py), wrap(atan2(gy - py, gx - px) - heading)
-                    )
-                    for name, gx, gy in goals
-                ]
-            )
-            out.append(Percept(ref, tick, observed, seen_ball, players, heard, landmarks))
         return out
 
     # ------------------------------------------------------------------------ actuation
