@@ -79,6 +79,8 @@ def tick_parts(n_robots: int, sim_seconds: float, seed: int = 0) -> dict[str, fl
     world, host, camera = arena.world, arena.host, arena.camera
     world.space_step = _timed(spent, calls, "chipmunk_step", world.space_step)
     world._steer = _timed(spent, calls, "steering", world._steer)  # type: ignore[method-assign]
+    if hasattr(world, "_cruise"):  # steady-speed steering, split off by issue 21's speed-up
+        world._cruise = _timed(spent, calls, "steering", world._cruise)  # type: ignore[method-assign]
     host.percepts = _timed(spent, calls, "percepts", host.percepts)  # type: ignore[method-assign]
     camera.capture = _timed(spent, calls, "camera", camera.capture)  # type: ignore[method-assign]
     camera.deliver = _timed(spent, calls, "camera", camera.deliver)  # type: ignore[method-assign]

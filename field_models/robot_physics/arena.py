@@ -162,7 +162,7 @@ class RobotArena:
         camera = self.camera
         if tick % camera.period_ticks == 0:
             bx, by = world.ball_xy()
-            camera.capture(tick, bx, by, [world.robot_pose(i) for i in range(len(self.players))])
+            camera.capture(tick, bx, by, world.robot_poses())
         if tick < camera.next_delivery_tick:
             return []
         frames = camera.deliver(tick)

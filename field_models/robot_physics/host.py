@@ -98,6 +98,7 @@ _make_percept = positional_maker(Percept)
 _make_ball = positional_maker(SeenBall)
 _make_player = positional_maker(SeenPlayer)
 _make_landmark = positional_maker(SeenLandmark)
+_make_command = positional_maker(Command)
 
 PUSH_HALF_ANGLE_RAD = 0.2
 """A kicker-less robot pushes the ball only when the kick direction is this close to its heading
@@ -151,6 +152,7 @@ class CentralHost:
         self._kick_half_angle = None if robot.kicker is None else robot.kicker.half_angle_rad
         self._arcs = robot.turn_style == "arc"
         self._index = {ref: i for i, ref in enumerate(refs)}
+        self._row_by_id = {id(ref): i for i, ref in enumerate(refs)}
         self._poses: list[Pose | None] = [None] * len(refs)
         self._heard: list[list[Heard]] = [[] for _ in refs]
         self._seq = 0
@@ -165,6 +167,17 @@ class CentralHost:
 
     # ------------------------------------------------------------------------ perception
 
+    def _row(self, ref: PlayerRef) -> int:
+        """`ref`'s row in :attr:`refs`, -1 if it is not there.
+
+        The camera's detections carry the very objects of :attr:`refs`, so an identity look-up
+        (no PlayerRef hash, a Python-level call) finds them; an equal copy falls back to ==.
+        """
+        i = self._row_by_id.get(id(ref), -1)
+        if i >= 0 and self.refs[i] is ref:
+            return i
+        return self._index.get(ref, -1)
+
     def pose_estimate(self, ref: PlayerRef) -> Pose | None:
         """The host's newest detected pose of `ref`, or None if never detected."""
         return self._poses[self._index[ref]]
@@ -178,16 +191,18 @@ class CentralHost:
         others' heard messages are dropped as if their percepts had been delivered.
         """
         poses = self._poses
-        index = self._index
-        for det in frame.robots:
-            i = index.get(det.ref)
-            if i is not None:
-                poses[i] = (det.x, det.y, det.heading)
-        ball = frame.ball
-        observed = frame.capture_tick
         # Each detection once, with its robot's row, so the loop below compares rows (ints), not
         # identities (dataclass equality is the costliest part of building a percept).
-        seen = [(index.get(d.ref, -1), d.x, d.y, d.ref.team, d.ref.number) for d in frame.robots]
+        seen = []
+        row = self._row
+        for det in frame.robots:
+            ref = det.ref
+            i = row(ref)
+            if i >= 0:
+                poses[i] = (det.x, det.y, det.heading)
+            seen.append((i, det.x, det.y, ref.team, ref.number))
+        ball = frame.ball
+        observed = frame.capture_tick
         out: list[Percept] = []
         hypot, atan2 = math.hypot, math.atan2
         # wrap_angle inlined below (the same comparisons and arithmetic, field_models.protocol).
@@ -422,7 +437,7 @@ class CentralHost:
     ) -> None:
         """Number a command, put it on the link and note it as an event."""
         self._seq += 1
-        command = Command(self._seq, ref, primitive, value, duration_ticks, tick, rate)
+        command = _make_command(self._seq, ref, primitive, value, duration_ticks, tick, rate)
         self.link.send(command, tick)
         if self.keep_events:
             who = "all" if ref is None else str(ref)

@@ -90,11 +90,12 @@ _NEVER = 1 << 62
 class _Waiting:
     """A queued command and the tick it was sent; mutable so a newer command can take its turn."""
 
-    __slots__ = ("command", "tick")
+    __slots__ = ("command", "key", "tick")
 
-    def __init__(self, command: Command, tick: int) -> None:
+    def __init__(self, command: Command, tick: int, key: tuple[str, int] | None) -> None:
         self.command = command
         self.tick = tick
+        self.key = key  # the addressee's (team, number), what PlayerRef's == compares
 
 
 class Link:
@@ -144,15 +145,17 @@ class Link:
     def send(self, command: Command, tick: int) -> None:
         """Queue `command` at `tick`; it leaves in the first free packet slot at or after `tick`."""
         robot = command.robot
+        # PlayerRef's (dataclass) == compares (team, number); the key tuples compare the same
+        # way without a Python-level __eq__ per queued command. None: a broadcast.
+        key = None if robot is None else (robot.team, robot.number)
         for waiting in self._queue:
-            other = waiting.command.robot
-            if other is robot or other == robot:  # identity first: dataclass == is slow
+            if waiting.key == key:
                 waiting.command = command
                 waiting.tick = tick
                 self.superseded += 1
                 self.next_due_tick = min(self.next_due_tick, tick)
                 return
-        self._queue.append(_Waiting(command, tick))
+        self._queue.append(_Waiting(command, tick, key))
         self.next_due_tick = min(self.next_due_tick, tick)
 
     def deliver(self, tick: int) -> list[Command]:
