@@ -170,13 +170,21 @@ class CentralHost:
     def _row(self, ref: PlayerRef) -> int:
         """`ref`'s row in :attr:`refs`, -1 if it is not there.
 
-        The camera's detections carry the very objects of :attr:`refs`, so an identity look-up
-        (no PlayerRef hash, a Python-level call) finds them; an equal copy falls back to ==.
+        The camera's detections and the percepts' players are the very objects of :attr:`refs`,
+        so an identity look-up (no PlayerRef hash, a Python-level call) finds them; an equal
+        copy falls back to ==.
         """
         i = self._row_by_id.get(id(ref), -1)
         if i >= 0 and self.refs[i] is ref:
             return i
         return self._index.get(ref, -1)
+
+    def _row_of(self, ref: PlayerRef) -> int:
+        """`ref`'s row in :attr:`refs` (as :meth:`_row`); KeyError if it is not there."""
+        i = self._row_by_id.get(id(ref), -1)
+        if i >= 0 and self.refs[i] is ref:
+            return i
+        return self._index[ref]
 
     def pose_estimate(self, ref: PlayerRef) -> Pose | None:
         """The host's newest detected pose of `ref`, or None if never detected."""
@@ -231,15 +239,17 @@ class CentralHost:
                 if not -pi <= a < pi:
                     a = (a + pi) % two_pi - pi
                 seen_ball = make_ball(hypot(dx, dy), a, None, None)
-            players = []
-            for row, x, y, team, number in seen:
-                if row != i:
-                    dx = x - px
-                    dy = y - py
-                    a = atan2(dy, dx) - heading
-                    if not -pi <= a < pi:
-                        a = (a + pi) % two_pi - pi
-                    players.append(make_player(hypot(dx, dy), a, team, number))
+            players = [
+                make_player(
+                    hypot(x - px, y - py),
+                    a if -pi <= (a := atan2(y - py, x - px) - heading) < pi
+                    else (a + pi) % two_pi - pi,
+                    team,
+                    number,
+                )
+                for row, x, y, team, number in seen
+                if row != i
+            ]  # fmt: skip
             landmarks = []
             for name, gx, gy in goals:
                 dx = gx - px
@@ -269,7 +279,7 @@ class CentralHost:
                 self._relay(ref, action.text, tick)
             else:
                 body.append(action)
-        i = self._index[ref]
+        i = self._row_of(ref)
         body.reverse()  # popped from the end, in order
         self._pending[i] = body
         if self._arcs and len(body) >= 2:
@@ -366,7 +376,7 @@ class CentralHost:
             direction, speed_mps = wrap_angle(direction - math.pi), -speed_mps
             if direction == 0.0:
                 return self._drive(ref, speed_mps, tick)
-        self._pending[self._index[ref]].append(Dash(100.0 * speed_mps / self._vmax))
+        self._pending[self._row_of(ref)].append(Dash(100.0 * speed_mps / self._vmax))
         return self._turn(ref, direction, tick)
 
     def _drive(self, ref: PlayerRef, speed_mps: float, tick: int) -> int:

@@ -31,7 +31,7 @@ from collections.abc import Sequence
 import pymunk
 from pymunk._chipmunk import lib as _cp
 
-from field_models.protocol import BodyState, PlayerRef, Truth, wrap_angle
+from field_models.protocol import TWO_PI, BodyState, PlayerRef, Truth, wrap_angle
 from field_models.robot_physics.config import GRAVITY_MPS2, RobotPhysicsPreset
 from field_models.seeding import Rng
 
@@ -46,6 +46,7 @@ _set_velocity = _cp.cpBodySetVelocity
 _set_spin = _cp.cpBodySetAngularVelocity
 _space_step = _cp.cpSpaceStep
 
+_new_tuple = tuple.__new__  # what a NamedTuple's __new__ calls, without its Python frame
 _NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same numbers either way)
 
 
@@ -445,13 +446,16 @@ class RobotWorld:
     def ball_state(self) -> BodyState:
         """The ball's exact state."""
         p, v = _get_position(self._ball_ptr), _get_velocity(self._ball_ptr)
-        return BodyState(p.x, p.y, 0.0, v.x, v.y)
+        return _new_tuple(BodyState, (p.x, p.y, 0.0, v.x, v.y))
 
     def robot_state(self, index: int) -> BodyState:
         """Robot `index`'s exact state."""
         ptr = self._drives[index].body_ptr
         p, v = _get_position(ptr), _get_velocity(ptr)
-        return BodyState(p.x, p.y, wrap_angle(_get_angle(ptr)), v.x, v.y)
+        heading = _get_angle(ptr)
+        if not -math.pi <= heading < math.pi:  # wrap_angle, inlined (field_models.protocol)
+            heading = (heading + math.pi) % TWO_PI - math.pi
+        return _new_tuple(BodyState, (p.x, p.y, heading, v.x, v.y))
 
     def robot_pose(self, index: int) -> tuple[float, float, float]:
         """Robot `index`'s (x, y, heading) [m, m, rad] (fast path for the camera)."""
