@@ -26,6 +26,7 @@ or CLI code; observers read :meth:`RobotWorld.truth`.
 from __future__ import annotations
 
 import math
+import operator
 from collections.abc import Sequence
 
 import pymunk
@@ -46,6 +47,7 @@ _set_velocity = _cp.cpBodySetVelocity
 _set_spin = _cp.cpBodySetAngularVelocity
 _space_step = _cp.cpSpaceStep
 
+_row_of = operator.attrgetter("row")  # a drive's index among the robots (sort key)
 _new_tuple = tuple.__new__  # what a NamedTuple's __new__ calls, without its Python frame
 _NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same numbers either way)
 
@@ -66,9 +68,11 @@ class _Drive:
         "moving",
         "right",
         "right_target",
+        "row",
     )
 
-    def __init__(self, body: pymunk.Body, control: pymunk.Body) -> None:
+    def __init__(self, body: pymunk.Body, control: pymunk.Body, row: int) -> None:
+        self.row = row  # the robot's index in the world's robots
         self.body = body
         self.control = control
         self.body_ptr = body._body
@@ -122,7 +126,7 @@ class RobotWorld:
         self.space.collision_slop = preset.timing.collision_slop_m
         self._build_walls()
         self.ball = self._build_ball()
-        self._drives = [self._build_robot() for _ in self.refs]
+        self._drives = [self._build_robot(row) for row in range(len(self.refs))]
         self._index = {ref: i for i, ref in enumerate(self.refs)}
         self._noise_rng = noise_rng
         self._noise_ticks = max(1, round(preset.ball.noise_period_s / self.dt_s))
@@ -200,7 +204,7 @@ class RobotWorld:
         body.position = (0.0, 0.0)
         return body
 
-    def _build_robot(self) -> _Drive:
+    def _build_robot(self, row: int) -> _Drive:
         r = self.preset.robot
         body = pymunk.Body(r.mass_kg, pymunk.moment_for_box(r.mass_kg, (r.size_m, r.size_m)))
         shape = pymunk.Poly.create_box(body, (r.size_m, r.size_m))
@@ -216,7 +220,7 @@ class RobotWorld:
         spin.max_bias = 0.0
         spin.max_force = grip * 0.5 * r.track_m
         self.space.add(body, shape, control, drive, spin)
-        return _Drive(body, control)
+        return _Drive(body, control, row)
 
     # ------------------------------------------------------------------ coach side
 
@@ -259,7 +263,8 @@ class RobotWorld:
         cap = self._max_wheel
         d.left_target = max(-cap, min(cap, left_mps))
         d.right_target = max(-cap, min(cap, right_mps))
-        self._wake(d)
+        if d.cruising or not d.moving:  # else it is steered already (what _wake checks)
+            self._wake(d)
 
     def drive_bodies(self) -> list[tuple[pymunk.Body, pymunk.Body]]:
         """Each robot's (body, kinematic control body), in the robots' order.
@@ -411,11 +416,12 @@ class RobotWorld:
 
     def _wake(self, d: _Drive) -> None:
         """Put `d` among the robots :meth:`step` steers (no-op if it is there already)."""
-        self._stop_cruising(d)
+        if d.cruising:
+            self._stop_cruising(d)
         if not d.moving and not d.at_rest():
             d.moving = True
             self._moving.append(d)
-            self._moving.sort(key=self._drives.index)  # the robots' order, as before
+            self._moving.sort(key=_row_of)  # the robots' order, as before
 
     def _perturb_ball(self) -> None:
         """Ball-motion noise and the stop threshold, every noise period."""
