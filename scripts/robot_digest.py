@@ -58,11 +58,14 @@ def digests(quick: bool) -> dict[str, Any]:
         row: dict[str, str] = {}
         for n in (2, 12):
             row[f"chase_{n}"] = chase_digest(preset, n, 600 * scale)
-        base = {"field_model": "robot_physics", "preset": preset, "seed": 1}
-        intercept = TrialSpec(drill="intercept", **base).with_options(behaviour="straight")
+
+        def spec(drill: str, preset: str = preset) -> TrialSpec:
+            return TrialSpec(drill=drill, field_model="robot_physics", preset=preset, seed=1)
+
+        intercept = spec("intercept").with_options(behaviour="straight")
         row["intercept"] = trials_digest(intercept.with_field(ball_noise=0.05), 10 * scale)
-        row["pass"] = trials_digest(TrialSpec(drill="pass", **base), 5 * scale)
-        match = TrialSpec(drill="match", **base).with_options(
+        row["pass"] = trials_digest(spec("pass"), 5 * scale)
+        match = spec("match").with_options(
             left="baseline", right="baseline", half_time_s=5.0 * scale
         )
         row["match"] = trials_digest(match, 1)
