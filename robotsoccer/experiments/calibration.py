@@ -221,7 +221,7 @@ def fit_geometric_decay(series: Sequence[Sequence[float]], floor: float = 0.0) -
 
     Args:
         series: Speeds once per cycle, each series one free roll.
-        floor: Pairs whose v(n) is at most this are left out (a stopped ball).
+        floor: Pairs whose v(n) or v(n+1) is at most this are left out (a stopped ball).
 
     Raises:
         ValueError: No pair above the floor.
@@ -230,7 +230,7 @@ def fit_geometric_decay(series: Sequence[Sequence[float]], floor: float = 0.0) -
     for speeds in series:
         v = np.asarray(speeds, dtype=np.float64)
         now, nxt = v[:-1], v[1:]
-        keep = now > floor
+        keep = (now > floor) & (nxt > floor)  # a ball stopping within a cycle: the stop rule
         num += float(np.dot(now[keep], nxt[keep]))
         den += float(np.dot(now[keep], now[keep]))
     if den <= 0.0:

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from field_models.registry import field_facts
+from robotsoccer.experiments import lead_study
 from robotsoccer.experiments.ablations import (
     ablation_markdown,
     ablation_plan,
@@ -45,7 +46,6 @@ from robotsoccer.experiments.layer1 import (
 )
 from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill, train_net
-from robotsoccer.experiments.lead_study import plan_for as lead_plan_for
 from robotsoccer.experiments.transfer import (
     Cell,
     LeadNet,
@@ -128,8 +128,9 @@ def run_transfer_study(
     text = transfer_markdown([*cells, *cells2], plan.noise, found)
     if parts.lead and lead_drills:
         log("[transfer] layer 1 with the lead decision")
+        sizes = lead_study.plan_for(quick)
         text += "\n" + run_lead_study(
-            lead_drills, reference[0], target[0], lead_plan_for(quick), out, seeds, workers, log,
+            lead_drills, reference[0], target[0], sizes, out, seeds, workers, log,
             created_by, calibrate=parts.calibration, progress=progress,
         )  # fmt: skip
     if parts.gap_closing:
