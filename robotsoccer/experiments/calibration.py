@@ -38,7 +38,8 @@ the robots, then learn there. This module does the first half, in three steps:
    Not covered, because the Soccer Server model has no such parameter: the camera's latency
    (:attr:`Calibration.latency_s`, measured and reported), a robot's turning time (the server
    turns within one cycle), the walls and the link's lost packets.
-3. **write** (:func:`preset_text`): a Soccer Server preset on ``soccer_server_1996`` whose
+3. **write** (:func:`preset_text`): a Soccer Server preset on the reference preset (the
+   caller names it: ``soccer_server_1996`` in ``robotsoccer transfer``) whose
    comments say it was fitted, from which traces (field, preset, seed) and with which residuals.
 
 The transfer study (:mod:`robotsoccer.experiments.transfer`) then trains a lead net on the
@@ -81,9 +82,6 @@ STILL_TRACE_S = 2.0
 
 DASH_POWER = 100.0
 """The dash of the traces (the drills' defenders dash at full power)."""
-
-BASE_PRESET = "soccer_server_1996"
-"""The calibrated preset's base: every key not fitted keeps the paper's value."""
 
 CYCLES_PER_SEE = 2
 """Calibrated cycles per see: a turn and a dash, one body command per cycle (spec §2). With a see
@@ -373,8 +371,10 @@ def calibrate(traces: Traces, facts: FieldFacts) -> Calibration:
     )
 
 
-def preset_text(cal: Calibration, created_by: str) -> str:
-    """The calibrated Soccer Server preset (TOML on :data:`BASE_PRESET`), provenance in comments.
+def preset_text(cal: Calibration, base: str, created_by: str) -> str:
+    """The calibrated Soccer Server preset (TOML on `base`), provenance in comments.
+
+    `base` is the Soccer Server preset whose every key not fitted is kept (the paper's).
 
     Speeds, the cycle and the rates are those fitted; a cycle written in whole milliseconds
     keeps the fitted per-second rates (decays are re-based to it, the rate keeps the terminal
@@ -403,7 +403,7 @@ def preset_text(cal: Calibration, created_by: str) -> str:
         f"# Not covered (no server parameter): the sensor's latency ({1000 * cal.latency_s:.0f} ms"
         " measured),",
         "# turning time (the server turns within a cycle), walls, lost packets.",
-        f'base = "{BASE_PRESET}"',
+        f'base = "{base}"',
         "",
         "[dynamics]",
         f"simulator_step_ms = {cal.cycle_ms}  # fitted: 1/{CYCLES_PER_SEE} of the sensor's "
@@ -430,14 +430,16 @@ def preset_text(cal: Calibration, created_by: str) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_preset(cal: Calibration, path: Path, created_by: str) -> Path:
-    """Write the calibrated preset to `path` (its folder is made) and return it."""
+def write_preset(cal: Calibration, path: Path, base: str, created_by: str) -> Path:
+    """Write the calibrated preset on `base` to `path` (its folder is made) and return it."""
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(preset_text(cal, created_by))
+    path.write_text(preset_text(cal, base, created_by))
     return path
 
 
-def calibrated_drill(robot: StudyDrill, preset: Path, robot_unit_m: float) -> StudyDrill:
+def calibrated_drill(
+    robot: StudyDrill, server_model: str, preset: Path, robot_unit_m: float
+) -> StudyDrill:
     """The robot drill on the calibrated server: its options, speeds put in server units.
 
     The calibrated server is the robot table in units (one unit = 1 m), so a launch speed of
@@ -449,7 +451,7 @@ def calibrated_drill(robot: StudyDrill, preset: Path, robot_unit_m: float) -> St
             value = float(value) / robot_unit_m
         options.append((key, value))
     return StudyDrill(
-        "soccer_server",
+        server_model,
         str(preset.resolve()),
         tuple(options),
         f"the robot drill in units ({robot.summary}) on the calibrated server",
@@ -470,7 +472,7 @@ def calibration_lines(cal: Calibration, reference: FieldFacts) -> list[str]:
         ("sensor latency [ms] (not covered)", f"{1000 * cal.latency_s:.0f}", "0"),
     ]  # fmt: skip
     lines = [
-        "| parameter | fitted to the robots | soccer_server_1996 |",
+        f"| parameter | fitted to {t.field_model} | {reference.preset} |",
         "|---|---|---|",
         *[f"| {a} | {b} | {c} |" for a, b, c in rows],
         "",
@@ -530,6 +532,7 @@ def recovered_markdown(
     target: str,
     rows: Mapping[str, Sequence[TrialResult]],
     seed: int,
+    preset_file: str,
 ) -> str:
     """The calibration's report section: what was fitted, and what it recovered on `target`.
 
@@ -541,6 +544,7 @@ def recovered_markdown(
             server's lead net moved), ``calibrated`` (the calibrated server's lead net moved),
             ``native`` (the target's own lead net) and ``analytic``.
         seed: The bootstrap's seed.
+        preset_file: Where the calibrated preset was written (relative to the run folder).
     """
     un, ca, na = rows["uncalibrated"], rows["calibrated"], rows["native"]
     lines = [
@@ -548,8 +552,8 @@ def recovered_markdown(
         "",
         f"Traces of {cal.traces.field_model} `{cal.traces.preset}` (seed {cal.traces.seed}) "
         "fitted by least squares (:mod:`robotsoccer.experiments.calibration`) and written as a "
-        "*calibrated* Soccer Server preset (`calibration/soccer_server_calibrated.toml` in the "
-        "run folder, provenance in its comments); a lead net trained on it by §5's recipe, on "
+        f"*calibrated* Soccer Server preset (`{preset_file}` in the run folder, provenance in "
+        "its comments); a lead net trained on it by §5's recipe, on "
         "the robot drill put in units, is tested on the robots.",
         "",
         *calibration_lines(cal, reference),

@@ -156,8 +156,9 @@ def run_transfer_study(
     return text
 
 
-CALIBRATED = "soccer_server (calibrated)"
-"""The calibrated Soccer Server drill's name in the report."""
+def calibrated_label(reference: str) -> str:
+    """The calibrated Soccer Server drill's name in the report."""
+    return f"{reference} (calibrated)"
 
 
 def run_lead_study(
@@ -202,13 +203,14 @@ def run_lead_study(
             robot.field_model, robot.preset, launch_speeds_units(robot), seeds.collection
         )
         cal = calibration_fit(traces, facts)
+        server = by_field[reference]
         preset = write_preset(
-            cal, out / "calibration" / "soccer_server_calibrated.toml", created_by
+            cal, out / "calibration" / f"{reference}_calibrated.toml", server.preset, created_by
         )
-        drill = calibrated_drill(robot, preset, facts.unit_m)
+        drill = calibrated_drill(robot, reference, preset, facts.unit_m)
         path, _ = train_net(drill, "lead", plan, out / "calibration", seeds, workers, log)
-        named.append((CALIBRATED, drill))
-        nets.append(LeadNet(path, drill, CALIBRATED))
+        named.append((calibrated_label(reference), drill))
+        nets.append(LeadNet(path, drill, calibrated_label(reference)))
         log(f"  [calibration] preset {preset}")
     cells = run_lead_transfer(named, nets, plan, out, seeds, workers, log, progress)
     text = lead_markdown(cells, named, plan)
@@ -217,12 +219,13 @@ def run_lead_study(
         rows = {
             "straight": at[(target, "lead straight", "")],
             "uncalibrated": at[(target, "lead net", reference)],
-            "calibrated": at[(target, "lead net", CALIBRATED)],
+            "calibrated": at[(target, "lead net", calibrated_label(reference))],
             "native": at[(target, "lead net", target)],
             "analytic": at[(target, "lead analytic", "")],
         }
         paper = field_facts(reference, by_field[reference].preset)
-        text += "\n" + recovered_markdown(cal, paper, target, rows, seeds.evaluation)
+        where = f"calibration/{reference}_calibrated.toml"
+        text += "\n" + recovered_markdown(cal, paper, target, rows, seeds.evaluation, where)
     return text
 
 

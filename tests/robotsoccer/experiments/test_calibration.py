@@ -80,7 +80,9 @@ def test_the_fit_recovers_a_soccer_servers_own_parameters(tmp_path: Path) -> Non
     assert cal.latency_s == 0.0
     assert cal.geometry["goal_width_m"] == pytest.approx(14.02)
     # The written preset loads, and says it was fitted and from what.
-    written = write_preset(cal, tmp_path / "out" / "calibrated.toml", "a test")
+    written = write_preset(
+        cal, tmp_path / "out" / "calibrated.toml", "soccer_server_1996", "a test"
+    )
     text = written.read_text()
     assert "FITTED" in text and "seed 3" in text and "a test" in text
     facts = field_facts("soccer_server", str(written))
@@ -105,9 +107,11 @@ def test_robot_traces_give_a_preset_at_the_cameras_rate(tmp_path: Path) -> None:
     top = cal.player_speed_max / (cal.cycle_ticks * facts.dt_s) * facts.unit_m
     assert top == pytest.approx(facts.player_top_speed_mps, rel=0.02)
     assert 0.0 < cal.quantize_step < 0.1
-    loaded = field_facts("soccer_server", str(write_preset(cal, tmp_path / "c.toml", "t")))
+    loaded = field_facts(
+        "soccer_server", str(write_preset(cal, tmp_path / "c.toml", "soccer_server_1996", "t"))
+    )
     assert loaded.pitch.goal_width_m == pytest.approx(facts.pitch.goal_width_m / facts.unit_m)
-    assert "not covered" in preset_text(cal, "t").lower()
+    assert "not covered" in preset_text(cal, "soccer_server_1996", "t").lower()
 
 
 def test_bad_input_is_refused_in_one_line() -> None:

@@ -16,7 +16,7 @@ from robotsoccer.experiments.transfer import (
     lead_time_scale,
     lead_transfer_conditions,
 )
-from robotsoccer.experiments.transfer_study import CALIBRATED, run_lead_study
+from robotsoccer.experiments.transfer_study import calibrated_label, run_lead_study
 from robotsoccer.runs.table import iter_results
 from robotsoccer.skills.lead import ScaledLead
 
@@ -84,7 +84,10 @@ def test_the_lead_matrix_and_calibration_run_alike_on_any_worker_count(tmp_path:
     assert texts[0] == texts[1] and runs[0] == runs[1]
     assert len(runs[0]) == 3 * (2 + 3) + 3 * 2  # 3 columns: baselines, nets; moved unscaled
     text = texts[0]
-    assert f"| lead net trained on {CALIBRATED} |" in text and "tested on robot_physics" in text
+    assert (
+        f"| lead net trained on {calibrated_label('soccer_server')} |" in text
+        and "tested on robot_physics" in text
+    )
     assert "share of the gap closed" in text and "*calibrated* Soccer Server preset" in text
     preset = tmp_path / "w1" / "calibration" / "soccer_server_calibrated.toml"
     assert "FITTED" in preset.read_text()
