@@ -530,7 +530,7 @@ def recovered_markdown(
     cal: Calibration,
     reference: FieldFacts,
     target: str,
-    rows: Mapping[str, Sequence[TrialResult]],
+    tables: Mapping[str, Mapping[str, Sequence[TrialResult]]],
     seed: int,
     preset_file: str,
 ) -> str:
@@ -540,42 +540,63 @@ def recovered_markdown(
         cal: The calibration.
         reference: The uncalibrated server's facts (the table's right column).
         target: The field tested on (the robots).
-        rows: Trials on `target`, by role: ``straight``, ``uncalibrated`` (the reference
-            server's lead net moved), ``calibrated`` (the calibrated server's lead net moved),
-            ``native`` (the target's own lead net) and ``analytic``.
+        tables: By decision (``lead``, ``turn``), trials on `target` by role: ``straight``,
+            ``uncalibrated`` (the reference server's net moved), ``calibrated`` (the calibrated
+            server's net moved), ``native`` (the target's own net) and, where run,
+            ``analytic``.
         seed: The bootstrap's seed.
         preset_file: Where the calibrated preset was written (relative to the run folder).
     """
-    un, ca, na = rows["uncalibrated"], rows["calibrated"], rows["native"]
     lines = [
         "## Calibration: the Soccer Server model fitted to robot traces, then retrained",
         "",
         f"Traces of {cal.traces.field_model} `{cal.traces.preset}` (seed {cal.traces.seed}) "
         "fitted by least squares (:mod:`robotsoccer.experiments.calibration`) and written as a "
         f"*calibrated* Soccer Server preset (`{preset_file}` in the run folder, provenance in "
-        "its comments); a lead net trained on it by §5's recipe, on "
-        "the robot drill put in units, is tested on the robots.",
+        "its comments). Nets trained on it by §5's recipe, on the robot drill put in units, are "
+        "tested on the robots with `transfer=true` (a lead net's τ scaled as in the matrix).",
         "",
         *calibration_lines(cal, reference),
-        "",
-        f"On {target}, lead decision, paired placements ({len(na)} trials per row):",
+    ]
+    for decision, rows in tables.items():
+        lines += ["", *_recovered_lines(decision, target, rows, seed)]
+    return "\n".join(lines) + "\n"
+
+
+ROLE_NAMES = {
+    "straight": "straight pursuit",
+    "uncalibrated": "server {decision} net, transferred (uncalibrated)",
+    "calibrated": "server {decision} net, transferred (calibrated)",
+    "native": "{target}'s own {decision} net",
+    "analytic": "analytic",
+}
+"""How the calibration table names each role."""
+
+
+def _recovered_lines(
+    decision: str, target: str, rows: Mapping[str, Sequence[TrialResult]], seed: int
+) -> list[str]:
+    un, ca, na, straight = (
+        rows["uncalibrated"],
+        rows["calibrated"],
+        rows["native"],
+        rows["straight"],
+    )
+    lines = [
+        f"On {target}, {decision} decision, paired placements ({len(na)} trials per row):",
         "",
         f"| defender on {target} | saves % | minus straight | minus the native net |",
         "|---|---|---|---|",
     ]
-    names = {
-        "straight": "straight pursuit",
-        "uncalibrated": "server lead net, transferred (uncalibrated)",
-        "calibrated": "server lead net, transferred (calibrated)",
-        "native": f"{target}'s own lead net",
-        "analytic": "analytic lead",
-    }
-    for key, name in names.items():
+    for key, name in ROLE_NAMES.items():
+        if key not in rows:
+            continue
         res = rows[key]
         saves = sum(r.label == "SAVE" for r in res)
         lines.append(
-            f"| {name} | {percent_cell(saves, len(res))} | "
-            f"{'—' if key == 'straight' else paired_cell(res, rows['straight'])} | "
+            f"| {name.format(decision=decision, target=target)} | "
+            f"{percent_cell(saves, len(res))} | "
+            f"{'—' if key == 'straight' else paired_cell(res, straight)} | "
             f"{'—' if key == 'native' else paired_cell(res, na)} |"
         )
     found = gap_share(un, ca, na, seed)
@@ -585,7 +606,8 @@ def recovered_markdown(
         else f"{100 * found[0]:.0f}% [{100 * found[1]:.0f}%, {100 * found[2]:.0f}%] (paired "
         "bootstrap, 95%)"
     )
-    lines += [
+    return [
+        *lines,
         "",
         f"- recovered by calibration (calibrated minus uncalibrated): {paired_cell(ca, un)} "
         "points;",
@@ -593,4 +615,3 @@ def recovered_markdown(
         "points;",
         f"- share of the gap closed: {share}.",
     ]
-    return "\n".join(lines) + "\n"

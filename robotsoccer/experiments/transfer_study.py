@@ -37,10 +37,12 @@ from robotsoccer.experiments.gap_closing import (
     plot_curve,
 )
 from robotsoccer.experiments.layer1 import (
+    Condition,
     Field,
     Log,
     Seeds,
     collect_into,
+    evaluate,
     plan_for,
     train_main_net,
 )
@@ -57,6 +59,7 @@ from robotsoccer.experiments.transfer import (
     run_transfer_layer2,
     transfer_markdown,
 )
+from robotsoccer.runs.runner import TrialResult
 
 
 @dataclass(frozen=True)
@@ -181,7 +184,8 @@ def run_lead_study(
     into ``out/lead``, the folder ``reproduce`` runs the lead study in, so it resumes them).
     Calibration records `target`'s traces on the collection seed, fits and writes the preset
     (``out/calibration``), trains a lead net on the calibrated server with the target drill in
-    units, and tests it in the matrix as a third field.
+    units, and tests it in the matrix as a third field; it trains the paper's TA net there as
+    well and tests it on `target` beside the uncalibrated and native TA nets (:func:`turn_rows`).
 
     Raises:
         ValueError: `drills` holds no drill for `reference` or for `target`.
@@ -223,10 +227,50 @@ def run_lead_study(
             "native": at[(target, "lead net", target)],
             "analytic": at[(target, "lead analytic", "")],
         }
+        turn_nets = {
+            "native": train_net(by_field[target], "turn", plan, out / "lead", seeds, workers, log),
+            "uncalibrated": train_net(
+                by_field[reference], "turn", plan, out / "lead", seeds, workers, log
+            ),
+            "calibrated": train_net(named[-1][1], "turn", plan, out / "calibration", seeds,
+                                    workers, log),
+        }  # fmt: skip
+        turn = turn_rows(
+            by_field[target], {role: net[0] for role, net in turn_nets.items()}, plan, out,
+            seeds, workers, progress,
+        )  # fmt: skip
         paper = field_facts(reference, by_field[reference].preset)
         where = f"calibration/{reference}_calibrated.toml"
-        text += "\n" + recovered_markdown(cal, paper, target, rows, seeds.evaluation, where)
+        tables = {"lead": rows, "turn (the paper's TA)": turn}
+        text += "\n" + recovered_markdown(cal, paper, target, tables, seeds.evaluation, where)
     return text
+
+
+def turn_rows(
+    drill: StudyDrill,
+    nets: dict[str, Path],
+    plan: LeadPlan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    progress: bool = False,
+) -> dict[str, tuple[TrialResult, ...]]:
+    """The paper's TA decision on `drill`: straight and each net (by role), paired placements.
+
+    The ``native`` net runs as it is; every other with ``transfer=true`` (its distances in
+    drill units; a TA is an angle, which needs no other scale).
+    """
+    base = drill.spec(seeds.evaluation, "turn", plan.noise)
+    folder = out / "results" / "transfer_lead" / drill.field_model
+    specs = {"straight": base.with_options(behaviour="straight")}
+    for role, path in nets.items():
+        spec = base.with_options(behaviour="net", model=str(path.resolve()))
+        specs[role] = spec if role == "native" else spec.with_options(transfer=True)
+    rows = {}
+    for role, spec in specs.items():
+        cond = Condition(f"turn_{role}", spec, plan.eval_trials)
+        rows[role] = tuple(evaluate(cond, folder, workers, progress)[0])
+    return rows
 
 
 def launch_speeds_units(drill: StudyDrill) -> tuple[float, float, float]:

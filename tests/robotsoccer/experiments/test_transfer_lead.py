@@ -82,13 +82,15 @@ def test_the_lead_matrix_and_calibration_run_alike_on_any_worker_count(tmp_path:
         tables = sorted((out / "results" / "transfer_lead").rglob("*.csv"))
         runs.append({p.relative_to(out): sorted(p.read_text().splitlines()) for p in tables})
     assert texts[0] == texts[1] and runs[0] == runs[1]
-    assert len(runs[0]) == 3 * (2 + 3) + 3 * 2  # 3 columns: baselines, nets; moved unscaled
+    # 3 columns of baselines and nets, the moved nets unscaled, and the TA rows on the robots
+    assert len(runs[0]) == 3 * (2 + 3) + 3 * 2 + 4
     text = texts[0]
     assert (
         f"| lead net trained on {calibrated_label('soccer_server')} |" in text
         and "tested on robot_physics" in text
     )
-    assert "share of the gap closed" in text and "*calibrated* Soccer Server preset" in text
+    assert text.count("share of the gap closed") == 2 and "*calibrated* Soccer Server" in text
+    assert "server turn (the paper's TA) net, transferred (calibrated)" in text
     preset = tmp_path / "w1" / "calibration" / "soccer_server_calibrated.toml"
     assert "FITTED" in preset.read_text()
     # A moved net's lead is its unscaled lead times the scale (recorded at the same trigger).
