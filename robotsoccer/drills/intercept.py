@@ -471,11 +471,11 @@ class InterceptDrill:
         client: ``see`` (the paper's client: decides at each see, "turn, then dash") or
             ``cycle`` (a command every cycle from a world model,
             :mod:`robotsoccer.skills.cycle`; the turn decision only, no decision period).
-        lead_time_scale: Multiply a lead net's τ by this (the transfer study: a lead learned
-            on another field's drill keeps its share of that drill's flight time, the time
-            scale its random exploration was drawn on); 1: τ as the net gives it. With
-            ``transfer=true`` the net's distances are in drill units, and its τ is a time, which
-            the distance factor leaves alone: this option carries the time scale.
+        lead_time_scale: Multiply a lead net's τ by this; 1 (default): τ in seconds as the
+            net gives it. With ``transfer=true`` a net's distances are in drill units and its τ
+            stays a time in seconds; the transfer study's check rows give the test drill's
+            flight time over the training drill's here, so that τ keeps its share of the flight
+            (:func:`robotsoccer.experiments.transfer.lead_time_scale`).
 
     Raises:
         ValueError: An unknown behaviour, TA mode, launch or scaling, a missing model file

@@ -554,7 +554,7 @@ def recovered_markdown(
         "fitted by least squares (:mod:`robotsoccer.experiments.calibration`) and written as a "
         f"*calibrated* Soccer Server preset (`{preset_file}` in the run folder, provenance in "
         "its comments). Nets trained on it by §5's recipe, on the robot drill put in units, are "
-        "tested on the robots with `transfer=true` (a lead net's τ scaled as in the matrix).",
+        "tested on the robots with `transfer=true` (a lead net's τ in seconds, as in the matrix).",
         "",
         *calibration_lines(cal, reference),
     ]

@@ -339,9 +339,10 @@ class LeadDefenderMind:
 class ScaledLead:
     """A lead rule whose τ is multiplied by `scale`: a net moved to a drill on another time scale.
 
-    The transfer study (:mod:`robotsoccer.experiments.transfer`) moves a lead net between fields
-    whose drills last differently long; ``scale`` is the test drill's flight time over the
-    training drill's, so a lead keeps its share of the flight (drill option ``lead_time_scale``).
+    The transfer study (:mod:`robotsoccer.experiments.transfer`) checks a lead net moved between
+    fields whose drills last differently long with ``scale`` the test drill's flight time over
+    the training drill's, so a lead keeps its share of the flight (drill option
+    ``lead_time_scale``).
     """
 
     rule: LeadPolicy

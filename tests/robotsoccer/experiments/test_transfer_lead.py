@@ -10,7 +10,7 @@ from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.experiments.layer1 import seeds_for
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill
 from robotsoccer.experiments.transfer import (
-    UNSCALED,
+    FLIGHT_SCALED,
     LeadNet,
     arrival_time_s,
     lead_time_scale,
@@ -53,12 +53,13 @@ def test_only_moved_nets_read_drill_units_and_a_scaled_lead(tmp_path: Path) -> N
         assert cond.spec.seed == 0 and options["decision"] == "lead"
         moved = bool(trained) and trained != tested
         assert options.get("transfer", False) == moved
-        if defender == UNSCALED:
-            assert moved and "lead_time_scale" not in options
-        elif moved:
+        if defender == FLIGHT_SCALED:
+            assert moved
             source = ROBOT if trained == "robot" else SERVER
             target = ROBOT if tested == "robot" else SERVER
             assert options["lead_time_scale"] == lead_time_scale(source, target)
+        else:  # baselines and the nets themselves: τ in seconds
+            assert "lead_time_scale" not in options
 
 
 def test_the_drill_scales_only_a_lead_net() -> None:
@@ -82,7 +83,7 @@ def test_the_lead_matrix_and_calibration_run_alike_on_any_worker_count(tmp_path:
         tables = sorted((out / "results" / "transfer_lead").rglob("*.csv"))
         runs.append({p.relative_to(out): sorted(p.read_text().splitlines()) for p in tables})
     assert texts[0] == texts[1] and runs[0] == runs[1]
-    # 3 columns of baselines and nets, the moved nets unscaled, and the TA rows on the robots
+    # 3 columns of baselines and nets, the moved nets flight-scaled, and the TA rows on the robots
     assert len(runs[0]) == 3 * (2 + 3) + 3 * 2 + 4
     text = texts[0]
     assert (
@@ -93,10 +94,10 @@ def test_the_lead_matrix_and_calibration_run_alike_on_any_worker_count(tmp_path:
     assert "server turn (the paper's TA) net, transferred (calibrated)" in text
     preset = tmp_path / "w1" / "calibration" / "soccer_server_calibrated.toml"
     assert "FITTED" in preset.read_text()
-    # A moved net's lead is its unscaled lead times the scale (recorded at the same trigger).
+    # A flight-scaled net's lead is its lead in seconds times the scale (at the same trigger).
     folder = tmp_path / "w1" / "results" / "transfer_lead" / "robot_physics"
-    scaled = {r.index: r for r in iter_results(folder / "lead_net_soccer_server.csv")}
-    plain = {r.index: r for r in iter_results(folder / "lead_net_soccer_server_unscaled.csv")}
+    scaled = {r.index: r for r in iter_results(folder / "lead_net_soccer_server_flight_scaled.csv")}
+    plain = {r.index: r for r in iter_results(folder / "lead_net_soccer_server.csv")}
     scale = lead_time_scale(SERVER, ROBOT)
     compared = 0
     for i, r in scaled.items():
