@@ -499,7 +499,8 @@ def gap_share(
 
     The three share their trials (paired placements); the 95% interval is a percentile
     bootstrap over trials (:data:`GAP_BOOTSTRAP` resamples of the trial indices, seeded), the
-    resamples whose gap is zero left out. None without common trials or without a gap.
+    resamples whose gap is zero left out. None without common trials, or where the native net
+    does no better than the uncalibrated one (no gap to close: a share of it means nothing).
     """
     by_cal = {r.index: r.label == "SAVE" for r in calibrated}
     by_nat = {r.index: r.label == "SAVE" for r in native}
@@ -516,9 +517,9 @@ def gap_share(
         gap = sample[:, 2].mean() - sample[:, 0].mean()
         return math.nan if gap == 0.0 else (sample[:, 1].mean() - sample[:, 0].mean()) / gap
 
+    if data[:, 2].mean() <= data[:, 0].mean():
+        return None  # the moved net does as well as the native one: no gap to share
     point = share(data)
-    if math.isnan(point):
-        return None
     rng = np.random.default_rng(seed)
     draws = [share(data[rng.integers(0, len(data), len(data))]) for _ in range(GAP_BOOTSTRAP)]
     kept = np.asarray([d for d in draws if not math.isnan(d)])
@@ -601,7 +602,7 @@ def _recovered_lines(
         )
     found = gap_share(un, ca, na, seed)
     share = (
-        "no gap to close (the uncalibrated net does as well as the native one)"
+        "no gap to close (the uncalibrated net does at least as well as the native one)"
         if found is None
         else f"{100 * found[0]:.0f}% [{100 * found[1]:.0f}%, {100 * found[2]:.0f}%] (paired "
         "bootstrap, 95%)"

@@ -138,5 +138,6 @@ def test_the_share_of_the_gap_closed_is_paired_and_bounded() -> None:
     share, low, high = found
     assert share == pytest.approx(0.5) and low < 0.5 < high and low > 0.3 and high < 0.7
     assert gap_share(uncalibrated, calibrated, uncalibrated, seed=0) is None  # no gap
+    assert gap_share(native, calibrated, uncalibrated, seed=0) is None  # the moved net better
     assert gap_share(uncalibrated, calibrated, native, seed=0) == found  # seeded
     assert math.isfinite(share)
