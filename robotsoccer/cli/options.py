@@ -418,6 +418,16 @@ def _transfer_options(p: argparse.ArgumentParser) -> None:
         action="store_true",
         help="the transfer study without fine-tuning and domain randomisation",
     )
+    p.add_argument(
+        "--no-lead-transfer",
+        action="store_true",
+        help="the transfer study without the lead decision's matrix (and its calibration)",
+    )
+    p.add_argument(
+        "--no-calibration",
+        action="store_true",
+        help="the lead matrix without the Soccer Server calibrated to robot traces",
+    )
 
 
 def _field_options(p: argparse.ArgumentParser) -> None:

@@ -117,7 +117,7 @@ from robotsoccer.skills.intercept import (
     model_origin,
     transfer_distance_factor,
 )
-from robotsoccer.skills.lead import LeadDefenderMind, lead_policy
+from robotsoccer.skills.lead import LeadDefenderMind, ScaledLead, lead_policy
 
 SHOOTER = PlayerRef(LEFT, 1)
 DEFENDER = PlayerRef(RIGHT, 1)
@@ -471,6 +471,11 @@ class InterceptDrill:
         client: ``see`` (the paper's client: decides at each see, "turn, then dash") or
             ``cycle`` (a command every cycle from a world model,
             :mod:`robotsoccer.skills.cycle`; the turn decision only, no decision period).
+        lead_time_scale: Multiply a lead net's τ by this; 1 (default): τ in seconds as the
+            net gives it. With ``transfer=true`` a net's distances are in drill units and its τ
+            stays a time in seconds; the transfer study's check rows give the test drill's
+            flight time over the training drill's here, so that τ keeps its share of the flight
+            (:func:`robotsoccer.experiments.transfer.lead_time_scale`).
 
     Raises:
         ValueError: An unknown behaviour, TA mode, launch or scaling, a missing model file
@@ -502,6 +507,7 @@ class InterceptDrill:
         launch_speed_mps: float = 0.0,
         launch_speed_max_mps: float = 0.0,
         client: ClientKind | str = ClientKind.SEE,
+        lead_time_scale: float = 1.0,
     ) -> None:
         self.behaviour = check_behaviour(behaviour, model)
         self.client = choice(ClientKind, client, "client")
@@ -523,6 +529,15 @@ class InterceptDrill:
                 "launch_speed_max_mps needs 0 < launch_speed_mps <= launch_speed_max_mps, got "
                 f"{launch_speed_mps!r} and {launch_speed_max_mps!r}"
             )
+        if not (math.isfinite(float(lead_time_scale)) and float(lead_time_scale) > 0.0):
+            raise ValueError(
+                f"lead_time_scale must be a finite number > 0, got {lead_time_scale!r}"
+            )
+        if float(lead_time_scale) != 1.0 and not (
+            self.decision is Decision.LEAD and self.behaviour is Behaviour.NET
+        ):
+            raise ValueError("lead_time_scale scales a lead net: give decision=lead behaviour=net")
+        self.lead_time_scale = float(lead_time_scale)
         self.model = model
         self.ta_mode = choice(TaMode, ta_mode, "ta_mode")
         self.launch = choice(Launch, launch, "launch")
@@ -735,6 +750,8 @@ class InterceptDrill:
         net = None
         if self.behaviour is Behaviour.NET:
             net = load_net_function(self.model, self.distance_factor(arena.facts))
+            if self.lead_time_scale != 1.0:
+                net = ScaledLead(net, self.lead_time_scale)
         policy = lead_policy(self.behaviour.value, rngs["policy"], net, plan.arrival_time_s)
         return LeadDefenderMind(
             policy,

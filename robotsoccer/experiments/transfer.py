@@ -30,6 +30,9 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from field_models.registry import field_facts
+from robotsoccer.drills import make_drill
+from robotsoccer.drills.intercept import InterceptDrill, LaunchPlan
 from robotsoccer.experiments.layer1 import (
     Condition,
     Layer1Plan,
@@ -40,6 +43,7 @@ from robotsoccer.experiments.layer1 import (
     evaluate,
 )
 from robotsoccer.experiments.layer2 import Layer2Plan, pass_spec
+from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill
 from robotsoccer.experiments.report import paired_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
@@ -275,3 +279,177 @@ def plot_transfer(cells: Sequence[Cell], path: Path, title: str) -> Path | None:
     fig.colorbar(image, ax=ax, label="success (%)")
     ax.set_title(title)
     return _save(plt, fig, path)
+
+
+# ----------------------------------------------------------------------------- the lead decision
+
+LEAD_BASELINES = ("straight", "analytic")
+"""The lead decision's baselines every test field runs beside the nets (no model file)."""
+
+
+@dataclass(frozen=True)
+class LeadNet:
+    """A lead net and the drill it learned on.
+
+    Attributes:
+        path: The net's file (:func:`~robotsoccer.experiments.lead_study.train_net`).
+        drill: The drill it was trained on (its field, preset and time scale).
+        label: How the report names where it learned (the drill's label).
+    """
+
+    path: Path
+    drill: StudyDrill
+    label: str
+
+
+def lead_plan(drill: StudyDrill) -> LaunchPlan:
+    """The launch plan of a lead study's drill on its field (speeds, distances, flight time)."""
+    made = make_drill("intercept", {**dict(drill.options), "decision": "lead"})
+    assert isinstance(made, InterceptDrill)
+    return made.plan_for(field_facts(drill.field_model, drill.preset))
+
+
+def arrival_time_s(drill: StudyDrill) -> float:
+    """The drill's mean ball flight from launch to the defender [s] (its time scale)."""
+    return lead_plan(drill).arrival_time_s
+
+
+def lead_time_scale(trained: StudyDrill, tested: StudyDrill) -> float:
+    """The test drill's flight time over the training drill's: the check rows' factor on τ.
+
+    A lead net reads distances and an angle and gives a time. ``transfer=true`` puts the
+    distances in drill units (k units here enter the net as k units of its own field) and
+    leaves the time alone: τ is applied in seconds, as the net gives it (the matrix's *lead
+    net* cells). The other reading is that τ is a share of the drill's flight, since the
+    training behaviour drew it uniformly over that flight
+    (:func:`~robotsoccer.skills.lead.lead_policy`); multiplied by this factor (drill option
+    ``lead_time_scale``) it stays the same share of the test drill's flight. The matrix runs it
+    beside, as :data:`FLIGHT_SCALED`: in the seed-0 run it cost saves in both directions (the
+    README's transfer section), so seconds are the main reading.
+    """
+    return arrival_time_s(tested) / arrival_time_s(trained)
+
+
+def lead_transfer_conditions(
+    drills: Sequence[tuple[str, StudyDrill]],
+    nets: Sequence[LeadNet],
+    plan: LeadPlan,
+    seeds: Seeds,
+) -> list[tuple[str, str, str, Condition]]:
+    """(tested on, defender, trained on, condition) of every lead cell.
+
+    Each test drill runs the lead baselines, every net (its own natively; another's with
+    ``transfer=true``, τ in seconds) and every moved net with τ scaled by
+    :func:`lead_time_scale`, all on the drill's evaluation seed: paired trials.
+    """
+    out: list[tuple[str, str, str, Condition]] = []
+    for label, drill in drills:
+        base = drill.spec(seeds.evaluation, "lead", plan.noise)
+        n = plan.eval_trials
+        for behaviour in LEAD_BASELINES:
+            spec = base.with_options(behaviour=behaviour)
+            out.append((label, f"lead {behaviour}", "", Condition(f"lead_{behaviour}", spec, n)))
+        for net in nets:
+            spec = base.with_options(behaviour="net", model=str(net.path.resolve()))
+            tag = _slug(net.label)
+            if net.drill == drill:
+                out.append((label, "lead net", net.label, Condition(f"lead_net_{tag}", spec, n)))
+                continue
+            moved = spec.with_options(transfer=True)
+            out.append((label, "lead net", net.label, Condition(f"lead_net_{tag}", moved, n)))
+            scaled = moved.with_options(lead_time_scale=lead_time_scale(net.drill, drill))
+            check = Condition(f"lead_net_{tag}_flight_scaled", scaled, n)
+            out.append((label, FLIGHT_SCALED, net.label, check))
+    return out
+
+
+FLIGHT_SCALED = "lead net, τ × flight ratio"
+"""The defender name of a moved lead net whose τ is scaled by :func:`lead_time_scale`."""
+
+
+def _slug(label: str) -> str:
+    return "".join(ch if ch.isalnum() else "_" for ch in label).strip("_")
+
+
+def run_lead_transfer(
+    drills: Sequence[tuple[str, StudyDrill]],
+    nets: Sequence[LeadNet],
+    plan: LeadPlan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    progress: bool = False,
+) -> list[Cell]:
+    """The lead matrix: run every cell into ``out/results/transfer_lead/<test drill>``."""
+    cells = []
+    for tested, defender, trained, cond in lead_transfer_conditions(drills, nets, plan, seeds):
+        folder = out / "results" / "transfer_lead" / _slug(tested)
+        results, _, seconds = evaluate(cond, folder, workers, progress)
+        cell = Cell(tested, defender, trained, tuple(results))
+        log(f"  [{tested}] {cell.name}: {cell.saves} saves of {len(results)} ({seconds:.1f} s)")
+        cells.append(cell)
+    return cells
+
+
+def lead_markdown(
+    cells: Sequence[Cell], drills: Sequence[tuple[str, StudyDrill]], plan: LeadPlan
+) -> str:
+    """The lead matrix's report section: the table, the drills and the paired gaps."""
+    tested = [label for label, _ in drills]
+    at = {(c.tested_on, c.defender, c.trained_on): c for c in cells}
+    rows = list(dict.fromkeys((c.defender, c.trained_on) for c in cells if c.trained_on))
+    rows.sort(key=lambda r: r[0] == FLIGHT_SCALED)
+    baselines = list(dict.fromkeys(c.defender for c in cells if not c.trained_on))
+    sizes = ", ".join(str(s) for s in sorted({len(c.results) for c in cells}))
+    lines = [
+        "## Transfer with the lead decision (layer 1 on the robots)",
+        "",
+        "Each field's lead net is trained by §5's recipe on its own drill "
+        "(:mod:`robotsoccer.experiments.lead_study`: random leads, the saves' inputs, the 3-4-1 "
+        "net) and tested on every drill beside the lead decision's straight pursuit and analytic "
+        f"rule. Saves in % with 95% Wilson intervals, ball noise {plan.noise:g}, n = {sizes} "
+        "trials per cell; all cells of a column share their placements (paired). A net tested "
+        "on another drill reads distances in drill units (`transfer=true`) and gives its lead "
+        f"τ in seconds; *{FLIGHT_SCALED}* multiplies τ by the test drill's flight time over its "
+        "training drill's (`lead_time_scale`, "
+        ":func:`~robotsoccer.experiments.transfer.lead_time_scale`), the other reading of a "
+        "time learned on another field.",
+        "",
+        "Drills (columns):",
+        "",
+    ]
+    for label, drill in drills:
+        lines.append(
+            f"- {label}: `{Path(drill.preset).stem}`, {drill.summary}; mean flight "
+            f"{arrival_time_s(drill):.3f} s."
+        )
+    lines += [
+        "",
+        "| | " + " | ".join(f"tested on {t}" for t in tested) + " |",
+        "|---|" + "---|" * len(tested),
+    ]
+    for kind, source in rows:
+        row = [_percent(at[(t, kind, source)]) if (t, kind, source) in at else "—" for t in tested]
+        lines.append(f"| {kind} trained on {source} | " + " | ".join(row) + " |")
+    for kind in baselines:
+        row = [_percent(at[(t, kind, "")]) if (t, kind, "") in at else "—" for t in tested]
+        lines.append(f"| {kind} | " + " | ".join(row) + " |")
+    lines += ["", "Paired gaps in points (95% intervals):", ""]
+    for t in tested:
+        native = at.get((t, "lead net", t))
+        straight = at.get((t, "lead straight", ""))
+        for kind, source in rows:
+            moved = at.get((t, kind, source))
+            if moved is None or source == t:
+                continue
+            gaps = []
+            if native is not None:
+                gaps.append(f"minus the native lead net: {_paired(moved, native)}")
+            if straight is not None:
+                gaps.append(f"minus lead straight: {_paired(moved, straight)}")
+            lines.append(f"- on {t}: the {kind} from {source} " + "; ".join(gaps) + ".")
+        if native is not None and straight is not None:
+            lines.append(f"- on {t}: the native lead net minus lead straight: "
+                         f"{_paired(native, straight)}.")  # fmt: skip
+    return "\n".join(lines) + "\n"

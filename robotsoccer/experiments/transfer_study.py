@@ -8,15 +8,24 @@ reference (the paper's, whose net is moved) and the target.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from field_models.registry import field_facts
+from robotsoccer.experiments import lead_study
 from robotsoccer.experiments.ablations import (
     ablation_markdown,
     ablation_plan,
     ablations,
     run_ablations,
+)
+from robotsoccer.experiments.calibration import calibrate as calibration_fit
+from robotsoccer.experiments.calibration import (
+    calibrated_drill,
+    record_traces,
+    recovered_markdown,
+    write_preset,
 )
 from robotsoccer.experiments.gap_closing import (
     Randomisation,
@@ -28,21 +37,29 @@ from robotsoccer.experiments.gap_closing import (
     plot_curve,
 )
 from robotsoccer.experiments.layer1 import (
+    Condition,
     Field,
     Log,
     Seeds,
     collect_into,
+    evaluate,
     plan_for,
     train_main_net,
 )
 from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
+from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill, train_net
 from robotsoccer.experiments.transfer import (
     Cell,
+    LeadNet,
+    lead_markdown,
+    lead_plan,
     plot_transfer,
+    run_lead_transfer,
     run_transfer,
     run_transfer_layer2,
     transfer_markdown,
 )
+from robotsoccer.runs.runner import TrialResult
 
 
 @dataclass(frozen=True)
@@ -54,11 +71,16 @@ class StudyParts:
         ablations: The robots' drill ablations (:mod:`robotsoccer.experiments.ablations`).
         gap_closing: Fine-tuning and domain randomisation
             (:mod:`robotsoccer.experiments.gap_closing`).
+        lead: The lead decision's matrix (:func:`run_lead_study`), when lead drills are given.
+        calibration: With `lead`, the calibrated Soccer Server preset and its lead net
+            (:mod:`robotsoccer.experiments.calibration`).
     """
 
     layer2: bool = True
     ablations: bool = True
     gap_closing: bool = True
+    lead: bool = True
+    calibration: bool = True
 
 
 def run_transfer_study(
@@ -73,11 +95,13 @@ def run_transfer_study(
     parts: StudyParts = StudyParts(),
     created_by: str = "robotsoccer transfer",
     progress: bool = False,
+    lead_drills: Sequence[StudyDrill] = (),
 ) -> str:
     """Run the study into `out` (resumable) and return its report section (markdown).
 
     `created_by` names the command in the files' provenance: ``reproduce`` passes its own, so
-    the collections and nets it wrote before are the same files, not rewritten.
+    the collections and nets it wrote before are the same files, not rewritten. `lead_drills`:
+    the lead study's drill on the reference and the target field (:func:`run_lead_study`).
     """
     models = [reference, target]
     plan = plan_for(quick)
@@ -105,6 +129,13 @@ def run_transfer_study(
     ]
     found = [path for path in heatmaps if path is not None]
     text = transfer_markdown([*cells, *cells2], plan.noise, found)
+    if parts.lead and lead_drills:
+        log("[transfer] layer 1 with the lead decision")
+        sizes = lead_study.plan_for(quick)
+        text += "\n" + run_lead_study(
+            lead_drills, reference[0], target[0], sizes, out, seeds, workers, log,
+            created_by, calibrate=parts.calibration, progress=progress,
+        )  # fmt: skip
     if parts.gap_closing:
         log("[transfer] closing the gap")
         gplan = gap_plan(plan, quick)
@@ -126,6 +157,136 @@ def run_transfer_study(
         rows = run_ablations(study, plan3, out, seeds, workers, log, progress)
         text += "\n" + ablation_markdown(rows, plan3)
     return text
+
+
+def calibrated_label(reference: str) -> str:
+    """The calibrated Soccer Server drill's name in the report."""
+    return f"{reference} (calibrated)"
+
+
+def run_lead_study(
+    drills: Sequence[StudyDrill],
+    reference: str,
+    target: str,
+    plan: LeadPlan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    log: Log,
+    created_by: str,
+    *,
+    calibrate: bool = True,
+    progress: bool = False,
+) -> str:
+    """The lead matrix, and with `calibrate` the calibrated server beside it; its markdown.
+
+    The nets are the lead study's own (:func:`~robotsoccer.experiments.lead_study.train_net`
+    into ``out/lead``, the folder ``reproduce`` runs the lead study in, so it resumes them).
+    Calibration records `target`'s traces on the collection seed, fits and writes the preset
+    (``out/calibration``), trains a lead net on the calibrated server with the target drill in
+    units, and tests it in the matrix as a third field; it trains the paper's TA net there as
+    well and tests it on `target` beside the uncalibrated and native TA nets (:func:`turn_rows`).
+
+    Raises:
+        ValueError: `drills` holds no drill for `reference` or for `target`.
+    """
+    by_field = {d.field_model: d for d in drills}
+    missing = [f for f in (reference, target) if f not in by_field]
+    if missing:
+        raise ValueError(f"the lead transfer needs a lead drill on {', '.join(missing)}")
+    named = [(target, by_field[target]), (reference, by_field[reference])]
+    nets = [
+        LeadNet(train_net(d, "lead", plan, out / "lead", seeds, workers, log)[0], d, label)
+        for label, d in named
+    ]
+    cal = None
+    if calibrate:
+        robot = by_field[target]
+        facts = field_facts(robot.field_model, robot.preset)
+        traces = record_traces(
+            robot.field_model, robot.preset, launch_speeds_units(robot), seeds.collection
+        )
+        cal = calibration_fit(traces, facts)
+        server = by_field[reference]
+        preset = write_preset(
+            cal, out / "calibration" / f"{reference}_calibrated.toml", server.preset, created_by
+        )
+        drill = calibrated_drill(robot, reference, preset, facts.unit_m)
+        path, _ = train_net(drill, "lead", plan, out / "calibration", seeds, workers, log)
+        named.append((calibrated_label(reference), drill))
+        nets.append(LeadNet(path, drill, calibrated_label(reference)))
+        log(f"  [calibration] preset {preset}")
+    cells = run_lead_transfer(named, nets, plan, out, seeds, workers, log, progress)
+    text = lead_markdown(cells, named, plan)
+    if cal is not None:
+        at = {(c.tested_on, c.defender, c.trained_on): c.results for c in cells}
+        rows = {
+            "straight": at[(target, "lead straight", "")],
+            "uncalibrated": at[(target, "lead net", reference)],
+            "calibrated": at[(target, "lead net", calibrated_label(reference))],
+            "native": at[(target, "lead net", target)],
+            "analytic": at[(target, "lead analytic", "")],
+        }
+        turn_nets = {
+            "native": train_net(by_field[target], "turn", plan, out / "lead", seeds, workers, log),
+            "uncalibrated": train_net(
+                by_field[reference], "turn", plan, out / "lead", seeds, workers, log
+            ),
+            "calibrated": train_net(named[-1][1], "turn", plan, out / "calibration", seeds,
+                                    workers, log),
+        }  # fmt: skip
+        turn = turn_rows(
+            by_field[target], {role: net[0] for role, net in turn_nets.items()}, plan, out,
+            seeds, workers, progress,
+        )  # fmt: skip
+        paper = field_facts(reference, by_field[reference].preset)
+        where = f"calibration/{reference}_calibrated.toml"
+        tables = {"lead": rows, "turn (the paper's TA)": turn}
+        text += "\n" + recovered_markdown(cal, paper, target, tables, seeds.evaluation, where)
+    return text
+
+
+def turn_rows(
+    drill: StudyDrill,
+    nets: dict[str, Path],
+    plan: LeadPlan,
+    out: Path,
+    seeds: Seeds,
+    workers: int | None,
+    progress: bool = False,
+) -> dict[str, tuple[TrialResult, ...]]:
+    """The paper's TA decision on `drill`: straight and each net (by role), paired placements.
+
+    The ``native`` net runs as it is; every other with ``transfer=true`` (its distances in
+    drill units; a TA is an angle, which needs no other scale).
+    """
+    base = drill.spec(seeds.evaluation, "turn", plan.noise)
+    folder = out / "results" / "transfer_lead" / drill.field_model
+    specs = {"straight": base.with_options(behaviour="straight")}
+    for role, path in nets.items():
+        spec = base.with_options(behaviour="net", model=str(path.resolve()))
+        specs[role] = spec if role == "native" else spec.with_options(transfer=True)
+    rows = {}
+    for role, spec in specs.items():
+        cond = Condition(f"turn_{role}", spec, plan.eval_trials)
+        rows[role] = tuple(evaluate(cond, folder, workers, progress)[0])
+    return rows
+
+
+def launch_speeds_units(drill: StudyDrill) -> tuple[float, float, float]:
+    """The drill's slowest, middle and fastest launch speed [units/s] (the calibration's).
+
+    The drill's ``launch_speed_mps`` (and ``launch_speed_max_mps``) where it names them, else
+    its plan's one launch speed.
+    """
+    facts = field_facts(drill.field_model, drill.preset)
+    options = dict(drill.options)
+    low = float(options.get("launch_speed_mps", 0.0))
+    if low <= 0.0:
+        low = lead_plan(drill).launch_speed_mps
+    high = float(options.get("launch_speed_max_mps", 0.0)) or low
+    u = facts.unit_m
+    return low / u, 0.5 * (low + high) / u, high / u
 
 
 def references(cells: list[Cell], reference: str, target: str) -> References:

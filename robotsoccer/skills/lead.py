@@ -335,6 +335,24 @@ class LeadDefenderMind:
         return min(LEAD_CLIP_S, max(0.0, lead_s))
 
 
+@dataclass(frozen=True)
+class ScaledLead:
+    """A lead rule whose τ is multiplied by `scale`: a net moved to a drill on another time scale.
+
+    The transfer study (:mod:`robotsoccer.experiments.transfer`) checks a lead net moved between
+    fields whose drills last differently long with ``scale`` the test drill's flight time over
+    the training drill's, so a lead keeps its share of the flight (drill option
+    ``lead_time_scale``).
+    """
+
+    rule: LeadPolicy
+    scale: float
+
+    def __call__(self, ball_distance_m: float, track_angle_rad: float, previous_m: float) -> float:
+        """The rule's lead times the scale [s]."""
+        return self.scale * self.rule(ball_distance_m, track_angle_rad, previous_m)
+
+
 def lead_policy(
     name: str, rng: Rng, net: LeadPolicy | None = None, random_max_s: float = RANDOM_LEAD_MAX_S
 ) -> LeadPolicy | None:

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 from field_models.registry import default_preset
 from robotsoccer.cli.options import (
     EXIT_INTERRUPTED,
+    LEAD_DRILLS,
     PAPER_MODELS,
     REFERENCE_FIELD,
     TARGET_FIELD,
@@ -96,6 +97,7 @@ def transfer_section(
     """Run the transfer study into `out` (the options say which parts) and return its text."""
     from robotsoccer.experiments.gap_closing import Randomisation
     from robotsoccer.experiments.layer1 import seeds_for
+    from robotsoccer.experiments.lead_study import StudyDrill
     from robotsoccer.experiments.transfer_study import StudyParts, run_transfer_study
 
     fields = dict(models)
@@ -107,7 +109,10 @@ def transfer_section(
     parts = StudyParts(
         ablations=not getattr(args, "no_ablations", False),
         gap_closing=not getattr(args, "no_gap_closing", False),
+        lead=not getattr(args, "no_lead_transfer", False),
+        calibration=not getattr(args, "no_calibration", False),
     )
+    lead_drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in LEAD_DRILLS]
     return run_transfer_study(
         reference,
         target,
@@ -120,4 +125,5 @@ def transfer_section(
         parts,
         created_by,
         sys.stderr.isatty(),
+        lead_drills,
     )
