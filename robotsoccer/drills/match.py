@@ -4,7 +4,10 @@
 with layer 1's net, passes chosen by layer 2's tree; ``baseline`` — no learned layer: it runs
 straight at the ball and passes to the closest teammate. Both localise from landmarks, send
 their nearest player to the ball, dribble, shoot and keep a formation; they differ only in the
-two learned decisions, so a series measures what the layers are worth in play.
+two learned decisions, so a series measures what the layers are worth in play. Where the
+players push the ball (no aimable kick: the robots) both teams play it from behind and meet a
+ball rolling at their end as layer 1's goal-mouth drill does, the layered team with its lead
+net, the baseline straight (:mod:`robotsoccer.skills.team`, "Pushing").
 
 **Size.** ``players`` per side: by default 11 on an open field (the Soccer Server) and 5 on a
 walled table (the robots). Formation homes are in units (:data:`FORMATIONS`, ours: 4-4-2 and

@@ -28,6 +28,32 @@ percept arrives:
 5. **Otherwise** it goes to its formation home, shifted toward the ball
    (:data:`BALL_SHIFT_X`, :data:`BALL_SHIFT_Y`), and faces the ball there.
 
+**Pushing** (:attr:`TeamSetup.push_kick`: the 1997 small-size robots had no kicker and moved
+the ball with their bodies, `specs/robot_physics.md`). A push sends the ball where the body
+goes, so a chaser that runs straight at the ball from the wrong side pushes it toward its own
+goal: on `small_size_1997_arc` about half of all goals were such own goals (README, "Matches
+(measured)"). The chaser of a pushing team therefore:
+
+* **meets** a ball that rolls at it toward its own end (faster than :data:`MEET_SPEED_MPS`) as
+  layer 1's goal-mouth drill does (:class:`~robotsoccer.skills.lead.LeadDefenderMind`): the lead
+  τ chosen at the first percept of the meeting, then at every percept a turn toward the ball's
+  position τ ahead and a dash (one arc on the robots), no turn hold; meeting head-on sends the
+  ball back the way it came. The layered team's τ is its lead net's, asked only where the net
+  learned (a ball that rolls free of other players, from :attr:`TeamSetup.lead_from_m` out);
+  elsewhere, and always for the baseline, τ = 0: straight pursuit, the drill's own baseline;
+* otherwise plays the ball **from behind**: it goes to a point behind the ball on the ball's
+  line to the opponents' goal (round the ball, on its own side, when it stands goal-side of
+  it) and, once behind it within :data:`PUSH_LINE_SHARE`, runs through it; on the ball it
+  shoots, passes or dribbles as above.
+
+Its goalie stands where the drill's defender stood (:attr:`TeamSetup.goalie_depth_m`), meets a
+shot on target from the drill's trigger distance out (cutting short the hold of a turn it is
+in: the drill's defender reacts at the first frame that shows the shot), and plays a ball in
+its zone only from the goal side. With an overhead camera (:attr:`TeamSetup.sees_all_round`)
+a ball missing from a frame is a missed detection: no one turns to search for it, and the
+ball's track keeps every frame's sighting, also in a turn hold. Everything here is the same
+for both teams except τ; on a field with an aimable kick none of it applies.
+
 What a team may not do is read truth: the coach places players for kick-offs (as clients'
 ``move`` commands would) and the referee restarts play.
 """
