@@ -1,8 +1,10 @@
 """The learned layers as estimators: features, datasets, the interception net, lookup, analytic.
 
-Layer 2's estimators live in their own modules: :mod:`learning.pass_features` (the 174
-attributes and the report codec), :mod:`learning.pass_tree` (the C4.5-like tree),
-:mod:`learning.pass_boost` (gradient-boosted trees) and :mod:`learning.pass_dataset`.
+Layer 2's estimators live in their own modules: :mod:`learning.pass_features` (the 174 attributes),
+:mod:`learning.pass_codec` (the report's say codec), :mod:`learning.pass_tree` (the C4.5-like tree,
+grown in :mod:`learning.pass_tree_grow`, pruned by :mod:`learning.c45`, printed by
+:mod:`learning.pass_tree_text`, saved by :mod:`learning.pass_tree_file`), :mod:`learning.pass_boost`
+(gradient-boosted trees) and :mod:`learning.pass_dataset`.
 
 Takes arrays, returns arrays; imports no pymunk, no rerun and nothing from `robotsoccer`.
 

@@ -1,4 +1,4 @@
-"""The pass attributes of layer 2: 174 continuous numbers per candidate pass, and the say codec.
+"""The pass attributes of layer 2: 174 continuous numbers per candidate pass.
 
 Layer 2 of the paper (§6, "Learning a Higher-level Decision") has the passer record 174
 attributes for each trial, "half each from the passer's and the receiver's perspective", and
@@ -57,9 +57,8 @@ Choices that are ours (the paper gives only the list and the names in Figure 14)
 
 Attribute names are versioned as :data:`PASS_SCHEMA`; every dataset and tree stores it.
 
-The receiver's half reaches the passer as a ``say`` message (paper Figure 10). The Soccer Server
-limits its length (``say_msg_size``: 512 characters in the 1998 server, 10 today) and its
-characters; :func:`encode_view` / :func:`decode_view` are a compact fixed-width codec for it.
+The receiver's half reaches the passer as a ``say`` message (paper Figure 10): its view goes
+through the compact fixed-width codec of :mod:`learning.pass_codec`.
 """
 
 from __future__ import annotations
@@ -155,12 +154,12 @@ assert len(set(ATTRIBUTE_NAMES)) == 2 * HALF
 _Array = TypeVar("_Array", npt.NDArray[np.float64], npt.NDArray[np.int8])
 
 
-def _wrap_deg(angle: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+def wrap_deg(angle: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     """Angles wrapped to [-180, 180) [deg]."""
     return np.asarray((angle + 180.0) % 360.0 - 180.0, dtype=np.float64)
 
 
-def _view(
+def view_arrays(
     distance: npt.ArrayLike, angle_deg: npt.ArrayLike, team: npt.ArrayLike
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.int8]]:
     """The three view arrays as float, float, int8, checked for shape (team values: by _KIND)."""
@@ -180,7 +179,7 @@ def _view(
     return d, a, t
 
 
-def _prepend(x: _Array, value: float) -> _Array:
+def prepend(x: _Array, value: float) -> _Array:
     """``x`` with ``value`` in front (faster than ``np.concatenate`` for a dozen elements)."""
     y = np.empty(x.size + 1, dtype=x.dtype)
     y[0] = value
@@ -198,22 +197,23 @@ def _check_target(distance: float, angle_deg: float, who: str) -> None:
 
 def _fill_half(
     out: npt.NDArray[np.float64],
-    lists_start: int,
-    n_teammates: int,
-    target_distance: float,
-    target_angle_deg: float,
-    d: npt.NDArray[np.float64],
-    a: npt.NDArray[np.float64],
-    t: npt.NDArray[np.int8],
+    lists: tuple[int, int],
+    target: tuple[float, float],
+    view: tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.int8]],
     sort_by_distance: bool,
     first_is_target: bool,
 ) -> None:
     """Write a half's sorted lists and counts into ``out`` (pre-filled with nan).
 
-    The lists start at ``lists_start``: ``n_teammates`` then :data:`OPPONENTS` (distance,
-    offset) pairs, sorted by distance or by offset; the 45 counts fill the last 45 places. With
-    ``first_is_target`` the first player is the target itself (listed, never counted).
+    The lists start at ``lists[0]``: ``lists[1]`` teammates then :data:`OPPONENTS` (distance,
+    offset) pairs, sorted by distance or by offset; the 45 counts fill the last 45 places.
+    ``target`` is the target's (distance, angle [deg]) and ``view`` the seen players' distance,
+    angle and team arrays. With ``first_is_target`` the first player is the target itself
+    (listed, never counted).
     """
+    lists_start, n_teammates = lists
+    target_distance, target_angle_deg = target
+    d, a, t = view
     # |wrap(direction - target direction)| in [0, 180].
     w = (a - target_angle_deg) % 360.0
     offset = np.minimum(w, 360.0 - w)
@@ -277,19 +277,15 @@ def passer_attributes(
             value is not +1, -1 or 0.
     """
     _check_target(receiver_distance, receiver_angle_deg, "receiver")
-    d, a, t = _view(distance, angle_deg, team)
+    d, a, t = view_arrays(distance, angle_deg, team)
     out = np.full(HALF, np.nan)
     out[0] = receiver_distance
     out[1] = (receiver_angle_deg + 180.0) % 360.0 - 180.0
     _fill_half(
         out,
-        _PASSER_LISTS,
-        PASSER_TEAMMATES,
-        receiver_distance,
-        receiver_angle_deg,
-        d,
-        a,
-        t,
+        (_PASSER_LISTS, PASSER_TEAMMATES),
+        (receiver_distance, receiver_angle_deg),
+        (d, a, t),
         sort_by_distance=False,
         first_is_target=False,
     )
@@ -325,20 +321,16 @@ def receiver_attributes(
             value is not +1, -1 or 0.
     """
     _check_target(passer_distance, passer_angle_deg, "passer")
-    d, a, t = _view(distance, angle_deg, team)
+    d, a, t = view_arrays(distance, angle_deg, team)
     # The passer is one of the receiver's "teammates (up to 10)"; first, so a tie in distance
     # keeps it ahead. Its offset from itself comes out exactly 0.
-    d, a, t = _prepend(d, passer_distance), _prepend(a, passer_angle_deg), _prepend(t, 1)
+    d, a, t = prepend(d, passer_distance), prepend(a, passer_angle_deg), prepend(t, 1)
     out = np.full(HALF, np.nan)
     _fill_half(
         out,
-        0,
-        RECEIVER_TEAMMATES,
-        passer_distance,
-        passer_angle_deg,
-        d,
-        a,
-        t,
+        (0, RECEIVER_TEAMMATES),
+        (passer_distance, passer_angle_deg),
+        (d, a, t),
         sort_by_distance=True,
         first_is_target=True,
     )
@@ -371,138 +363,3 @@ def pass_attributes(
     if p.shape != (HALF,) or r.shape != (HALF,):
         raise ValueError(f"each half must have shape ({HALF},), got {p.shape} and {r.shape}")
     return np.concatenate((p, r))
-
-
-# --- The say codec ----------------------------------------------------------------------------
-#
-# 'v', the passer (distance, angle: 2 + 2 characters), then 5 characters per seen player
-# (distance 2, angle 2, team 1). Every character is in the Soccer Server's say alphabet
-# `[-0-9a-zA-Z ().+*/?<>_]` and none is a space, parenthesis or quote.
-
-VIEW_TAG = "v"
-"""First character of an encoded view."""
-
-ALPHABET = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz-_"
-"""The 64 digits of the fixed-width number code (two digits: 4096 codes)."""
-
-DISTANCE_STEP = 0.05
-"""Quantisation step of an encoded distance [units]; the top code stands for nan."""
-
-ANGLE_STEP_DEG = 360.0 / 4095
-"""Quantisation step of an encoded angle [deg] (about 0.088°); the top code stands for nan."""
-
-_NAN_CODE = 64 * 64 - 1
-MAX_DISTANCE = (_NAN_CODE - 1) * DISTANCE_STEP
-"""Largest encodable distance [units] (204.7; the Soccer Server pitch diagonal is about 125)."""
-
-TEAM_CHARACTERS = {1: "t", -1: "o", 0: "u"}
-"""The team character of an encoded player: teammate, opponent, unknown."""
-
-_HEAD = len(VIEW_TAG) + 4
-_PER_PLAYER = 5
-_ALPHABET_BYTES = np.frombuffer(ALPHABET.encode("ascii"), dtype=np.uint8)
-# Byte tables, in the manner of _KIND: 0 / -1 / 2 mark a value or character that is invalid.
-_TEAM_BYTE = np.zeros(256, dtype=np.uint8)  # team value's byte -> character
-_DIGIT_VALUE = np.full(256, -1, dtype=np.int64)  # character -> digit
-_DIGIT_VALUE[_ALPHABET_BYTES] = np.arange(64)
-_TEAM_VALUE = np.full(256, 2, dtype=np.int8)  # character -> team value
-for _team, _char in TEAM_CHARACTERS.items():
-    _TEAM_BYTE[np.uint8(np.int8(_team).view(np.uint8))] = ord(_char)
-    _TEAM_VALUE[ord(_char)] = _team
-
-
-def view_message_length(n_players: int) -> int:
-    """Characters in the encoding of a view with ``n_players`` seen players besides the passer.
-
-    ``1 + 4 + 5 * n_players``: a 512-character say (1998 server) holds 101 players, a
-    10-character one (rcssserver 19) only 1.
-
-    >>> view_message_length(8)
-    45
-    """
-    if n_players < 0:
-        raise ValueError(f"n_players must be >= 0, got {n_players}")
-    return _HEAD + _PER_PLAYER * n_players
-
-
-def encode_view(
-    passer_distance: float,
-    passer_angle_deg: float,
-    distance: npt.ArrayLike,
-    angle_deg: npt.ArrayLike,
-    team: npt.ArrayLike,
-) -> str:
-    """Encode the receiver's view as a say message (paper Figure 10: "what the world looks like").
-
-    Distances are rounded to :data:`DISTANCE_STEP`, angles to :data:`ANGLE_STEP_DEG` (0° is on
-    the grid; decoded angles lie in [-180, 180)); nan stays nan. The message has
-    :func:`view_message_length` characters.
-
-    Args:
-        passer_distance: The passer's distance from the receiver [units].
-        passer_angle_deg: The passer's direction [deg].
-        distance: Distances of the other seen players [units].
-        angle_deg: Their directions [deg].
-        team: Their teams: +1 teammate, -1 opponent, 0 unknown.
-
-    Returns:
-        The message: the tag, then letters, digits, ``-`` and ``_`` only.
-
-    Raises:
-        ValueError: A distance is negative or above :data:`MAX_DISTANCE`, an angle is infinite,
-            a team value is not +1, -1 or 0, or the arrays' shapes differ.
-    """
-    d, a, t = _view(distance, angle_deg, team)
-    d, a = _prepend(d, passer_distance), _prepend(a, passer_angle_deg)
-    if np.any(d < 0.0) or np.any(d > MAX_DISTANCE) or np.any(np.isinf(a)):
-        raise ValueError(
-            f"distances must be nan or in [0, {MAX_DISTANCE}] and angles finite or nan, got "
-            f"{d!r}, {a!r}"
-        )
-    codes = np.empty((d.size, 2), dtype=np.int64)
-    # fmin maps nan to the nan code; every other value is below it.
-    codes[:, 0] = np.fmin(np.rint(d / DISTANCE_STEP), _NAN_CODE)
-    # Code c is c steps counter-clockwise from 0°, so 0° (straight at the passer) is exact.
-    codes[:, 1] = np.fmin(np.rint(a % 360.0 / ANGLE_STEP_DEG) % _NAN_CODE, _NAN_CODE)
-    chars = np.empty((d.size, _PER_PLAYER), dtype=np.uint8)
-    chars[:, 0:4:2] = _ALPHABET_BYTES[codes >> 6]
-    chars[:, 1:4:2] = _ALPHABET_BYTES[codes & 63]
-    chars[0, 4] = ord(VIEW_TAG)  # placeholder; the passer has no team character
-    chars[1:, 4] = team_bytes = _TEAM_BYTE[t.view(np.uint8)]
-    if not np.all(team_bytes):
-        raise ValueError(f"team values must be +1, -1 or 0, got {t!r}")
-    raw = chars.tobytes()
-    return VIEW_TAG + (raw[:4] + raw[5:]).decode("ascii")
-
-
-def decode_view(
-    text: str,
-) -> tuple[float, float, npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.int8]]:
-    """Decode a message from :func:`encode_view`.
-
-    Returns:
-        ``(passer_distance, passer_angle_deg, distance, angle_deg, team)``, ready for
-        :func:`receiver_attributes` (which refuses a nan passer).
-
-    Raises:
-        ValueError: ``text`` is not a str, lacks the tag, has a length that is not
-            :func:`view_message_length` of some count, or holds a character out of place.
-    """
-    if not isinstance(text, str):
-        raise ValueError(f"a view message is a str, got {type(text).__name__}")
-    n, rest = divmod(len(text) - _HEAD, _PER_PLAYER)
-    if not text.startswith(VIEW_TAG) or not text.isascii() or n < 0 or rest:
-        raise ValueError(f"not a view message (tag {VIEW_TAG!r}, ASCII, length 5 + 5n): {text!r}")
-    # The passer's four digits padded with its tag as a team character, so all rows are alike.
-    raw = np.frombuffer((text[1:_HEAD] + VIEW_TAG + text[_HEAD:]).encode("ascii"), np.uint8)
-    rows = raw.reshape(n + 1, _PER_PLAYER)
-    digits = _DIGIT_VALUE[rows[:, :4]]
-    team = _TEAM_VALUE[rows[1:, 4]]
-    if np.any(digits < 0) or np.any(team == 2):
-        raise ValueError(f"view message has a character out of place: {text!r}")
-    codes = digits[:, 0::2] * 64 + digits[:, 1::2]
-    values = codes * np.array((DISTANCE_STEP, ANGLE_STEP_DEG))
-    values[:, 1] = _wrap_deg(values[:, 1])
-    values[codes == _NAN_CODE] = np.nan
-    d, a = values[:, 0], values[:, 1]
-    return float(d[0]), float(a[0]), d[1:], a[1:], team

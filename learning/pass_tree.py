@@ -6,12 +6,17 @@ The paper trains "standard off-the-shelf C4.5 code with all of the default param
 had 87 nodes and 26% training error; the passer used the tree's confidence to pick a receiver
 (Table 2).
 
-:func:`fit_pass_tree` grows a tree with scikit-learn on the NaN-containing rows (no imputation),
-then prunes it with C4.5's own error-based pruning (:func:`pessimistic_errors`) and copies it into
-a :class:`PassTree`: plain arrays, evaluated by a short loop over nodes with no scikit-learn call.
-Trees are saved as JSON (:func:`save_pass_tree`), never pickled, and refused with
-:class:`~learning.features.ModelFileError` naming the file when corrupt, for another format
-version or for another attribute schema.
+The tree is a :class:`PassTree` (this module): plain arrays, evaluated by a short loop over nodes
+with no scikit-learn call. Its other jobs sit beside it:
+
+* growing: :func:`learning.pass_tree_grow.fit_pass_tree` grows a tree with scikit-learn on the
+  NaN-containing rows (no imputation) and copies it into a :class:`PassTree`;
+* pruning: :mod:`learning.c45`, C4.5's own error-based pruning
+  (:func:`~learning.c45.pessimistic_errors`) and release 8's charge for thresholds;
+* printing: :mod:`learning.pass_tree_text`, Figure 14's layout (:meth:`PassTree.render`);
+* the file format: :mod:`learning.pass_tree_file`, JSON, never pickled, refused with
+  :class:`~learning.features.ModelFileError` naming the file when corrupt, for another format
+  version or for another attribute schema.
 
 What differs from C4.5:
 
@@ -32,10 +37,10 @@ What differs from C4.5:
   (threshold +inf: known values go left, unknown right), a test C4.5 cannot make.
 * **Release 8's charge for thresholds.** C4.5 release 8 takes log2(N - 1) / |D| off the gain of a
   test on a continuous attribute (N distinct values, |D| cases at the node) and does not split a
-  node whose tests then gain nothing. scikit-learn has no such charge; :func:`fit_pass_tree`
+  node whose tests then gain nothing. scikit-learn has no such charge; ``fit_pass_tree``
   applies it after growing, top-down, turning such nodes into leaves before the error-based
-  pruning (``_release8_stop``). The charge is computed for the test scikit-learn chose, not for
-  every candidate test as C4.5 does.
+  pruning (:func:`~learning.c45.release8_stop`). The charge is computed for the test
+  scikit-learn chose, not for every candidate test as C4.5 does.
 * **Confidence.** C4.5 reports a leaf's raw class shares; the passer ranks receivers by
   :meth:`PassTree.success_confidence`, the Laplace-corrected share, because our leaves are smaller
   than C4.5's (see there).
@@ -50,125 +55,20 @@ What differs from C4.5:
 
 from __future__ import annotations
 
-import itertools
-import json
-import math
-import os
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
-from pathlib import Path
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from learning.features import ModelFileError, read_model_json
+from learning.pass_tree_text import render_tree
 
 LABELS: tuple[str, ...] = ("SUCCESS", "FAILURE", "MISS")
 """The pass outcomes (paper §6), in the column order of every probability and count array."""
 
-TREE_FORMAT = "robotsoccer/pass-tree"
-"""Format tag stored in every pass-tree file."""
-
-TREE_FORMAT_VERSION = 1
-"""Version of the file layout (not of the attributes: that is the tree's ``schema``)."""
-
-Note = str | int | float
-"""Value types of a tree file's provenance record (JSON scalars)."""
-
 Setting = str | int | float | bool
 """Value types of :attr:`PassTree.settings` (JSON scalars)."""
-
-# C4.5 release 8, stats.c: the normal deviate for a confidence factor CF is interpolated linearly
-# in this table (Val[], Dev[]), not computed exactly; at CF = 0.25 it gives 0.6925, not 0.6745.
-_CF_TABLE: tuple[tuple[float, float], ...] = (
-    (0.0, 4.0),
-    (0.001, 3.09),
-    (0.005, 2.58),
-    (0.01, 2.33),
-    (0.05, 1.65),
-    (0.10, 1.28),
-    (0.20, 0.84),
-    (0.40, 0.25),
-    (1.00, 0.0),
-)
-
-_MERGE_SLACK = 0.1
-"""C4.5 prune.c prunes when leaf errors <= subtree errors + 0.1 (a small bias to simpler trees)."""
-
-
-# ----------------------------------------------------------------------------- C4.5 pruning
-
-
-def pessimistic_errors(cases: float, errors: float, confidence: float = 0.25) -> float:
-    """C4.5's predicted errors ``N·U_CF(E, N)`` of a leaf with `cases` N and `errors` E.
-
-    ``U_CF`` is the upper limit of the binomial confidence interval at level CF of the error
-    rate E/N (Quinlan 1993, ch. 4). This is ``E + AddErrs(N, E)`` of C4.5 release 8's stats.c,
-    formula for formula: for E = 0 the exact ``N·(1 - CF^(1/N))``; for 0 < E < 1 a linear
-    interpolation between E = 0 and E = 1; for E + 0.5 >= N the extra errors ``0.67·(N - E)``;
-    otherwise the normal approximation (with continuity correction 0.5) with the deviate taken
-    from C4.5's table.
-
-    Args:
-        cases: N, the (possibly fractional) training cases reaching the leaf.
-        errors: E, those not of the leaf's class (0 <= E <= N).
-        confidence: CF, C4.5's ``-c`` option as a fraction (0.25 is ``-c 25``), in (0, 1).
-
-    Returns:
-        The predicted number of errors (0 for N <= 0).
-
-    >>> round(pessimistic_errors(6, 0) / 6, 3), round(pessimistic_errors(16, 1) / 16, 3)
-    (0.206, 0.157)
-    """
-    _check_confidence(confidence)
-    if cases <= 0.0:
-        return 0.0
-    return errors + _add_errors(cases, errors, confidence)
-
-
-def upper_error_rate(cases: float, errors: float, confidence: float = 0.25) -> float:
-    """``U_CF(E, N)``: the pessimistic error rate of a leaf, :func:`pessimistic_errors` over N.
-
-    >>> round(upper_error_rate(9, 0), 3)
-    0.143
-    """
-    if cases <= 0.0:
-        return 0.0
-    return pessimistic_errors(cases, errors, confidence) / cases
-
-
-def _add_errors(n: float, e: float, cf: float) -> float:
-    # C4.5 release 8 stats.c AddErrs(N, e): the extra errors above the observed e.
-    if e < 1e-6:
-        return n * (1.0 - math.exp(math.log(cf) / n))
-    if e < 0.9999:
-        base = n * (1.0 - math.exp(math.log(cf) / n))
-        return base + e * (_add_errors(n, 1.0, cf) - base)
-    if e + 0.5 >= n:
-        return 0.67 * (n - e)
-    coeff = _coefficient(cf)
-    pr = (
-        e + 0.5 + coeff / 2.0 + math.sqrt(coeff * ((e + 0.5) * (1.0 - (e + 0.5) / n) + coeff / 4.0))
-    ) / (n + coeff)
-    return n * pr - e
-
-
-def _coefficient(cf: float) -> float:
-    for (v0, d0), (v1, d1) in itertools.pairwise(_CF_TABLE):
-        if cf <= v1:
-            deviate = d0 + (d1 - d0) * (cf - v0) / (v1 - v0)
-            return deviate * deviate
-    raise ValueError(f"confidence {cf!r} is not in (0, 1)")  # unreachable after the check
-
-
-def _check_confidence(confidence: float) -> None:
-    if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence factor must be in (0, 1), got {confidence!r}")
-
-
-# ----------------------------------------------------------------------------- the tree
 
 
 @dataclass(frozen=True, eq=False)
@@ -321,7 +221,7 @@ class PassTree:
         rows = self._rows(x)
         if rows.ndim != 2:
             raise ValueError(f"need rows (n, {len(self.feature_names)}), got {rows.shape}")
-        labels = _label_indices(y)
+        labels = label_indices(y)
         if labels.shape[0] != rows.shape[0] or rows.shape[0] == 0:
             raise ValueError(f"{rows.shape[0]} rows but {labels.shape[0]} labels")
         return float(np.mean(self.predict(rows) != labels))
@@ -329,104 +229,12 @@ class PassTree:
     def render(self, max_depth: int | None = None) -> str:
         """The tree as text, in the style of C4.5's output (paper Figure 14).
 
-        One line per test, indented 4 spaces per level: ``name <= t`` or ``name > t``, with
-        ``t`` as :attr:`shown_threshold` (up to 3 decimals, no trailing zeros). A branch ending in
-        a leaf reads ``... : S (cases/errors)``: the leaf's label initial, its training cases and
-        those not of its label, one decimal each. As C4.5 does, a node's leaf branches are printed
-        before its subtrees. ``[or unknown]`` marks the branch an unknown value follows;
-        known/unknown tests read ``name is known`` / ``name is unknown``. A tree that is a single
-        leaf prints just ``S (cases/errors)``.
+        See :func:`learning.pass_tree_text.render_tree`, which prints it.
 
         Args:
             max_depth: Show this many levels of tests; deeper subtrees print as ``...``.
         """
-        if max_depth is not None and max_depth < 0:
-            raise ValueError(f"max_depth must be >= 0, got {max_depth}")
-        lines: list[str] = []
-        if self.feature[0] < 0:
-            return self._leaf_text(0)
-        self._render_node(0, 0, max_depth, lines)
-        return "\n".join(lines)
-
-    def to_json(self) -> dict[str, Any]:
-        """The tree as plain JSON types, with format tag and version (no provenance)."""
-        return {
-            "format": TREE_FORMAT,
-            "format_version": TREE_FORMAT_VERSION,
-            "schema": self.schema,
-            "labels": list(LABELS),
-            "feature_names": list(self.feature_names),
-            "settings": dict(self.settings),
-            "feature": self.feature.tolist(),
-            "threshold": [_encode_float(v) for v in self.threshold.tolist()],
-            "shown_threshold": [_encode_float(v) for v in self.shown_threshold.tolist()],
-            "left": self.left.tolist(),
-            "right": self.right.tolist(),
-            "missing_left": self.missing_left.tolist(),
-            "counts": self.counts.tolist(),
-        }
-
-    @classmethod
-    def from_json(cls, data: Any, source: str) -> PassTree:
-        """Read a tree written by :meth:`to_json`, checking everything.
-
-        Args:
-            data: The parsed JSON object.
-            source: What it was read from (a file name), named in every error.
-
-        Raises:
-            ModelFileError: Not a pass tree, another format version, or any field missing,
-                mistyped or inconsistent with the others.
-        """
-        try:
-            return cls._from_doc(data)
-        except (ModelFileError, ValueError, TypeError) as exc:
-            raise ModelFileError(f"{source}: {exc}") from None
-
-    @classmethod
-    def _from_doc(cls, doc: Any) -> PassTree:
-        if not isinstance(doc, dict) or doc.get("format") != TREE_FORMAT:
-            raise ModelFileError(f"not a pass tree (format tag is not {TREE_FORMAT!r})")
-        if doc.get("format_version") != TREE_FORMAT_VERSION:
-            raise ModelFileError(
-                f"unsupported pass-tree format version {doc.get('format_version')!r}"
-            )
-        if doc.get("labels") != list(LABELS):
-            raise ModelFileError(f"labels {doc.get('labels')!r} are not {list(LABELS)}")
-        schema, names, settings = doc.get("schema"), doc.get("feature_names"), doc.get("settings")
-        if not isinstance(schema, str):
-            raise ModelFileError("schema must be a string")
-        if not isinstance(names, list) or not all(isinstance(n, str) for n in names):
-            raise ModelFileError("feature_names must be a list of strings")
-        if not isinstance(settings, dict) or not all(
-            isinstance(v, str | int | float) for v in settings.values()
-        ):
-            raise ModelFileError("settings must map names to strings, numbers or booleans")
-        ints = {k: _int_list(doc.get(k), k) for k in ("feature", "left", "right")}
-        floats = {k: _float_list(doc.get(k), k) for k in ("threshold", "shown_threshold")}
-        missing = doc.get("missing_left")
-        if not isinstance(missing, list) or not all(isinstance(v, bool) for v in missing):
-            raise ModelFileError("missing_left must be a list of booleans")
-        counts = doc.get("counts")
-        if not isinstance(counts, list) or not all(
-            isinstance(row, list) and len(row) == len(LABELS) and all(_is_number(v) for v in row)
-            for row in counts
-        ):
-            raise ModelFileError(f"counts must be a list of [{len(LABELS)} numbers] per node")
-        return cls(
-            feature_names=tuple(names),
-            schema=schema,
-            feature=np.array(ints["feature"], dtype=np.int64).astype(np.int32),
-            threshold=np.array(floats["threshold"], dtype=np.float64),
-            left=np.array(ints["left"], dtype=np.int64).astype(np.int32),
-            right=np.array(ints["right"], dtype=np.int64).astype(np.int32),
-            missing_left=np.array(missing, dtype=np.bool_),
-            counts=np.array(counts, dtype=np.float64).reshape(len(counts), len(LABELS)),
-            shown_threshold=np.array(floats["shown_threshold"], dtype=np.float64),
-            settings=settings,
-        )
-
-    # ------------------------------------------------------------------------- evaluation
+        return render_tree(self, LABELS, max_depth)
 
     def _rows(self, x: npt.ArrayLike) -> npt.NDArray[np.float32]:
         rows = np.asarray(x, dtype=np.float32)
@@ -463,39 +271,6 @@ class PassTree:
             node[active] = np.where(go_left, self.left[at], self.right[at])
             active = active[self.feature[node[active]] >= 0]
         return node
-
-    # ------------------------------------------------------------------------- rendering
-
-    def _leaf_text(self, node: int) -> str:
-        counts = self.counts[node]
-        label = int(np.argmax(counts))
-        cases = float(counts.sum())
-        return f"{LABELS[label][0]} ({cases:.1f}/{cases - float(counts[label]):.1f})"
-
-    def _render_node(self, node: int, depth: int, max_depth: int | None, lines: list[str]) -> None:
-        indent = "    " * depth
-        if max_depth is not None and depth >= max_depth:
-            lines.append(f"{indent}...")
-            return
-        children = (int(self.left[node]), int(self.right[node]))
-        # C4.5 release 8 (trees.c, Show) prints a node's leaf branches before its subtrees.
-        order = sorted((0, 1), key=lambda side: self.feature[children[side]] >= 0)
-        for side in order:
-            child = children[side]
-            test = self._test_text(node, side)
-            if self.feature[child] < 0:
-                lines.append(f"{indent}{test} : {self._leaf_text(child)}")
-            else:
-                lines.append(f"{indent}{test} :")
-                self._render_node(child, depth + 1, max_depth, lines)
-
-    def _test_text(self, node: int, side: int) -> str:
-        name = self.feature_names[int(self.feature[node])]
-        if math.isinf(float(self.threshold[node])):
-            return f"{name} is known" if side == 0 else f"{name} is unknown"
-        op = "<=" if side == 0 else ">"
-        unknown = " [or unknown]" if bool(self.missing_left[node]) == (side == 0) else ""
-        return f"{name} {op} {_format_number(float(self.shown_threshold[node]))}{unknown}"
 
 
 def _check_structure(tree: PassTree) -> None:
@@ -547,317 +322,8 @@ def _check_structure(tree: PassTree) -> None:
         raise ValueError("a node's counts are not the sum of its children's")
 
 
-# ----------------------------------------------------------------------------- fitting
-
-
-def fit_pass_tree(
-    x: npt.ArrayLike,
-    y: Sequence[str] | npt.ArrayLike,
-    feature_names: Sequence[str],
-    *,
-    schema: str,
-    seed: int = 0,
-    confidence: float = 0.25,
-    min_cases: int = 2,
-    prune: bool = True,
-) -> PassTree:
-    """Grow a tree with scikit-learn, prune it as C4.5 does, and copy it into a :class:`PassTree`.
-
-    Growing: ``DecisionTreeClassifier(criterion="entropy", min_samples_leaf=min_cases)`` on the
-    rows as they are, NaN included (scikit-learn's native handling of missing values; nothing is
-    imputed). Pruning: C4.5's error-based pruning (Quinlan 1993, ch. 4; release 8 prune.c),
-    bottom-up: a subtree becomes a leaf when the leaf's :func:`pessimistic_errors` are at most
-    the summed predicted errors of the subtree's leaves + 0.1. Subtree raising is omitted. See
-    the module docstring for everything that differs from C4.5.
-
-    Args:
-        x: Rows (n, n_features) of attributes; NaN is *unknown*, ±inf is refused.
-        y: The n labels: strings from :data:`LABELS`, or an integer array of indices into it.
-        feature_names: One name per column.
-        schema: The attribute schema id stored in the tree (e.g. ``"pass-attributes/1"``).
-        seed: scikit-learn's random_state (it only breaks ties between equally good tests).
-        confidence: C4.5's pruning confidence factor CF (0.25, its default ``-c 25``).
-        min_cases: Least training cases in each branch of a test (C4.5's ``-m``, default 2).
-        prune: False keeps the tree as scikit-learn grew it (for checks against it).
-
-    Returns:
-        The tree; :attr:`PassTree.settings` records the arguments, the number of training rows
-        and the node count before pruning.
-
-    Raises:
-        ValueError: Mismatched or malformed rows, labels or names, or bad settings.
-    """
-    # Imported here: evaluating a saved tree (the passer's decision) needs no scikit-learn.
-    from sklearn.tree import DecisionTreeClassifier
-
-    _check_confidence(confidence)
-    if isinstance(min_cases, bool) or not isinstance(min_cases, int) or min_cases < 1:
-        raise ValueError(f"min_cases must be an int >= 1, got {min_cases!r}")
-    rows = np.array(x, dtype=np.float64)
-    names = tuple(feature_names)
-    if rows.ndim != 2 or rows.shape[0] == 0 or rows.shape[1] != len(names):
-        raise ValueError(f"need rows (n >= 1, {len(names)}) matching the names, got {rows.shape}")
-    if np.isinf(rows).any():
-        raise ValueError("rows hold infinite values (unknowns must be NaN)")
-    labels = _label_indices(y)
-    if labels.shape[0] != rows.shape[0]:
-        raise ValueError(f"{rows.shape[0]} rows but {labels.shape[0]} labels")
-
-    model = DecisionTreeClassifier(
-        criterion="entropy", splitter="best", min_samples_leaf=min_cases, random_state=seed
-    ).fit(rows, labels)
-    sk = model.tree_
-    # scikit-learn >= 1.4 stores class *fractions* in value; times the node's weight = counts.
-    counts = np.zeros((sk.node_count, len(LABELS)), dtype=np.float64)
-    counts[:, model.classes_] = sk.value[:, 0, :] * sk.weighted_n_node_samples[:, None]
-    counts = np.rint(counts)  # unit weights: whole cases, minus float noise of the fractions
-    left = np.asarray(sk.children_left, dtype=np.intp)
-    right = np.asarray(sk.children_right, dtype=np.intp)
-    is_leaf = left < 0
-    if prune:
-        is_leaf = _release8_stop(model, rows, labels, left, right, is_leaf)
-        is_leaf = _c45_prune(left, right, counts, confidence, is_leaf)
-    rows32 = rows.astype(np.float32)
-    tree = _compact(
-        names=names,
-        schema=schema,
-        left=left,
-        right=right,
-        is_leaf=is_leaf,
-        feature=np.asarray(sk.feature),
-        threshold=np.asarray(sk.threshold, dtype=np.float64),
-        missing_left=np.asarray(sk.missing_go_to_left).astype(bool),
-        counts=counts,
-        rows32=rows32,
-        settings={
-            "grower": "sklearn.DecisionTreeClassifier(criterion=entropy)",
-            "confidence": float(confidence),
-            "min_cases": min_cases,
-            "seed": int(seed),
-            "pruned": bool(prune),
-            "n_train": int(rows.shape[0]),
-            "n_nodes_unpruned": int(sk.node_count),
-        },
-    )
-    return tree
-
-
-def _entropy(labels: npt.NDArray[np.intp]) -> float:
-    """Entropy [bits] of some labels."""
-    if labels.shape[0] == 0:
-        return 0.0
-    p = np.bincount(labels, minlength=len(LABELS)) / labels.shape[0]
-    p = p[p > 0.0]
-    return float(-(p * np.log2(p)).sum())
-
-
-def _release8_stop(
-    model: Any,
-    rows: npt.NDArray[np.float64],
-    labels: npt.NDArray[np.intp],
-    left: npt.NDArray[np.intp],
-    right: npt.NDArray[np.intp],
-    is_leaf: npt.NDArray[np.bool_],
-) -> npt.NDArray[np.bool_]:
-    """Leaves where C4.5 release 8 would not have split: no positive corrected gain.
-
-    Release 8 charges a test on a continuous attribute for choosing its threshold: the gain
-    (on the cases whose value is known, times their share) loses log2(N - 1) / |D|, with N the
-    attribute's distinct known values at the node and |D| the node's cases (Quinlan 1996,
-    "Improved use of continuous attributes in C4.5"). A node whose test then gains nothing
-    stays a leaf, and so does everything below it. Without this charge, scikit-learn splits
-    small noisy nodes that release 8 leaves alone (the paper's 87-node tree came from it).
-    """
-    feature = model.tree_.feature
-    threshold = model.tree_.threshold
-    reach = model.decision_path(rows.astype(np.float32)).tocsc()
-    out = is_leaf.copy()
-    stack = [0]
-    while stack:
-        node = stack.pop()
-        if out[node]:
-            continue
-        at = reach.indices[reach.indptr[node] : reach.indptr[node + 1]]
-        column = rows[at, int(feature[node])].astype(np.float32)
-        known = ~np.isnan(column)
-        n, n_known = at.shape[0], int(known.sum())
-        cut = float(threshold[node])
-        if math.isinf(cut):  # sklearn's "known vs unknown" test: no threshold to charge for
-            groups = [labels[at][known], labels[at][~known]]
-            gain = _entropy(labels[at]) - sum(g.shape[0] / n * _entropy(g) for g in groups)
-        elif n_known < 2:
-            gain = 0.0
-        else:
-            values, y = column[known], labels[at][known]
-            low = values <= cut
-            split = _entropy(y) - sum(
-                g.shape[0] / n_known * _entropy(g) for g in (y[low], y[~low])
-            )
-            distinct = np.unique(values).shape[0]
-            gain = n_known / n * split - math.log2(max(distinct - 1, 1)) / n
-        if gain <= 0.0:
-            out[node] = True
-        else:
-            stack.extend((int(left[node]), int(right[node])))
-    return out
-
-
-def _c45_prune(
-    left: npt.NDArray[np.intp],
-    right: npt.NDArray[np.intp],
-    counts: npt.NDArray[np.float64],
-    confidence: float,
-    is_leaf: npt.NDArray[np.bool_] | None = None,
-) -> npt.NDArray[np.bool_]:
-    """Which nodes are leaves after C4.5's bottom-up replacement of subtrees by leaves."""
-    n = left.shape[0]
-    is_leaf = (left < 0) if is_leaf is None else is_leaf.copy()
-    estimate = np.zeros(n, dtype=np.float64)
-    totals = counts.sum(axis=1)
-    as_leaf = [
-        pessimistic_errors(float(totals[i]), float(totals[i] - counts[i].max()), confidence)
-        for i in range(n)
-    ]
-    # Post-order without recursion (unpruned trees of noisy data can be deep).
-    stack: list[tuple[int, bool]] = [(0, False)]
-    while stack:
-        node, children_done = stack.pop()
-        if is_leaf[node]:
-            estimate[node] = as_leaf[node]
-        elif not children_done:
-            stack.extend(((node, True), (int(left[node]), False), (int(right[node]), False)))
-        else:
-            subtree = estimate[left[node]] + estimate[right[node]]
-            if as_leaf[node] <= subtree + _MERGE_SLACK:
-                is_leaf[node] = True
-                estimate[node] = as_leaf[node]
-            else:
-                estimate[node] = subtree
-    return is_leaf
-
-
-def _compact(
-    *,
-    names: tuple[str, ...],
-    schema: str,
-    left: npt.NDArray[np.intp],
-    right: npt.NDArray[np.intp],
-    is_leaf: npt.NDArray[np.bool_],
-    feature: npt.NDArray[Any],
-    threshold: npt.NDArray[np.float64],
-    missing_left: npt.NDArray[np.bool_],
-    counts: npt.NDArray[np.float64],
-    rows32: npt.NDArray[np.float32],
-    settings: Mapping[str, Setting],
-) -> PassTree:
-    """Renumber the kept nodes in preorder and build the arrays (children after parents)."""
-    order: list[int] = []
-    stack = [0]
-    while stack:
-        node = stack.pop()
-        order.append(node)
-        if not is_leaf[node]:
-            stack.extend((int(right[node]), int(left[node])))  # left popped first: preorder
-    new_id = {old: new for new, old in enumerate(order)}
-    kept = np.array(order, dtype=np.intp)
-    internal = ~is_leaf[kept]
-    new_left = np.full(len(order), -1, dtype=np.int32)
-    new_right = np.full(len(order), -1, dtype=np.int32)
-    for new, old in enumerate(order):
-        if internal[new]:
-            new_left[new], new_right[new] = new_id[int(left[old])], new_id[int(right[old])]
-    cut = np.where(internal, threshold[kept], np.nan)
-    shown = np.full(len(order), np.nan)
-    sorted_columns: dict[int, npt.NDArray[np.float64]] = {}
-    for node in np.flatnonzero(internal).tolist():
-        f = int(feature[kept[node]])
-        if math.isinf(cut[node]):
-            shown[node] = cut[node]
-            continue
-        if f not in sorted_columns:
-            column = rows32[:, f]
-            sorted_columns[f] = np.sort(column[~np.isnan(column)]).astype(np.float64)
-        values = sorted_columns[f]
-        # C4.5 prints the largest training value below the cut (build.c, GreatestValueBelow).
-        at = int(np.searchsorted(values, cut[node], side="right"))
-        shown[node] = float(values[at - 1]) if at > 0 else cut[node]
-    return PassTree(
-        feature_names=names,
-        schema=schema,
-        feature=np.where(internal, feature[kept], -1).astype(np.int32),
-        threshold=cut,
-        left=new_left,
-        right=new_right,
-        missing_left=np.where(internal, missing_left[kept], False),
-        counts=counts[kept],
-        shown_threshold=shown,
-        settings=settings,
-    )
-
-
-# ----------------------------------------------------------------------------- files
-
-
-def save_pass_tree(
-    tree: PassTree, path: str | os.PathLike[str], provenance: Mapping[str, Note]
-) -> Path:
-    """Write `tree` and its provenance as JSON to `path`, atomically (temporary file + replace).
-
-    Args:
-        tree: The tree.
-        path: Where to write it.
-        provenance: Where the training data came from (field model, seed, trials, ...): names
-            mapped to strings or finite numbers.
-
-    Returns:
-        The path written.
-
-    Raises:
-        ValueError: A provenance value is not a string or finite number.
-    """
-    notes = dict(provenance)
-    if not all(isinstance(k, str) and _is_note(v) for k, v in notes.items()):
-        raise ValueError("provenance must map names to strings or finite numbers")
-    doc = {**tree.to_json(), "provenance": notes}
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + ".tmp")
-    tmp.write_text(json.dumps(doc, indent=1, allow_nan=False) + "\n", encoding="utf-8")
-    os.replace(tmp, path)
-    return path
-
-
-def load_pass_tree(
-    path: str | os.PathLike[str], *, schema: str | None = None
-) -> tuple[PassTree, dict[str, Any]]:
-    """Read a tree written by :func:`save_pass_tree`.
-
-    Args:
-        path: The file.
-        schema: If given, the attribute schema id the tree must have been trained on.
-
-    Returns:
-        The tree and its provenance record.
-
-    Raises:
-        ModelFileError: The file is missing, truncated or not JSON, not a pass tree, of another
-            format version, inconsistent, or for another schema; the message names the file.
-    """
-    path = Path(path)
-    doc = read_model_json(path, "pass-tree")
-    tree = PassTree.from_json(doc, source=str(path))
-    notes = doc.get("provenance")
-    if not isinstance(notes, dict) or not all(_is_note(v) for v in notes.values()):
-        raise ModelFileError(f"{path}: provenance must map names to strings or numbers")
-    if schema is not None and tree.schema != schema:
-        raise ModelFileError(f"{path}: trained on attribute schema {tree.schema!r}, not {schema!r}")
-    return tree, notes
-
-
-# ----------------------------------------------------------------------------- helpers
-
-
-def _label_indices(y: Sequence[str] | npt.ArrayLike) -> npt.NDArray[np.intp]:
+def label_indices(y: Sequence[str] | npt.ArrayLike) -> npt.NDArray[np.intp]:
+    """Labels as indices into :data:`LABELS`: from strings of it, or checked integer indices."""
     array = np.asarray(y)
     if array.ndim != 1:
         raise ValueError(f"labels must be one-dimensional, got shape {array.shape}")
@@ -870,51 +336,3 @@ def _label_indices(y: Sequence[str] | npt.ArrayLike) -> npt.NDArray[np.intp]:
         return np.array([index[str(v)] for v in array.tolist()], dtype=np.intp)
     except KeyError as exc:
         raise ValueError(f"label {exc.args[0]!r} is not one of {LABELS}") from None
-
-
-def _format_number(value: float) -> str:
-    text = f"{value:.3f}".rstrip("0").rstrip(".")
-    return "0" if text == "-0" else text
-
-
-def _encode_float(value: float) -> float | str | None:
-    # JSON has no NaN or infinity: leaves have no threshold (null), known/unknown tests cut at +inf.
-    if math.isnan(value):
-        return None
-    return "inf" if math.isinf(value) else value
-
-
-def _float_list(values: Any, name: str) -> list[float]:
-    if not isinstance(values, list):
-        raise ModelFileError(f"{name} must be a list")
-    out = []
-    for v in values:
-        if v is None:
-            out.append(math.nan)
-        elif v == "inf":
-            out.append(math.inf)
-        elif _is_number(v):
-            out.append(float(v))
-        else:
-            raise ModelFileError(f"{name} holds {v!r}, not a number, null or 'inf'")
-    return out
-
-
-def _int_list(values: Any, name: str) -> list[int]:
-    if not isinstance(values, list) or not all(
-        isinstance(v, int) and not isinstance(v, bool) for v in values
-    ):
-        raise ModelFileError(f"{name} must be a list of integers")
-    if any(abs(v) >= 2**31 for v in values):
-        raise ModelFileError(f"{name} holds an index beyond int32")
-    return values
-
-
-def _is_number(value: object) -> bool:
-    return isinstance(value, int | float) and not isinstance(value, bool)
-
-
-def _is_note(value: object) -> bool:
-    if isinstance(value, float):
-        return math.isfinite(value)
-    return isinstance(value, str | int) and not isinstance(value, bool)

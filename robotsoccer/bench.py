@@ -30,6 +30,13 @@ figure's target beside it (:func:`target_cell`).
   process: steps per second and real-time factor, the bare arena's real-time factor with the
   same players and baseline minds, and their ratio, the environment layer's share
   (:mod:`robotsoccer.bench_envs`; target: at least 0.8).
+* ``envs.match_*.<field model>`` — a whole match (two halves of 300 s, the field's own team
+  size) through the PettingZoo match environment, every player an agent: steps per second,
+  agent decisions per second and real-time factor with random ``commands`` and with ``AUTO``
+  macros, the bare match's real-time factor and the ``AUTO`` run's ratio to it (the same match:
+  the environment layer's share); ``envs.hfo_*.<field model>`` — half-field offense, 2 v 1 and
+  a goalie, the attackers ``AUTO``: steps and episodes per second, real-time factor
+  (:mod:`robotsoccer.bench_envs`).
 * ``training.net_1000_saves_s`` — wall seconds to train the paper's 3-4-1 net for 3000 epochs
   on 1000 synthetic saves (torch on the CPU, one thread).
 """
@@ -153,6 +160,9 @@ def iter_benchmarks(
     for model in FIELD_MODELS:
         say(f"score environment against the bare arena: {model}")
         yield from _score_env_figures(model, quick, repeats)
+    for model in drilled:
+        say(f"match and half-field offense environments: {model}")
+        yield from _play_env_figures(model, quick, repeats)
     say("training: the interception net on 1000 saves")
     yield "training.net_1000_saves_s", round(median_of(repeats, training_seconds), 2)
     yield "machine.python", platform.python_version()
@@ -209,6 +219,28 @@ def _score_env_figures(model: str, quick: bool, repeats: int) -> Iterator[tuple[
     )
     for name, value in runs[len(runs) // 2].items():
         yield f"envs.score_{name}.{model}", value
+
+
+def _play_env_figures(model: str, quick: bool, repeats: int) -> Iterator[tuple[str, Any]]:
+    """The match and half-field offense environments (:mod:`robotsoccer.bench_envs`).
+
+    The match's repeat with the median ratio gives its figures; HFO's, the median step rate.
+    """
+    from robotsoccer.bench_envs import hfo_env_figures, match_env_figures
+
+    half = 60.0 if quick else 300.0
+    matches = sorted(
+        (match_env_figures(model, half) for _ in range(repeats)),
+        key=lambda f: f["macro_to_bare_ratio"],
+    )
+    for name, value in matches[len(matches) // 2].items():
+        yield f"envs.match_{name}.{model}", value
+    episodes = 100 if quick else 500
+    hfos = sorted(
+        (hfo_env_figures(model, episodes) for _ in range(repeats)), key=lambda f: f["steps_per_s"]
+    )
+    for name, value in hfos[len(hfos) // 2].items():
+        yield f"envs.hfo_{name}.{model}", value
 
 
 def nest(rows: Iterable[tuple[str, Any]]) -> dict[str, Any]:

@@ -21,7 +21,8 @@ from typing import Any, Protocol
 from field_models.arena import CommandTally
 from field_models.protocol import BodyState, PlayerRef, Truth
 from robotsoccer.replay.frames import GameFrame
-from robotsoccer.replay.rcg import SLOTS, RcgWriter, log_team_name
+from robotsoccer.replay.rcg import SLOTS
+from robotsoccer.replay.rcg_write import RcgWriter, log_team_name
 
 
 class ServedGameLike(Protocol):

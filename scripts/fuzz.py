@@ -49,13 +49,13 @@ from field_models.soccer_server import server_conf
 from field_models.soccer_server.messages import MessageParseError, parse_sexpr
 from field_models.soccer_server.params import DynamicsParams, load_server_preset
 from field_models.soccer_server.sensing_params import SensingParams
-from field_models.soccer_server.server_conf import SERVER_PARAMS
+from field_models.soccer_server.server_param_table import SERVER_PARAMS
 from learning.features import ModelFileError
 from learning.lookup import LookupTable
 from robotsoccer.cli import options as cli
 from robotsoccer.envs import InterceptVectorEnv, pass_parallel_env
 from robotsoccer.envs.intercept import InterceptEnv
-from robotsoccer.replay.rcg import read_rcg
+from robotsoccer.replay.rcg_read import read_rcg
 from robotsoccer.runs.runner import TrialSpec, run_trial
 
 NASTY = [

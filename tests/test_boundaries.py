@@ -39,8 +39,17 @@ def test_package_imports_follow_the_design(package: str) -> None:
         assert not bad, f"{path.relative_to(ROOT)} imports {sorted(bad)}"
 
 
-RECORDERS = {"recording.py", "match_recording.py"}
-"""The modules that write rerun recordings (trials, matches): the only ones that import it."""
+RECORDERS = {
+    "recording.py",
+    "match_recording.py",
+    "match_drawing.py",
+    "field_recorder.py",
+    "toolkit.py",
+    "rows.py",
+    "rrd_files.py",
+}
+"""The replay modules that write and read rerun recordings (trials, matches; the drawing toolkit
+and its rows; reading files back): the only ones that import it."""
 
 
 def test_rerun_is_imported_only_by_the_recording_modules() -> None:

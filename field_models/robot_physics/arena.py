@@ -91,6 +91,9 @@ class RobotArena:
             Firmware(ref, preset.robot, preset.firmware, timeout_ticks=timeout) for ref in players
         ]
         self._by_ref = {ref: i for i, ref in enumerate(players)}
+        # The same rows by object identity: the callers' refs are mostly the arena's own objects,
+        # and an identity look-up skips PlayerRef's Python-level hash.
+        self._row_by_id = {id(ref): i for i, ref in enumerate(players)}
         self._firmware_fresh: list[int] = []  # rows whose firmware accepted a command now
         # No firmware's duration or watchdog ends before this tick (a lower bound).
         self._firmware_wake_tick = 0
@@ -121,7 +124,10 @@ class RobotArena:
 
     def player_state(self, ref: PlayerRef) -> BodyState:
         """A robot's exact state."""
-        return self.world.robot_state(self._by_ref[ref])
+        i = self._row_by_id.get(id(ref), -1)
+        if i < 0 or self.players[i] is not ref:  # not one of the arena's own objects
+            i = self._by_ref[ref]
+        return self.world.robot_state(i)
 
     def truth(self) -> Truth:
         """Exact state of everything."""
@@ -152,7 +158,10 @@ class RobotArena:
                         if fw.receive(command, tick):
                             fresh.append(i)
                 else:
-                    i = self._by_ref[command.robot]
+                    robot = command.robot
+                    i = self._row_by_id.get(id(robot), -1)
+                    if i < 0 or self.players[i] is not robot:
+                        i = self._by_ref[robot]
                     if self.firmware[i].receive(command, tick):
                         fresh.append(i)
         if tick >= self._firmware_wake_tick:
@@ -162,7 +171,7 @@ class RobotArena:
         camera = self.camera
         if tick % camera.period_ticks == 0:
             bx, by = world.ball_xy()
-            camera.capture(tick, bx, by, [world.robot_pose(i) for i in range(len(self.players))])
+            camera.capture(tick, bx, by, world.robot_poses())
         if tick < camera.next_delivery_tick:
             return []
         frames = camera.deliver(tick)

@@ -32,11 +32,14 @@ from field_models.robot_physics.arena import RobotArena
 from field_models.seeding import TrialRngs
 
 
-def bench_arena(n_robots: int, seed: int = 0) -> RobotArena:
-    """The benchmark's arena: `n_robots` (two teams) placed at random, the ball rolled."""
+def bench_arena(n_robots: int, seed: int = 0, preset: str = "small_size_1997") -> RobotArena:
+    """The benchmark's arena: `n_robots` (two teams) placed at random, the ball rolled.
+
+    `preset`: the robot preset (the benchmark's figures use the default).
+    """
     players = tuple(PlayerRef(LEFT if i % 2 == 0 else RIGHT, i // 2 + 1) for i in range(n_robots))
     rngs = TrialRngs.for_trial(seed, 0)
-    arena = make_arena("robot_physics", "small_size_1997", players, rngs)
+    arena = make_arena("robot_physics", preset, players, rngs)
     assert isinstance(arena, RobotArena)
     rng = rngs["placement"]
     pitch = arena.facts.pitch

@@ -25,12 +25,14 @@ detected, so a trial's numbers depend on its seed alone.
 
 from __future__ import annotations
 
+import math
 from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from field_models.protocol import PlayerRef, wrap_angle
+from field_models.protocol import TWO_PI, PlayerRef, wrap_angle
 from field_models.robot_physics.config import CameraConfig
+from field_models.robot_physics.records import positional_maker
 from field_models.seeding import Rng
 
 _NEVER = 1 << 62
@@ -70,6 +72,11 @@ class Frame:
     delivery_tick: int
     ball: BallDetection | None
     robots: tuple[RobotDetection, ...]
+
+
+_make_ball = positional_maker(BallDetection)
+_make_robot = positional_maker(RobotDetection)
+_make_frame = positional_maker(Frame)
 
 
 class OverheadCamera:
@@ -180,16 +187,18 @@ class OverheadCamera:
         ps = self._pos_sigma
         hs = self._head_sigma
         ball = (
-            None
-            if u[0] < self._ball_miss
-            else BallDetection(ball_x + ps * z[0], ball_y + ps * z[1])
+            None if u[0] < self._ball_miss else _make_ball(ball_x + ps * z[0], ball_y + ps * z[1])
         )
         robots: list[RobotDetection] = []
         miss = self._robot_miss
+        make = _make_robot
+        pi, two_pi = math.pi, TWO_PI
         for i, (ref, (x, y, h)) in enumerate(zip(self.refs, robot_poses, strict=True)):
             if u[1 + i] < miss:
                 continue
             k = 2 + 3 * i
-            heading = wrap_angle(h + hs * z[k + 2])
-            robots.append(RobotDetection(ref, x + ps * z[k], y + ps * z[k + 1], heading))
-        return Frame(tick, tick + self.latency_ticks, ball, tuple(robots))
+            heading = h + hs * z[k + 2]
+            if not -pi <= heading < pi:  # wrap_angle, inlined (field_models.protocol)
+                heading = (heading + pi) % two_pi - pi
+            robots.append(make(ref, x + ps * z[k], y + ps * z[k + 1], heading))
+        return _make_frame(tick, tick + self.latency_ticks, ball, tuple(robots))

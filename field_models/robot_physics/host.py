@@ -75,6 +75,7 @@ import math
 from field_models.arena import ArenaEvent
 from field_models.commands import server_degrees
 from field_models.protocol import (
+    TWO_PI,
     Action,
     Dash,
     Heard,
@@ -91,6 +92,13 @@ from field_models.protocol import (
 from field_models.robot_physics.camera import Frame
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.link import Command, Link, Primitive
+from field_models.robot_physics.records import positional_maker
+
+_make_percept = positional_maker(Percept)
+_make_ball = positional_maker(SeenBall)
+_make_player = positional_maker(SeenPlayer)
+_make_landmark = positional_maker(SeenLandmark)
+_make_command = positional_maker(Command)
 
 PUSH_HALF_ANGLE_RAD = 0.2
 """A kicker-less robot pushes the ball only when the kick direction is this close to its heading
@@ -144,6 +152,7 @@ class CentralHost:
         self._kick_half_angle = None if robot.kicker is None else robot.kicker.half_angle_rad
         self._arcs = robot.turn_style == "arc"
         self._index = {ref: i for i, ref in enumerate(refs)}
+        self._row_by_id = {id(ref): i for i, ref in enumerate(refs)}
         self._poses: list[Pose | None] = [None] * len(refs)
         self._heard: list[list[Heard]] = [[] for _ in refs]
         self._seq = 0
@@ -158,6 +167,25 @@ class CentralHost:
 
     # ------------------------------------------------------------------------ perception
 
+    def _row(self, ref: PlayerRef) -> int:
+        """`ref`'s row in :attr:`refs`, -1 if it is not there.
+
+        The camera's detections and the percepts' players are the very objects of :attr:`refs`,
+        so an identity look-up (no PlayerRef hash, a Python-level call) finds them; an equal
+        copy falls back to ==.
+        """
+        i = self._row_by_id.get(id(ref), -1)
+        if i >= 0 and self.refs[i] is ref:
+            return i
+        return self._index.get(ref, -1)
+
+    def _row_of(self, ref: PlayerRef) -> int:
+        """`ref`'s row in :attr:`refs` (as :meth:`_row`); KeyError if it is not there."""
+        i = self._row_by_id.get(id(ref), -1)
+        if i >= 0 and self.refs[i] is ref:
+            return i
+        return self._index[ref]
+
     def pose_estimate(self, ref: PlayerRef) -> Pose | None:
         """The host's newest detected pose of `ref`, or None if never detected."""
         return self._poses[self._index[ref]]
@@ -171,18 +199,24 @@ class CentralHost:
         others' heard messages are dropped as if their percepts had been delivered.
         """
         poses = self._poses
-        index = self._index
-        for det in frame.robots:
-            i = index.get(det.ref)
-            if i is not None:
-                poses[i] = (det.x, det.y, det.heading)
-        ball = frame.ball
-        observed = frame.capture_tick
         # Each detection once, with its robot's row, so the loop below compares rows (ints), not
         # identities (dataclass equality is the costliest part of building a percept).
-        seen = [(index.get(d.ref, -1), d.x, d.y, d.ref.team, d.ref.number) for d in frame.robots]
+        seen = []
+        row = self._row
+        for det in frame.robots:
+            ref = det.ref
+            i = row(ref)
+            if i >= 0:
+                poses[i] = (det.x, det.y, det.heading)
+            seen.append((i, det.x, det.y, ref.team, ref.number))
+        ball = frame.ball
+        observed = frame.capture_tick
         out: list[Percept] = []
-        hypot, atan2, wrap = math.hypot, math.atan2, wrap_angle
+        hypot, atan2 = math.hypot, math.atan2
+        # wrap_angle inlined below (the same comparisons and arithmetic, field_models.protocol).
+        pi, two_pi = math.pi, TWO_PI
+        make_percept, make_ball = _make_percept, _make_ball
+        make_player, make_landmark = _make_player, _make_landmark
         heard_lists = self._heard
         goals = self._goals
         for i, ref in enumerate(self.refs):
@@ -194,32 +228,41 @@ class CentralHost:
             heard_list.clear()
             pose = poses[i]
             if pose is None:
-                out.append(Percept(ref, tick, observed, None, (), heard))
+                out.append(make_percept(ref, tick, observed, None, (), heard, ()))
                 continue
             px, py, heading = pose
             seen_ball = None
             if ball is not None:
                 dx = ball.x - px
                 dy = ball.y - py
-                seen_ball = SeenBall(hypot(dx, dy), wrap(atan2(dy, dx) - heading))
-            players = tuple(
-                [
-                    SeenPlayer(
-                        hypot(x - px, y - py), wrap(atan2(y - py, x - px) - heading), team, number
-                    )
-                    for row, x, y, team, number in seen
-                    if row != i
-                ]
+                a = atan2(dy, dx) - heading
+                if not -pi <= a < pi:
+                    a = (a + pi) % two_pi - pi
+                seen_ball = make_ball(hypot(dx, dy), a, None, None)
+            players = [
+                make_player(
+                    hypot(x - px, y - py),
+                    a if -pi <= (a := atan2(y - py, x - px) - heading) < pi
+                    else (a + pi) % two_pi - pi,
+                    team,
+                    number,
+                )
+                for row, x, y, team, number in seen
+                if row != i
+            ]  # fmt: skip
+            landmarks = []
+            for name, gx, gy in goals:
+                dx = gx - px
+                dy = gy - py
+                a = atan2(dy, dx) - heading
+                if not -pi <= a < pi:
+                    a = (a + pi) % two_pi - pi
+                landmarks.append(make_landmark(name, hypot(dx, dy), a))
+            out.append(
+                make_percept(
+                    ref, tick, observed, seen_ball, tuple(players), heard, tuple(landmarks)
+                )
             )
-            landmarks = tuple(
-                [
-                    SeenLandmark(
-                        name, hypot(gx - px, gy - py), wrap(atan2(gy - py, gx - px) - heading)
-                    )
-                    for name, gx, gy in goals
-                ]
-            )
-            out.append(Percept(ref, tick, observed, seen_ball, players, heard, landmarks))
         return out
 
     # ------------------------------------------------------------------------ actuation
@@ -236,7 +279,7 @@ class CentralHost:
                 self._relay(ref, action.text, tick)
             else:
                 body.append(action)
-        i = self._index[ref]
+        i = self._row_of(ref)
         body.reverse()  # popped from the end, in order
         self._pending[i] = body
         if self._arcs and len(body) >= 2:
@@ -333,7 +376,7 @@ class CentralHost:
             direction, speed_mps = wrap_angle(direction - math.pi), -speed_mps
             if direction == 0.0:
                 return self._drive(ref, speed_mps, tick)
-        self._pending[self._index[ref]].append(Dash(100.0 * speed_mps / self._vmax))
+        self._pending[self._row_of(ref)].append(Dash(100.0 * speed_mps / self._vmax))
         return self._turn(ref, direction, tick)
 
     def _drive(self, ref: PlayerRef, speed_mps: float, tick: int) -> int:
@@ -404,7 +447,7 @@ class CentralHost:
     ) -> None:
         """Number a command, put it on the link and note it as an event."""
         self._seq += 1
-        command = Command(self._seq, ref, primitive, value, duration_ticks, tick, rate)
+        command = _make_command(self._seq, ref, primitive, value, duration_ticks, tick, rate)
         self.link.send(command, tick)
         if self.keep_events:
             who = "all" if ref is None else str(ref)

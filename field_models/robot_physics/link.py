@@ -90,11 +90,12 @@ _NEVER = 1 << 62
 class _Waiting:
     """A queued command and the tick it was sent; mutable so a newer command can take its turn."""
 
-    __slots__ = ("command", "tick")
+    __slots__ = ("command", "key", "tick")
 
-    def __init__(self, command: Command, tick: int) -> None:
+    def __init__(self, command: Command, tick: int, key: tuple[str, int] | None) -> None:
         self.command = command
         self.tick = tick
+        self.key = key  # the addressee's (team, number), what PlayerRef's == compares
 
 
 class Link:
@@ -131,6 +132,9 @@ class Link:
         self._rng = rng
         self._loss = config.loss_prob
         self._queue: deque[_Waiting] = deque()
+        # The queued commands by addressee key: at most one each (a newer one takes the older
+        # one's place), so this finds the one a scan of the queue would.
+        self._queued: dict[tuple[str, int] | None, _Waiting] = {}
         self._next_slot = 0
         self._in_flight: deque[tuple[int, Command]] = deque()
         self.next_due_tick = _NEVER
@@ -144,15 +148,18 @@ class Link:
     def send(self, command: Command, tick: int) -> None:
         """Queue `command` at `tick`; it leaves in the first free packet slot at or after `tick`."""
         robot = command.robot
-        for waiting in self._queue:
-            other = waiting.command.robot
-            if other is robot or other == robot:  # identity first: dataclass == is slow
-                waiting.command = command
-                waiting.tick = tick
-                self.superseded += 1
-                self.next_due_tick = min(self.next_due_tick, tick)
-                return
-        self._queue.append(_Waiting(command, tick))
+        # PlayerRef's (dataclass) == compares (team, number); the key tuples compare (and hash)
+        # the same way without Python-level __eq__ and __hash__ calls. None: a broadcast.
+        key = None if robot is None else (robot.team, robot.number)
+        waiting = self._queued.get(key)
+        if waiting is not None:
+            waiting.command = command
+            waiting.tick = tick
+            self.superseded += 1
+            self.next_due_tick = min(self.next_due_tick, tick)
+            return
+        waiting = self._queued[key] = _Waiting(command, tick, key)
+        self._queue.append(waiting)
         self.next_due_tick = min(self.next_due_tick, tick)
 
     def deliver(self, tick: int) -> list[Command]:
@@ -185,6 +192,7 @@ class Link:
             if slot > tick:
                 return
             queue.popleft()
+            del self._queued[waiting.key]
             self._next_slot = slot + period
             self.sent += 1
             if self._loss > 0.0 and self._rng.random() < self._loss:

@@ -26,12 +26,13 @@ or CLI code; observers read :meth:`RobotWorld.truth`.
 from __future__ import annotations
 
 import math
+import operator
 from collections.abc import Sequence
 
 import pymunk
 from pymunk._chipmunk import lib as _cp
 
-from field_models.protocol import BodyState, PlayerRef, Truth, wrap_angle
+from field_models.protocol import TWO_PI, BodyState, PlayerRef, Truth, wrap_angle
 from field_models.robot_physics.config import GRAVITY_MPS2, RobotPhysicsPreset
 from field_models.seeding import Rng
 
@@ -46,6 +47,8 @@ _set_velocity = _cp.cpBodySetVelocity
 _set_spin = _cp.cpBodySetAngularVelocity
 _space_step = _cp.cpSpaceStep
 
+_row_of = operator.attrgetter("row")  # a drive's index among the robots (sort key)
+_new_tuple = tuple.__new__  # what a NamedTuple's __new__ calls, without its Python frame
 _NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same numbers either way)
 
 
@@ -59,14 +62,17 @@ class _Drive:
         "control_moving",
         "control_ptr",
         "control_spin",
+        "cruising",
         "left",
         "left_target",
         "moving",
         "right",
         "right_target",
+        "row",
     )
 
-    def __init__(self, body: pymunk.Body, control: pymunk.Body) -> None:
+    def __init__(self, body: pymunk.Body, control: pymunk.Body, row: int) -> None:
+        self.row = row  # the robot's index in the world's robots
         self.body = body
         self.control = control
         self.body_ptr = body._body
@@ -74,6 +80,7 @@ class _Drive:
         self.control_moving = False
         self.control_spin = 0.0
         self.moving = False  # in the world's list of robots to steer
+        self.cruising = False  # in the world's list of robots at steady wheel speeds, driving
         self.left = 0.0
         self.right = 0.0
         self.left_target = 0.0
@@ -119,13 +126,18 @@ class RobotWorld:
         self.space.collision_slop = preset.timing.collision_slop_m
         self._build_walls()
         self.ball = self._build_ball()
-        self._drives = [self._build_robot() for _ in self.refs]
+        self._drives = [self._build_robot(row) for row in range(len(self.refs))]
         self._index = {ref: i for i, ref in enumerate(self.refs)}
         self._noise_rng = noise_rng
         self._noise_ticks = max(1, round(preset.ball.noise_period_s / self.dt_s))
         # The next tick whose end perturbs the ball (never without a generator).
         self._noise_tick = self._noise_ticks if noise_rng is not None else -1
-        self._moving: list[_Drive] = []  # robots not at rest, in the robots' order
+        self._moving: list[_Drive] = []  # robots whose wheels ramp, in the robots' order
+        # Robots whose wheels run steadily at their targets with a non-zero forward speed: only
+        # their drive direction follows the heading each tick (:meth:`_cruise`); and the rows
+        # (body pointer, control pointer, forward speed) that loop reads.
+        self._cruising: list[_Drive] = []
+        self._cruise_rows: list[tuple[object, object, float]] = []
         self._noise_buf: list[float] = []
         self._space_ptr = self.space._space
         self.space_step = _space_step
@@ -192,7 +204,7 @@ class RobotWorld:
         body.position = (0.0, 0.0)
         return body
 
-    def _build_robot(self) -> _Drive:
+    def _build_robot(self, row: int) -> _Drive:
         r = self.preset.robot
         body = pymunk.Body(r.mass_kg, pymunk.moment_for_box(r.mass_kg, (r.size_m, r.size_m)))
         shape = pymunk.Poly.create_box(body, (r.size_m, r.size_m))
@@ -208,7 +220,7 @@ class RobotWorld:
         spin.max_bias = 0.0
         spin.max_force = grip * 0.5 * r.track_m
         self.space.add(body, shape, control, drive, spin)
-        return _Drive(body, control)
+        return _Drive(body, control, row)
 
     # ------------------------------------------------------------------ coach side
 
@@ -227,6 +239,7 @@ class RobotWorld:
         if d.moving:
             d.moving = False
             self._moving.remove(d)
+        self._stop_cruising(d)
         self.space.reindex_shapes_for_body(d.body)
 
     def place_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0) -> None:
@@ -250,7 +263,8 @@ class RobotWorld:
         cap = self._max_wheel
         d.left_target = max(-cap, min(cap, left_mps))
         d.right_target = max(-cap, min(cap, right_mps))
-        self._wake(d)
+        if d.cruising or not d.moving:  # else it is steered already (what _wake checks)
+            self._wake(d)
 
     def drive_bodies(self) -> list[tuple[pymunk.Body, pymunk.Body]]:
         """Each robot's (body, kinematic control body), in the robots' order.
@@ -296,11 +310,14 @@ class RobotWorld:
     def step(self) -> None:
         """Advance one tick: ramp the wheels, steer the control bodies, step the solver.
 
-        Only the robots whose wheels turn or are about to (:attr:`_moving`) cost Python here; a
-        robot at rest with zero targets is left to Chipmunk alone.
+        Only the robots whose wheels ramp (:attr:`_moving`) or drive steadily (:attr:`_cruising`)
+        cost Python here; a robot at rest, or spinning in place at its targets, is left to
+        Chipmunk alone (its control body keeps the velocity and spin it was given).
         """
         if self._moving:
             self._steer()
+        if self._cruise_rows:
+            self._cruise()
         self.space_step(self._space_ptr, self.dt_s)
         tick = self.tick = self.tick + 1
         if tick == self._noise_tick:
@@ -314,17 +331,28 @@ class RobotWorld:
         """
         ramp, track = self._ramp_step, 2.0 * self._half_track
         cos, sin = math.cos, math.sin
-        settled = False
+        steady = False
         for d in self._moving:
             left, right = d.left, d.right
+            # min(target, x) and max(target, x) written out (the same comparison and result,
+            # without a builtin call): x when it is past the target's near side, else target.
             target = d.left_target
             if left != target:
-                left = d.left = (
-                    min(target, left + ramp) if left < target else max(target, left - ramp)
-                )
+                if left < target:
+                    x = left + ramp
+                    left = x if x < target else target
+                else:
+                    x = left - ramp
+                    left = x if x > target else target
+                d.left = left
             target = d.right_target
             if right != target:
-                right = min(target, right + ramp) if right < target else max(target, right - ramp)
+                if right < target:
+                    x = right + ramp
+                    right = x if x < target else target
+                else:
+                    x = right - ramp
+                    right = x if x > target else target
                 d.right = right
             v = 0.5 * (left + right)
             if v != 0.0:
@@ -338,19 +366,62 @@ class RobotWorld:
             if spin != d.control_spin:
                 _set_spin(d.control_ptr, spin)
                 d.control_spin = spin
-            if left == 0.0 and right == 0.0 and d.left_target == 0.0 and d.right_target == 0.0:
-                settled = True
-        if settled:
-            for d in self._moving:
-                d.moving = not d.at_rest()
-            self._moving = [d for d in self._moving if d.moving]
+            if left == d.left_target and right == d.right_target:
+                steady = True
+        if steady:
+            self._settle()
+
+    def _settle(self) -> None:
+        """Take the robots whose wheels reached their targets out of :attr:`_moving`.
+
+        From here until a new target (:meth:`_wake`), :meth:`_steer` would repeat the same
+        operations with the same wheel speeds every tick: no ramp, the same forward speed v and
+        spin (the spin already set). So a robot with v != 0 goes to :meth:`_cruise`, which does
+        what remains (point the control body's velocity along the heading), with the same
+        operations on the same numbers; one with v == 0 (at rest, or spinning in place) needs
+        nothing: its control body was stopped this tick.
+        """
+        keep: list[_Drive] = []
+        for d in self._moving:
+            if d.left == d.left_target and d.right == d.right_target:
+                d.moving = False
+                if d.control_moving:  # v != 0 this tick
+                    d.cruising = True
+                    self._cruising.append(d)
+            else:
+                keep.append(d)
+        self._moving = keep
+        self._cruise_rows = [
+            (d.body_ptr, d.control_ptr, 0.5 * (d.left + d.right)) for d in self._cruising
+        ]
+
+    def _cruise(self) -> None:
+        """Point each cruising robot's control body along its heading at its steady speed.
+
+        The operations :meth:`_steer` does for such a robot (module docstring), no others.
+        """
+        cos, sin = math.cos, math.sin
+        for body, control, v in self._cruise_rows:
+            heading = _get_angle(body)
+            _set_velocity(control, (v * cos(heading), v * sin(heading)))
+
+    def _stop_cruising(self, d: _Drive) -> None:
+        """Take `d` out of the cruising robots (no-op if it is not there)."""
+        if d.cruising:
+            d.cruising = False
+            self._cruising.remove(d)
+            self._cruise_rows = [
+                (c.body_ptr, c.control_ptr, 0.5 * (c.left + c.right)) for c in self._cruising
+            ]
 
     def _wake(self, d: _Drive) -> None:
         """Put `d` among the robots :meth:`step` steers (no-op if it is there already)."""
+        if d.cruising:
+            self._stop_cruising(d)
         if not d.moving and not d.at_rest():
             d.moving = True
             self._moving.append(d)
-            self._moving.sort(key=self._drives.index)  # the robots' order, as before
+            self._moving.sort(key=_row_of)  # the robots' order, as before
 
     def _perturb_ball(self) -> None:
         """Ball-motion noise and the stop threshold, every noise period."""
@@ -381,19 +452,31 @@ class RobotWorld:
     def ball_state(self) -> BodyState:
         """The ball's exact state."""
         p, v = _get_position(self._ball_ptr), _get_velocity(self._ball_ptr)
-        return BodyState(p.x, p.y, 0.0, v.x, v.y)
+        return _new_tuple(BodyState, (p.x, p.y, 0.0, v.x, v.y))
 
     def robot_state(self, index: int) -> BodyState:
         """Robot `index`'s exact state."""
         ptr = self._drives[index].body_ptr
         p, v = _get_position(ptr), _get_velocity(ptr)
-        return BodyState(p.x, p.y, wrap_angle(_get_angle(ptr)), v.x, v.y)
+        heading = _get_angle(ptr)
+        if not -math.pi <= heading < math.pi:  # wrap_angle, inlined (field_models.protocol)
+            heading = (heading + math.pi) % TWO_PI - math.pi
+        return _new_tuple(BodyState, (p.x, p.y, heading, v.x, v.y))
 
     def robot_pose(self, index: int) -> tuple[float, float, float]:
         """Robot `index`'s (x, y, heading) [m, m, rad] (fast path for the camera)."""
         ptr = self._drives[index].body_ptr
         p = _get_position(ptr)
         return p.x, p.y, _get_angle(ptr)
+
+    def robot_poses(self) -> list[tuple[float, float, float]]:
+        """Every robot's (x, y, heading) [m, m, rad], in the robots' order (the camera's read)."""
+        out = []
+        for d in self._drives:
+            ptr = d.body_ptr
+            p = _get_position(ptr)
+            out.append((p.x, p.y, _get_angle(ptr)))
+        return out
 
     def truth(self) -> Truth:
         """Exact state of the ball and every robot."""

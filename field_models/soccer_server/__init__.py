@@ -8,13 +8,25 @@ Modules (specs/soccer_server.md):
 * :mod:`~field_models.soccer_server.sensing_params` — :class:`SensingParams` (see/hear timing,
   view cone, quantisation).
 * :mod:`~field_models.soccer_server.dynamics` — :class:`SoccerServerModel`: one trial's 100 ms
-  cycles (commands, movement with noise, collisions, goals and referee messages).
+  cycles (commands, movement with noise, goals and referee messages), with the rules it shares
+  with the batch in :mod:`~field_models.soccer_server.cycle_rules` (play modes, random rows,
+  command formulas) and :mod:`~field_models.soccer_server.collisions`.
 * :mod:`~field_models.soccer_server.batch` — :class:`BatchSoccerServer`: K trials as numpy
-  arrays, equal to K single models seed for seed.
+  arrays, equal to K single models seed for seed (random rows in
+  :mod:`~field_models.soccer_server.batch_random`, collisions in
+  :mod:`~field_models.soccer_server.batch_collisions`).
 * :mod:`~field_models.soccer_server.server_conf` — :func:`load_server_conf`: a preset from a
-  real server's ``server.conf`` or ``(server_param ...)`` message.
-* :mod:`~field_models.soccer_server.sensing`, :mod:`~field_models.soccer_server.messages`,
+  real server's ``server.conf`` or ``(server_param ...)`` message (read by
+  :mod:`~field_models.soccer_server.server_conf_text`, named in
+  :mod:`~field_models.soccer_server.server_param_table`).
+* :mod:`~field_models.soccer_server.sensing` (see contents; its numbers in
+  :mod:`~field_models.soccer_server.see_numbers`, its timer in
+  :mod:`~field_models.soccer_server.see_timing`), :mod:`~field_models.soccer_server.hearing`
+  (say and hear), :mod:`~field_models.soccer_server.messages`,
   :mod:`~field_models.soccer_server.percepts` — see and hear contents, their text, percepts.
+* :mod:`~field_models.soccer_server.serving` — :class:`~.serving.ServedGame`: the model as a server
+  (with ``serving_state``, ``serving_clients``, ``serving_commands``), on UDP in
+  :mod:`~field_models.soccer_server.udp`.
 
 Typical use (noise from the trial's own generator)::
 
@@ -27,12 +39,8 @@ Typical use (noise from the trial's own generator)::
 """
 
 from field_models.soccer_server.batch import BatchSoccerServer
-from field_models.soccer_server.dynamics import (
-    PLAY_MODES,
-    SoccerServerModel,
-    dash_rate,
-    kick_effectiveness,
-)
+from field_models.soccer_server.cycle_rules import PLAY_MODES, dash_rate, kick_effectiveness
+from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.params import (
     DynamicsParams,
     ServerPreset,

@@ -5,7 +5,7 @@ One tick is one 100 ms server cycle (shared `specs/soccer_server.md` §1):
 1. the body command queued for this cycle (see below) and any says are handed to the model,
    which steps: commands, per-object update in shuffled order, collisions, goal check;
 2. says and referee messages of the cycle are delivered to the players in hearing range
-   (`sensing.deliver_says`, §2.6); they reach the client with its next percept;
+   (`hearing.deliver_says`, §2.6); they reach the client with its next percept;
 3. each player whose see timer fires this cycle (§3.1, the preset's `send_step_ms`; the paper's
    250 ms by default) gets a percept built from its see by the structured fast path
    (:func:`~field_models.soccer_server.percepts.percept_from_state`, which a test proves equal
@@ -54,6 +54,7 @@ from field_models.protocol import (
 )
 from field_models.seeding import TrialRngs
 from field_models.soccer_server.dynamics import SoccerServerModel
+from field_models.soccer_server.hearing import HearInfo, deliver_says, referee_hear
 from field_models.soccer_server.messages import parse_see, render_hear, render_see
 from field_models.soccer_server.params import ServerPreset
 from field_models.soccer_server.percepts import (
@@ -61,14 +62,8 @@ from field_models.soccer_server.percepts import (
     percept_from_see,
     percept_from_state,
 )
-from field_models.soccer_server.sensing import (
-    HearInfo,
-    LandmarkMode,
-    SeeTimer,
-    deliver_says,
-    observe,
-    referee_hear,
-)
+from field_models.soccer_server.see_timing import SeeTimer
+from field_models.soccer_server.sensing import LandmarkMode, observe
 from field_models.soccer_server.sensing_params import SensingParams
 
 

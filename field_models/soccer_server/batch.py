@@ -29,31 +29,23 @@ import numpy as np
 
 from field_models.protocol import BodyState, PlayerRef, end_line_crossing, wrap_angle
 from field_models.seeding import Rng, StreamBatch
-from field_models.soccer_server.dynamics import (
+from field_models.soccer_server.batch_collisions import PairTable, collide
+from field_models.soccer_server.batch_random import BatchRandom
+from field_models.soccer_server.cycle_rules import (
     AFTER_GOAL_MODES,
     BEFORE_KICK_OFF,
-    COLLISION_PASSES,
-    COLLISION_VELOCITY_FACTOR,
     DASH,
-    EPS,
     HALF_PI,
     KICK,
     NO_COMMAND,
     PLAY_MODES,
     PLAY_ON,
     RESTART_MODES,
-    SEPARATION_RETRIES,
     TURN,
-    row_layout,
     side_of,
-    turn_factor,
     unit_noise,
 )
 from field_models.soccer_server.params import ServerPreset
-
-BATCH_BLOCK_CYCLES = 8
-"""Cycles of random numbers drawn at once per trial (any value gives the same numbers; a
-short block draws little past a trial's end: a drill trial lasts 10-40 cycles)."""
 
 _CODE = {mode: code for code, mode in enumerate(PLAY_MODES)}
 _BKO, _PLAY_ON = _CODE[BEFORE_KICK_OFF], _CODE[PLAY_ON]
@@ -76,7 +68,7 @@ class BatchSoccerServer:
         x, y: Positions (K, N+1) [m]. vx, vy: stored velocities (K, N+1) [m/cycle].
         heading: Body angles (K, N+1) [rad]; column 0 (the ball) stays 0.
         mode: Play-mode code per trial, an index into
-            :data:`~field_models.soccer_server.dynamics.PLAY_MODES`.
+            :data:`~field_models.soccer_server.cycle_rules.PLAY_MODES`.
         score_left, score_right: Goals per trial.
     """
 
@@ -92,9 +84,8 @@ class BatchSoccerServer:
         self.preset = preset
         self.params = p
         self.players = tuple(players)
-        self.streams = rngs if isinstance(rngs, StreamBatch) else None
-        self.rngs = [] if isinstance(rngs, StreamBatch) else list(rngs)
-        self.k = len(rngs.keys) if isinstance(rngs, StreamBatch) else len(self.rngs)
+        self._random = BatchRandom(rngs, len(self.players), p)
+        self.k = self._random.k
         n = len(self.players) + 1
         self._n = n
         shape = (self.k, n)
@@ -126,22 +117,11 @@ class BatchSoccerServer:
         )
         self._amax2 = self._amax * self._amax
         self._smax2 = self._smax * self._smax
-        sizes = [p.ball_size_m] + [p.player_size_m] * (n - 1)
-        self._pairs = [(0, b) for b in range(1, n)]
-        self._pairs += [(a, b) for a in range(1, n) for b in range(a + 1, n)]
-        self._reach = [sizes[a] + sizes[b] for a, b in self._pairs]
-        self._reach2 = [(sizes[a] + sizes[b]) ** 2 for a, b in self._pairs]
+        self._pairs = PairTable.of([p.ball_size_m] + [p.player_size_m] * (n - 1))
         self._side = np.array([0] + [side_of(ref) for ref in self.players])
         self._has_left = bool((self._side == 1).any())
         self._has_right = bool((self._side == -1).any())
         self._pitch = p.pitch()
-        self._layout = row_layout(n - 1)
-        block = (BATCH_BLOCK_CYCLES, self._layout.width) if self.streams is None else (0, 0)
-        self._rows = np.empty((self.k, *block))  # the generators' block (streams: unused)
-        self._block_row = BATCH_BLOCK_CYCLES
-        self._noise: tuple[np.ndarray, ...] = ()
-        self._block_start = np.zeros(self.k, dtype=np.int64)
-        self._needed = self._needed_offsets().ravel()  # the block's always-used draws
 
     # ------------------------------------------------------------------ look-ups
 
@@ -155,13 +135,7 @@ class BatchSoccerServer:
         for name in ("x", "y", "vx", "vy", "heading", "_ax", "_ay", "mode", "score_left",
                      "score_right", "_after_goal", "_kind", "_arg1", "_arg2"):  # fmt: skip
             setattr(self, name, getattr(self, name)[rows])
-        self._noise = tuple(block[rows] for block in self._noise)
-        self._rows = self._rows[rows]
-        if self.streams is not None:
-            self.streams = self.streams.subset(rows)
-            self._block_start = self._block_start[rows]
-        else:
-            self.rngs = [self.rngs[r] for r in rows.tolist()]
+        self._random.keep(rows)
         new_index = {old: new for new, old in enumerate(rows.tolist())}
         self._announce = {
             new_index[t]: said for t, said in self._announce.items() if t in new_index
@@ -270,7 +244,7 @@ class BatchSoccerServer:
         """Queue ``(dash power direction)`` for player row `i`; returns the trials that took it.
 
         Power and direction are clamped (and the direction rounded) as in the single model
-        (:func:`~field_models.soccer_server.dynamics.dash_direction`).
+        (:func:`~field_models.soccer_server.cycle_rules.dash_direction`).
         """
         p = self.params
         power = np.clip(power, p.min_dash_power, p.max_dash_power)
@@ -311,10 +285,7 @@ class BatchSoccerServer:
         """Advance every trial one cycle; return the referee messages as (trial, text)."""
         messages = self._announce
         self._announce = {}
-        if self._block_row == BATCH_BLOCK_CYCLES:
-            self._refill()
-        r = self._block_row
-        self._block_row += 1
+        r = self._random.next_row()
         if (self._kind != NO_COMMAND).any():
             self._run_commands(r, messages)
         bx0, by0 = self.x[:, 0].copy(), self.y[:, 0].copy()
@@ -328,83 +299,6 @@ class BatchSoccerServer:
         self.cycle += 1
         return [(trial, text) for trial in sorted(messages) for text in messages[trial]]
 
-    def _refill(self) -> None:
-        """Draw every trial's next rows and give each object its update slot's noise.
-
-        With counter-based streams only the columns every cycle uses (update order, movement
-        noise) are computed here; a turn's or a kick's draws are computed when one happens
-        (:meth:`_uniforms_at`), at their place in the row: the same numbers, a third less work.
-        """
-        lay = self._layout
-        streams = self.streams
-        if streams is not None:
-            self._block_start = streams.positions.copy()
-            u = streams.peek(self._needed).reshape(self.k, BATCH_BLOCK_CYCLES, -1)
-            streams.advance(BATCH_BLOCK_CYCLES * lay.width)
-            n = self._n
-            order, a, b = u[..., 2 * n :], u[..., :n], u[..., n : 2 * n]
-        else:
-            u = self._rows
-            for rng, rows in zip(self.rngs, u, strict=True):
-                rng.random(out=rows)  # the same numbers as the single model's block draws
-            order, a, b = u[..., lay.order], u[..., lay.move_a], u[..., lay.move_b]
-        slot = _ranks(order)  # slot[..., i]: when object i is updated
-        move_a = np.take_along_axis(a, slot, axis=-1)
-        move_b = np.take_along_axis(b, slot, axis=-1)
-        move_x, move_y = unit_noise(move_a, move_b, self.params.noise_model)
-        if streams is not None:
-            self._noise = (move_x, move_y)
-        else:  # kick noise is shaped when a kick happens (kicks are few)
-            self._noise = (
-                move_x,
-                move_y,
-                turn_factor(u[..., lay.turn], self.params.player_rand),
-                u[..., lay.kick_a].copy(),
-                u[..., lay.kick_b].copy(),
-            )
-        self._block_row = 0
-
-    def _needed_offsets(self) -> np.ndarray:
-        """Offsets in a block of the columns every cycle uses: move_a, move_b, then order."""
-        lay = self._layout
-        cols = np.r_[
-            np.arange(lay.move_a.start, lay.move_a.stop),
-            np.arange(lay.move_b.start, lay.move_b.stop),
-            np.arange(lay.order.start, lay.order.stop),
-        ]
-        rows = np.arange(BATCH_BLOCK_CYCLES)[:, None] * lay.width
-        offsets: np.ndarray = rows + cols
-        return offsets
-
-    def _uniforms_at(self, r: int, column: int, trials: np.ndarray) -> np.ndarray:
-        """The draw of cycle `r` of the block, column `column`, for `trials` (indices)."""
-        assert self.streams is not None
-        offset = self._block_start[trials] - self.streams.positions[trials]
-        offset += r * self._layout.width + column
-        drawn: np.ndarray = self.streams.peek(offset.reshape(-1, 1), trials)[:, 0]
-        return drawn
-
-    def _turn_noise(self, r: int, i: int, m: np.ndarray) -> np.ndarray:
-        """``1 + ξ`` of player row `i`'s turn at block cycle `r` (where `m`; 1 elsewhere)."""
-        if self.streams is None:
-            noise: np.ndarray = self._noise[2][:, r, i - 1]
-            return noise
-        factor = np.ones(self.k)
-        trials = np.flatnonzero(m)
-        u = self._uniforms_at(r, self._layout.turn.start + i - 1, trials)
-        factor[trials] = turn_factor(u, self.params.player_rand)
-        return factor
-
-    def _kick_uniforms(self, r: int, i: int, idx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The two kick-noise draws of player row `i` at block cycle `r` in trials `idx`."""
-        if self.streams is None:
-            return self._noise[3][idx, r, i - 1], self._noise[4][idx, r, i - 1]
-        lay = self._layout
-        return (
-            self._uniforms_at(r, lay.kick_a.start + i - 1, idx),
-            self._uniforms_at(r, lay.kick_b.start + i - 1, idx),
-        )
-
     def _run_commands(self, r: int, messages: dict[int, list[str]]) -> None:
         kicked = np.zeros(self.k, dtype=bool)
         for i in range(1, self._n):
@@ -412,7 +306,7 @@ class BatchSoccerServer:
             if (kind == DASH).any():
                 self._do_dash(i, kind == DASH)
             if (kind == TURN).any():
-                self._do_turn(i, kind == TURN, self._turn_noise(r, i, kind == TURN))
+                self._do_turn(i, kind == TURN, self._random.turn_noise(r, i, kind == TURN))
             if (kind == KICK).any():
                 kicked |= self._do_kick(i, kind == KICK, r)
         self._kind[:] = NO_COMMAND
@@ -484,7 +378,7 @@ class BatchSoccerServer:
         if p.kick_rand:
             bvx, bvy = self.vx[idx, 0], self.vy[idx, 0]
             radius = self._kick_noise_radius(power, gap, dir_diff, np.sqrt(bvx * bvx + bvy * bvy))
-            nx, ny = unit_noise(*self._kick_uniforms(r, i, idx), p.noise_model)
+            nx, ny = unit_noise(*self._random.kick_uniforms(r, i, idx), p.noise_model)
             ax = ax + radius * nx
             ay = ay + radius * ny
         self._ax[idx, 0] = self._ax[idx, 0] + ax
@@ -527,8 +421,9 @@ class BatchSoccerServer:
         ux, uy = np.where(pushed, ux, vx), np.where(pushed, uy, vy)
         ax, ay = self._ax, self._ay
         radius = self._rand * np.sqrt(ux * ux + uy * uy)
-        ux = ux + radius * self._noise[0][:, r]
-        uy = uy + radius * self._noise[1][:, r]
+        noise = self._random.noise
+        ux = ux + radius * noise[0][:, r]
+        uy = uy + radius * noise[1][:, r]
         if moving.all():  # the usual case: no trial holds its players
             self.x += ux
             self.y += uy
@@ -544,56 +439,10 @@ class BatchSoccerServer:
         self._ax = np.where(keep, 0.0, ax)
         self._ay = np.where(keep, 0.0, ay)
 
-    # ------------------------------------------------------------------ collisions (§4)
-
-    def _overlaps(self, a: int, b: int, reach2: float) -> np.ndarray:
-        dx = self.x[:, b] - self.x[:, a]
-        dy = self.y[:, b] - self.y[:, a]
-        return np.asarray(dx * dx + dy * dy < reach2)
-
     def _collide(self, trials: np.ndarray) -> None:
         """Resolve overlaps in the given trials, as the single model does (§4)."""
-        if not any(
-            (self._overlaps(a, b, q) & trials).any()
-            for (a, b), q in zip(self._pairs, self._reach2, strict=True)
-        ):
-            return
-        collided = np.zeros((self.k, self._n), dtype=bool)
-        play_on = self.mode == _PLAY_ON
-        for _ in range(COLLISION_PASSES):
-            sx, sy = np.zeros((self.k, self._n)), np.zeros((self.k, self._n))
-            count = np.zeros((self.k, self._n), dtype=int)
-            for (a, b), reach, reach2 in zip(self._pairs, self._reach, self._reach2, strict=True):
-                hit = self._overlaps(a, b, reach2) & trials
-                if not hit.any():
-                    continue
-                collided[:, a] |= hit
-                collided[:, b] |= hit
-                (pax, pay), (pbx, pby) = self._proposals(a, b, reach, reach2, play_on)
-                for col, px, py in ((a, pax, pay), (b, pbx, pby)):
-                    sx[:, col] = np.where(hit, sx[:, col] + px, sx[:, col])
-                    sy[:, col] = np.where(hit, sy[:, col] + py, sy[:, col])
-                    count[:, col] += hit
-            moved = count > 0
-            if not moved.any():
-                break
-            with np.errstate(divide="ignore", invalid="ignore"):
-                self.x = np.where(moved, sx / count, self.x)
-                self.y = np.where(moved, sy / count, self.y)
-        self.vx = np.where(collided, self.vx * COLLISION_VELOCITY_FACTOR, self.vx)
-        self.vy = np.where(collided, self.vy * COLLISION_VELOCITY_FACTOR, self.vy)
-
-    def _proposals(
-        self, a: int, b: int, reach: float, reach2: float, play_on: np.ndarray
-    ) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
-        ax, ay, bx, by = self.x[:, a], self.y[:, a], self.x[:, b], self.y[:, b]
-        sep_a, sep_b = _separate(ax, ay, bx, by, reach, reach2)
-        if a != 0:
-            return sep_a, sep_b
-        push = _push_from(ax, ay, bx - ax, by - ay, reach + EPS)
-        return (
-            (np.where(play_on, sep_a[0], ax), np.where(play_on, sep_a[1], ay)),
-            (np.where(play_on, sep_b[0], push[0]), np.where(play_on, sep_b[1], push[1])),
+        (self.x, self.y), (self.vx, self.vy) = collide(
+            self._pairs, (self.x, self.y), (self.vx, self.vy), trials, self.mode == _PLAY_ON
         )
 
     # ------------------------------------------------------------------ referee (§6)
@@ -677,51 +526,3 @@ class BatchSoccerServer:
             ny = np.where(r == 0.0, 0.0, y * (radius / r))
         self.x[rows, 1:] = np.where(inside, nx, x)
         self.y[rows, 1:] = np.where(inside, ny, y)
-
-
-def _ranks(keys: np.ndarray) -> np.ndarray:
-    """Position of each key in its row's stable ascending order (the inverse of argsort)."""
-    n = keys.shape[-1]
-    ranks = np.zeros(keys.shape, dtype=np.intp)
-    for i in range(n):
-        for j in range(n):
-            if j < i:
-                ranks[..., i] += keys[..., j] <= keys[..., i]
-            elif j > i:
-                ranks[..., i] += keys[..., j] < keys[..., i]
-    return ranks
-
-
-def _separate(
-    ax: np.ndarray, ay: np.ndarray, bx: np.ndarray, by: np.ndarray, reach: float, reach2: float
-) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
-    """Vectorised ``dynamics._separate``: same operations, same order."""
-    mx, my = (ax + bx) / 2.0, (ay + by) / 2.0
-    ux, uy, wx, wy = ax - mx, ay - my, bx - mx, by - my
-    half = reach / 2.0 + EPS
-    ru, rw = np.sqrt(ux * ux + uy * uy), np.sqrt(wx * wx + wy * wy)
-    same = ((ax == bx) & (ay == by)) | ((ru < EPS) & (rw < EPS)) | (ru == 0.0) | (rw == 0.0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ux, uy = np.where(same, half, ux * (half / ru)), np.where(same, 0.0, uy * (half / ru))
-        wx, wy = np.where(same, -half, wx * (half / rw)), np.where(same, 0.0, wy * (half / rw))
-    done = np.zeros(ax.shape, dtype=bool)
-    for _ in range(SEPARATION_RETRIES):
-        dx, dy = (mx + wx) - (mx + ux), (my + wy) - (my + uy)
-        done |= dx * dx + dy * dy >= reach2
-        if done.all():
-            break
-        ux, uy = np.where(done, ux, ux * 1.0001), np.where(done, uy, uy * 1.0001)
-        wx, wy = np.where(done, wx, wx * 1.0001), np.where(done, wy, wy * 1.0001)
-    return (mx + ux, my + uy), (mx + wx, my + wy)
-
-
-def _push_from(
-    bx: np.ndarray, by: np.ndarray, dx: np.ndarray, dy: np.ndarray, dist: float
-) -> tuple[np.ndarray, np.ndarray]:
-    """Vectorised ``dynamics._push_from``."""
-    r = np.sqrt(dx * dx + dy * dy)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return (
-            np.where(r == 0.0, bx + dist, bx + dx * (dist / r)),
-            np.where(r == 0.0, by, by + dy * (dist / r)),
-        )

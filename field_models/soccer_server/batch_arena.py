@@ -17,7 +17,7 @@ from field_models.soccer_server.arena import see_schedule
 from field_models.soccer_server.batch import BatchSoccerServer
 from field_models.soccer_server.batch_sensing import see_object
 from field_models.soccer_server.params import ServerPreset
-from field_models.soccer_server.sensing import SeeTimer
+from field_models.soccer_server.see_timing import SeeTimer
 
 
 def batch_reason(preset: ServerPreset) -> str | None:

@@ -11,7 +11,7 @@ operations in the same order (shared `specs/soccer_server.md` §3):
 * low view quality reports no distance, and a percept leaves such an object out;
 * distances quantised on the log scale (§3.3) through the one scalar rule: the log index is
   computed for the array and each index's distance comes from
-  :func:`~field_models.soccer_server.sensing.quantised_distance_for_index`, once per index;
+  :func:`~field_models.soccer_server.see_numbers.quantised_distance_for_index`, once per index;
 * directions in the server's integer degrees (truncated or rounded by protocol), turned into
   our counter-clockwise radians as :mod:`~field_models.soccer_server.percepts` does.
 
@@ -33,7 +33,7 @@ import numpy.typing as npt
 
 from field_models import fpmath
 from field_models.protocol import wrap_angle
-from field_models.soccer_server.sensing import EPS, quantised_distance_for_index
+from field_models.soccer_server.see_numbers import EPS, quantised_distance_for_index
 from field_models.soccer_server.sensing_params import SensingParams
 
 Array = npt.NDArray[np.float64]

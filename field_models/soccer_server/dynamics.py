@@ -25,6 +25,10 @@ accessors :meth:`~SoccerServerModel.ball_state`, :meth:`~SoccerServerModel.playe
 the trainer's :meth:`~SoccerServerModel.move_ball` / :meth:`~SoccerServerModel.move_player`
 speak m/s.
 
+The rules it shares with the batch (play modes, the row layout, the command formulas) are in
+:mod:`~field_models.soccer_server.cycle_rules`, the collisions in
+:mod:`~field_models.soccer_server.collisions`.
+
 Randomness. Each cycle consumes one *row* of uniforms from the trial's generator, whatever
 happens in it (:class:`RowLayout`: movement noise per update slot, turn and kick noise per
 player, the update order; the slot order decides which numbers each object gets, as the
@@ -66,15 +70,11 @@ Choices where the spec leaves one open (or where we simplify), each documented h
 
 from __future__ import annotations
 
-import itertools
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from field_models.protocol import (
-    LEFT,
-    RIGHT,
     Action,
     BodyState,
     Dash,
@@ -87,171 +87,38 @@ from field_models.protocol import (
     wrap_angle,
 )
 from field_models.seeding import Rng
-from field_models.soccer_server.params import DynamicsParams, ServerPreset
+from field_models.soccer_server.collisions import (
+    any_overlap,
+    catch_passing_ball,
+    collision_pairs,
+    resolve_collisions,
+)
+from field_models.soccer_server.cycle_rules import (
+    AFTER_GOAL_MODES,
+    BEFORE_KICK_OFF,
+    DASH,
+    KICK,
+    NO_COMMAND,
+    PLAY_MODES,
+    PLAY_ON,
+    RESTART_MODES,
+    TURN,
+    clamp,
+    dash_direction,
+    dash_rate,
+    draw_rows,
+    kick_effectiveness,
+    kick_noise_radius,
+    out_of_circle,
+    row_layout,
+    side_of,
+    turn_factor,
+    unit_noise,
+)
+from field_models.soccer_server.params import ServerPreset
 
 BLOCK_CYCLES = 32
 """Cycles of random numbers drawn at once by the single-trial model."""
-EPS = 1e-10
-"""The server's small distance (``EPS`` in utility.h) added to separations."""
-COLLISION_VELOCITY_FACTOR = -0.1
-"""Velocity factor of every object that collided in a cycle (§4)."""
-COLLISION_PASSES = 10
-"""Maximum overlap-resolution passes per cycle (§4)."""
-SEPARATION_RETRIES = 10
-"""Times a separated pair is spread by 0.01 % more when rounding keeps it overlapping."""
-
-BEFORE_KICK_OFF = "before_kick_off"
-PLAY_ON = "play_on"
-AFTER_GOAL_MODES = ("goal_l", "goal_r")
-"""Internal after-goal modes; announced as ``goal_l_N`` / ``goal_r_N`` instead (§6)."""
-RESTART_MODES = (
-    "kick_off_l",
-    "kick_off_r",
-    "free_kick_l",
-    "free_kick_r",
-    "kick_in_l",
-    "kick_in_r",
-    "corner_kick_l",
-    "corner_kick_r",
-    "goal_kick_l",
-    "goal_kick_r",
-)
-"""Modes in which the next accepted kick starts play (``play_on``)."""
-PLAY_MODES = (BEFORE_KICK_OFF, PLAY_ON, *AFTER_GOAL_MODES, *RESTART_MODES)
-"""Every play mode the model knows, as the server spells them."""
-
-NO_COMMAND, DASH, TURN, KICK = 0, 1, 2, 3
-"""Codes of the pending body command of a player."""
-HALF_PI = 0.5 * math.pi
-"""A side dash's direction [rad]: 90° in the server's ``dir_rate`` formula."""
-
-
-# ----------------------------------------------------------------------------- random rows
-
-
-@dataclass(frozen=True, slots=True)
-class RowLayout:
-    """Where each use of randomness sits in one cycle's row of uniforms.
-
-    Attributes:
-        move_a, move_b: Movement noise of update slot j (the j-th object updated) (N+1 each).
-        turn: Turn noise of each player (N).
-        kick_a, kick_b: Kick noise of each player (N each).
-        order: Keys whose ascending order is the update order (N+1).
-        width: Uniforms per cycle.
-    """
-
-    move_a: slice
-    move_b: slice
-    turn: slice
-    kick_a: slice
-    kick_b: slice
-    order: slice
-    width: int
-
-
-def row_layout(n_players: int) -> RowLayout:
-    """The row layout for `n_players` players and the ball."""
-    n = n_players + 1
-    edges = list(itertools.accumulate([0, n, n, n_players, n_players, n_players, n]))
-    move_a, move_b, turn, kick_a, kick_b, order = (
-        slice(lo, hi) for lo, hi in itertools.pairwise(edges)
-    )
-    return RowLayout(move_a, move_b, turn, kick_a, kick_b, order, width=edges[-1])
-
-
-def draw_rows(rng: Rng, n_players: int, cycles: int) -> np.ndarray:
-    """The raw uniforms of `cycles` consecutive cycles of one trial, shape (cycles, width)."""
-    return rng.random((cycles, row_layout(n_players).width))
-
-
-def unit_noise(a: np.ndarray, b: np.ndarray, model: str) -> tuple[np.ndarray, np.ndarray]:
-    """A noise vector in units of its size R from two uniforms on [0, 1) (§1.3, §2.3).
-
-    Box model: each axis uniform on [-1, 1). Polar model: radius uniform on [0, 1), angle
-    uniform on [-π, π). Elementwise, so it commutes with any reordering of its inputs.
-    """
-    if model == "box":
-        return 2.0 * a - 1.0, 2.0 * b - 1.0
-    theta = math.pi * (2.0 * b - 1.0)
-    return a * np.cos(theta), a * np.sin(theta)
-
-
-def turn_factor(u: np.ndarray, player_rand: float) -> np.ndarray:
-    """``1 + ξ`` with ξ uniform on [-player_rand, player_rand) (§2.2)."""
-    return 1.0 + player_rand * (2.0 * u - 1.0)
-
-
-# ----------------------------------------------------------------------------- pure formulas
-
-
-def kick_effectiveness(gap_m: float, dir_diff_rad: float, kickable_margin_m: float) -> float:
-    """The kick's effectiveness k (§2.3, since [CL 4.03]).
-
-    Args:
-        gap_m: Distance between the surfaces of player and ball [m].
-        dir_diff_rad: Absolute angle of the ball off the player's heading [rad].
-        kickable_margin_m: ``kickable_margin`` [m].
-
-    >>> round(kick_effectiveness(0.115, 0.0, 0.7), 6)
-    0.958929
-    """
-    return 1.0 - 0.25 * dir_diff_rad / math.pi - 0.25 * gap_m / kickable_margin_m
-
-
-def dash_direction(direction_rad: float, params: DynamicsParams) -> float:
-    """The direction a dash runs in, relative to the heading, as the server normalises it.
-
-    rcssserver 19.0.0 (commit ce87001) ``src/leg.cpp`` ``normalize_dash_angle`` (lines 44-60,
-    called by ``Leg::dash``): the direction is clamped to [``min_dash_angle``,
-    ``max_dash_angle``] and then, unless ``dash_angle_step`` is below EPS, rounded to a
-    multiple of it with ``rint`` (round half to even, as Python's ``round``). The clamp is in
-    the server's clockwise sign, so ours is negated around it. Defaults
-    (``src/serverparam.cpp`` lines 352-358): [-180°, 180°], step 1° (45° in 14.0 to 15.5,
-    90° in 13.x).
-
-    Args:
-        direction_rad: The requested direction, counter-clockwise from the heading [rad].
-        params: ``min_dash_angle_rad``, ``max_dash_angle_rad``, ``dash_angle_step_rad``.
-    """
-    d = -clamp(-direction_rad, params.min_dash_angle_rad, params.max_dash_angle_rad)
-    step = params.dash_angle_step_rad
-    if step > 0.0:
-        d = step * round(d / step)
-    return d + 0.0
-
-
-def dash_rate(direction_rad: float, side_dash_rate: float, back_dash_rate: float) -> float:
-    """The factor on a dash's power for its direction (§2.1, rcssserver >= 13).
-
-    rcssserver 19.0.0 ``src/leg.cpp`` ``Leg::calcDashAccel`` (lines 157-163; the same formula
-    as the disabled one-leg code of ``Player::dash`` in ``src/player.cpp``, lines 1130-1136):
-    for |dir| <= 90°, ``side + (1 - side)·(1 - |dir|/90)``; beyond,
-    ``back - (back - side)·(1 - (|dir| - 90)/90)``; clamped to [0, 1]. So 1 straight ahead,
-    ``side_dash_rate`` (0.4) at ±90°, ``back_dash_rate`` (0.7) at 180°, linear between.
-
-    >>> dash_rate(math.pi / 2, 0.4, 0.7), dash_rate(math.pi, 0.4, 0.7)
-    (0.4, 0.7)
-    """
-    a = abs(direction_rad)
-    if a > HALF_PI:
-        rate = back_dash_rate - (back_dash_rate - side_dash_rate) * (1.0 - (a - HALF_PI) / HALF_PI)
-    else:
-        rate = side_dash_rate + (1.0 - side_dash_rate) * (1.0 - a / HALF_PI)
-    return clamp(rate, 0.0, 1.0)
-
-
-def clamp(value: float, low: float, high: float) -> float:
-    """`value` limited to [low, high], as the server clamps command arguments (§2)."""
-    return low if value < low else high if value > high else value
-
-
-def side_of(ref: PlayerRef) -> int:
-    """+1 for the left team (defends x < 0), -1 for the right team, 0 for any other team."""
-    return 1 if ref.team == LEFT else -1 if ref.team == RIGHT else 0
-
-
-# ----------------------------------------------------------------------------- the model
 
 
 class SoccerServerModel:
@@ -306,7 +173,7 @@ class SoccerServerModel:
         self._pitch = p.pitch()
         self._goal_line = 0.5 * p.pitch_length_m + p.ball_size_m
         self._straight_dash = p.min_dash_angle_rad <= 0.0 <= p.max_dash_angle_rad
-        self._pairs = _collision_pairs(self._size)
+        self._pairs = collision_pairs(self._size)
         self._kind = [NO_COMMAND] * n
         self.kicked_at = [-1] * n
         self._arg1 = [0.0] * n
@@ -377,7 +244,7 @@ class SoccerServerModel:
         self.x[i], self.y[i] = float(x), float(y)
         self.heading[i] = wrap_angle(float(heading_rad))
         self.vx[i], self.vy[i] = float(vx_mps) * dt, float(vy_mps) * dt
-        if self._any_overlap():
+        if any_overlap(self._pairs, self.x, self.y):
             self._resolve_collisions()
 
     def change_mode(self, mode: str) -> None:
@@ -474,10 +341,10 @@ class SoccerServerModel:
             if self.params.swept_ball_collisions:
                 x0, y0 = list(self.x), list(self.y)
                 self._move_objects(r)
-                self._catch_passing_ball(x0, y0)
+                catch_passing_ball(self._pairs, (self.x, self.y), (x0, y0))
             else:
                 self._move_objects(r)
-            if self._any_overlap():
+            if any_overlap(self._pairs, self.x, self.y):
                 self._resolve_collisions()
             if self.params.referee:
                 self._judge(bx0, by0, messages)
@@ -572,7 +439,7 @@ class SoccerServerModel:
         ay = a * math.sin(ang)
         if p.kick_rand:
             bvx, bvy = self.vx[0], self.vy[0]
-            radius = _kick_noise_radius(p, power, gap, dir_diff, math.sqrt(bvx * bvx + bvy * bvy))
+            radius = kick_noise_radius(p, power, gap, dir_diff, math.sqrt(bvx * bvx + bvy * bvy))
             ax += radius * self._noise[3][r][i - 1]
             ay += radius * self._noise[4][r][i - 1]
         self._ax[0] += ax
@@ -614,75 +481,6 @@ class SoccerServerModel:
             vxs[i], vys[i] = d * vx, d * vy
 
     # ------------------------------------------------------------------ collisions (§4)
-
-    def _any_overlap(self) -> bool:
-        x, y = self.x, self.y
-        for a, b, reach2, _ in self._pairs:
-            dx, dy = x[b] - x[a], y[b] - y[a]
-            if dx * dx + dy * dy < reach2:
-                return True
-        return False
-
-    def _catch_passing_ball(self, x0: list[float], y0: list[float]) -> None:
-        """Swept ball–player check (``swept_ball_collisions``): rewind a pair that met mid-cycle.
-
-        Both objects moved on straight lines during the cycle; if their relative path came
-        closer than the sum of radii although they no longer overlap, both are put back where
-        they were at the closest approach, so that :meth:`_resolve_collisions` treats the pair
-        as overlapping (push apart, velocities × −0.1) — "moved back until they do not overlap"
-        in the manual's words (§4).
-        """
-        x, y = self.x, self.y
-        for a, b, reach2, _ in self._pairs:
-            if a != 0:
-                continue  # ball (row 0) against a player only
-            ex, ey = x[b] - x[a], y[b] - y[a]
-            if ex * ex + ey * ey < reach2:
-                continue  # overlapping at the end: the ordinary check handles it
-            sx, sy = x0[b] - x0[a], y0[b] - y0[a]
-            dx, dy = ex - sx, ey - sy
-            d2 = dx * dx + dy * dy
-            if d2 == 0.0:
-                continue
-            t = min(1.0, max(0.0, -(sx * dx + sy * dy) / d2))
-            cx, cy = sx + t * dx, sy + t * dy
-            if cx * cx + cy * cy >= reach2:
-                continue
-            for i in (a, b):
-                x[i] = x0[i] + t * (x[i] - x0[i])
-                y[i] = y0[i] + t * (y[i] - y0[i])
-
-    def _resolve_collisions(self) -> None:
-        """Push overlapping pairs apart (mean of proposals, ≤ 10 passes), velocities × −0.1."""
-        n, x, y = self._n, self.x, self.y
-        collided = [False] * n
-        play_on = self.play_mode == PLAY_ON
-        for _ in range(COLLISION_PASSES):
-            sx, sy, count = [0.0] * n, [0.0] * n, [0] * n
-            for a, b, reach2, reach in self._pairs:
-                dx, dy = x[b] - x[a], y[b] - y[a]
-                if dx * dx + dy * dy >= reach2:
-                    continue
-                collided[a] = collided[b] = True
-                if a == 0 and not play_on:
-                    pa, pb = (x[0], y[0]), _push_from(x[0], y[0], dx, dy, reach + EPS)
-                else:
-                    pa, pb = _separate(x[a], y[a], x[b], y[b], reach, reach2)
-                sx[a] += pa[0]
-                sy[a] += pa[1]
-                count[a] += 1
-                sx[b] += pb[0]
-                sy[b] += pb[1]
-                count[b] += 1
-            if not any(count):
-                break
-            for i in range(n):
-                if count[i]:
-                    x[i], y[i] = sx[i] / count[i], sy[i] / count[i]
-        for i in range(n):
-            if collided[i]:
-                self.vx[i] *= COLLISION_VELOCITY_FACTOR
-                self.vy[i] *= COLLISION_VELOCITY_FACTOR
 
     # ------------------------------------------------------------------ referee (§6)
 
@@ -736,66 +534,9 @@ class SoccerServerModel:
             if side * self.x[i] > 0.0:
                 self.x[i] = -side * p.player_size_m
             if side and side != kicker:
-                self.x[i], self.y[i] = _out_of_circle(self.x[i], self.y[i], keep_out)
+                self.x[i], self.y[i] = out_of_circle(self.x[i], self.y[i], keep_out)
 
-
-# ----------------------------------------------------------------------------- helpers
-
-
-def _collision_pairs(sizes: list[float]) -> list[tuple[int, int, float, float]]:
-    """Pairs in the server's order: ball–player, then player–player (a < b); radii sum²."""
-    n = len(sizes)
-    pairs = [(0, b) for b in range(1, n)]
-    pairs += [(a, b) for a in range(1, n) for b in range(a + 1, n)]
-    return [(a, b, (sizes[a] + sizes[b]) ** 2, sizes[a] + sizes[b]) for a, b in pairs]
-
-
-def _separate(
-    ax: float, ay: float, bx: float, by: float, reach: float, reach2: float
-) -> tuple[tuple[float, float], tuple[float, float]]:
-    """Both objects at (reach/2 + EPS) from their midpoint, on their line of centres (§4)."""
-    mx, my = (ax + bx) / 2.0, (ay + by) / 2.0
-    ux, uy, wx, wy = ax - mx, ay - my, bx - mx, by - my
-    half = reach / 2.0 + EPS
-    ru, rw = math.sqrt(ux * ux + uy * uy), math.sqrt(wx * wx + wy * wy)
-    if (ax == bx and ay == by) or (ru < EPS and rw < EPS) or ru == 0.0 or rw == 0.0:
-        ux, uy, wx, wy = half, 0.0, -half, 0.0  # coincident: along +x (the server: random)
-    else:
-        ux, uy = ux * (half / ru), uy * (half / ru)
-        wx, wy = wx * (half / rw), wy * (half / rw)
-    for _ in range(SEPARATION_RETRIES):
-        dx, dy = (mx + wx) - (mx + ux), (my + wy) - (my + uy)
-        if dx * dx + dy * dy >= reach2:
-            break
-        ux, uy, wx, wy = ux * 1.0001, uy * 1.0001, wx * 1.0001, wy * 1.0001
-    return (mx + ux, my + uy), (mx + wx, my + wy)
-
-
-def _push_from(bx: float, by: float, dx: float, dy: float, dist: float) -> tuple[float, float]:
-    """The point `dist` from (bx, by) along (dx, dy); along +x if that is zero."""
-    r = math.sqrt(dx * dx + dy * dy)
-    if r == 0.0:
-        return bx + dist, by
-    return bx + dx * (dist / r), by + dy * (dist / r)
-
-
-def _out_of_circle(x: float, y: float, radius: float) -> tuple[float, float]:
-    """(x, y) moved to the nearest point of the circle of `radius` about the centre if inside."""
-    r = math.sqrt(x * x + y * y)
-    if r > radius:
-        return x, y
-    if r == 0.0:
-        return radius, 0.0
-    return x * (radius / r), y * (radius / r)
-
-
-def _kick_noise_radius(
-    p: DynamicsParams, power: float, gap: float, dir_diff: float, ball_speed: float
-) -> float:
-    """Kick-noise size: box ±kick_rand·P/maxpower (6.07–11.x); polar today's formula (§2.3)."""
-    scale = p.kick_rand * (power / p.maxpower)
-    if p.noise_model == "box":
-        return scale
-    pos_rate = 0.5 + 0.25 * (dir_diff / math.pi + gap / p.kickable_margin_m)
-    speed_rate = 0.5 + 0.5 * (ball_speed / (p.ball_speed_max_m_per_cycle * p.ball_decay))
-    return scale * (pos_rate + speed_rate)
+    def _resolve_collisions(self) -> None:
+        """Push overlapping pairs apart, velocities × −0.1 (§4, :func:`resolve_collisions`)."""
+        xy, vxy = (self.x, self.y), (self.vx, self.vy)
+        resolve_collisions(self._pairs, xy, vxy, self.play_mode == PLAY_ON)

@@ -33,8 +33,9 @@ import math
 import re
 from typing import TypeAlias
 
+from field_models.soccer_server.hearing import HearInfo
 from field_models.soccer_server.landmarks import is_known_name, long_name, short_name
-from field_models.soccer_server.sensing import HearInfo, SeeInfo, SeenObject
+from field_models.soccer_server.sensing import SeeInfo, SeenObject
 
 MAX_DEPTH = 8
 """Deepest nesting the parser accepts (real messages nest at most 4 levels)."""

@@ -31,7 +31,8 @@ from collections.abc import Sequence
 
 from field_models.protocol import Heard, Percept, PlayerRef, SeenBall, SeenLandmark, SeenPlayer
 from field_models.seeding import Rng
-from field_models.soccer_server.sensing import HearInfo, LandmarkMode, SeeInfo, SeenObject, observe
+from field_models.soccer_server.hearing import HearInfo
+from field_models.soccer_server.sensing import LandmarkMode, SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SensingParams
 
 _DEG2RAD = math.pi / 180.0

@@ -32,7 +32,8 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from field_models.soccer_server.serving import Client, Log, ServedGame
+from field_models.soccer_server.serving import ServedGame
+from field_models.soccer_server.serving_state import Client, Log
 from field_models.soccer_server.wire import decode
 
 READS_PER_WAKE = 512

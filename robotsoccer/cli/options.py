@@ -255,6 +255,32 @@ def build_parser() -> argparse.ArgumentParser:
     )
     _experiment_options(lead)
 
+    team = targets.add_parser(
+        "team",
+        help="layer 3: TPOT-RL's ball destinations learned in games against the baseline, "
+        "then series against the layered team and the baseline",
+        parents=[common],
+    )
+    team.add_argument("--field", default="soccer_server", choices=FIELD_MODELS, help="field model")
+    team.add_argument(
+        "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
+    )
+    team.add_argument("--net", type=Path, default=None, help="layer 1's net (.npz)")
+    team.add_argument("--tree", type=Path, default=None, help="layer 2's pass tree (.json)")
+    team.add_argument(
+        "--models",
+        type=Path,
+        default=None,
+        help="run folder with models/<field>/ holding the net and pass tree (as `match`)",
+    )
+    team.add_argument(
+        "--table",
+        type=Path,
+        default=None,
+        help="a learned layer-3 table (.npz): skip training, play the series only",
+    )
+    _experiment_options(team)
+
     reproduce = command(
         "reproduce",
         "layers 1 and 2 on both field models, then the transfer study: report, plots",

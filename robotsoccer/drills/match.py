@@ -7,7 +7,10 @@ their nearest player to the ball, dribble, shoot and keep a formation; they diff
 two learned decisions, so a series measures what the layers are worth in play. Where the
 players push the ball (no aimable kick: the robots) both teams play it from behind and meet a
 ball rolling at their end as layer 1's goal-mouth drill does, the layered team with its lead
-net, the baseline straight (:mod:`robotsoccer.skills.team`, "Pushing").
+net, the baseline straight (:mod:`robotsoccer.skills.team`, "Pushing"). ``layer3`` — the
+layered team whose ball holder, where the layered team would ask the tree, asks TPOT-RL's
+table instead (:mod:`robotsoccer.skills.layer3`, option ``tpot``: the table file; ``explore``:
+its exploration rate; ``learn``: record its rewards as the trial's data, for training).
 
 **Size.** ``players`` per side: by default 11 on an open field (the Soccer Server) and 5 on a
 walled table (the robots). Formation homes are in units (:data:`FORMATIONS`, ours: 4-4-2 and
@@ -31,10 +34,11 @@ from enum import StrEnum
 from field_models.arena import Arena, ArenaEvent, CountsCommands, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
+from learning.tpot import Experience, load_table
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.passing import LayeredDrill, control_reach, load_evaluator
 from robotsoccer.drills.referee import SIDE, Referee
-from robotsoccer.options import choice, duration, flag
+from robotsoccer.options import bounded, choice, duration, flag
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.skills.intercept import (
     Behaviour,
@@ -43,6 +47,7 @@ from robotsoccer.skills.intercept import (
     model_decision,
     transfer_distance_factor,
 )
+from robotsoccer.skills.layer3 import TpotBallPolicy
 from robotsoccer.skills.lead import VELOCITY_SPAN_S
 from robotsoccer.skills.passing import Chooser, PassEvaluator
 from robotsoccer.skills.setplay import KickPowers
@@ -97,6 +102,11 @@ SAFE_REACH_SHARE = 0.85
 """Minds kick when the ball seems within this share of their reach (sensor noise)."""
 CARRY_SHARE = 0.6
 """Shots and passes are aimed at most this share of how far a kick carries the ball."""
+EXPERIENCE_FIELDS = 5
+"""Numbers per layer-3 experience in a match's data: side (0 left), number, e, a, reward."""
+PASS_THRESHOLD = 0.5
+"""The layered team's pass threshold (:attr:`TeamMind.pass_threshold`'s default), layer 3's
+SUCCESS cut."""
 JITTER_UNITS = 1.0
 """Kick-off spots are moved by up to this in x and y from the ``placement`` stream."""
 
@@ -106,6 +116,7 @@ class TeamKind(StrEnum):
 
     LAYERED = "layered"
     BASELINE = "baseline"
+    LAYER3 = "layer3"
 
 
 class MatchDrill(LayeredDrill):
@@ -119,6 +130,10 @@ class MatchDrill(LayeredDrill):
         players: Players per side (0: 11 on an open field, 5 on a walled one).
         half_time_s: One half [s].
         transfer: Accept a net or tree trained on another field model or preset.
+        tpot: Layer 3's table (:func:`learning.tpot.save_table`), for a ``layer3`` team.
+        explore: Layer 3's exploration rate epsilon in [0, 1].
+        learn: Layer 3 records its rewards: :meth:`data` returns them
+            (:func:`layer3_experiences` reads them back).
         steady_turns: The minds reckon their turns into the heading between landmark fixes and
             do not turn back within a short hold (:attr:`~robotsoccer.skills.team.TeamSetup.
             steady_turns`); False (default): the 1996 client's turning.
@@ -141,12 +156,23 @@ class MatchDrill(LayeredDrill):
         half_time_s: float | str = HALF_TIME_S,
         transfer: bool | str = False,
         steady_turns: bool | str = False,
+        tpot: str = "",
+        explore: float | str = 0.0,
+        learn: bool | str = False,
     ) -> None:
         self.steady_turns = flag("steady_turns", steady_turns)
         self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
-        layered = TeamKind.LAYERED in self.kinds.values()
+        layered = bool({TeamKind.LAYERED, TeamKind.LAYER3} & set(self.kinds.values()))
         if layered and not (net and tree):
             raise ValueError("a layered team needs a net and a tree (options net=... tree=...)")
+        layer3 = TeamKind.LAYER3 in self.kinds.values()
+        if layer3 and not tpot:
+            raise ValueError("a layer3 team needs its table (option tpot=...)")
+        self.tpot = tpot if layer3 else ""
+        self.explore = bounded("explore", _number("explore", explore), 0.0, 1.0)
+        self.learn = flag("learn", learn)
+        self.policies: dict[str, TpotBallPolicy] = {}
+        self._tick = 0
         self.net = net if layered else ""
         self.model = tree if layered else ""
         self.chooser = Chooser.TREE
@@ -188,7 +214,7 @@ class MatchDrill(LayeredDrill):
 
     def inputs(self) -> tuple[str, ...]:
         """The net and tree files."""
-        return tuple(f for f in (self.model, self.net) if f)
+        return tuple(f for f in (self.model, self.net, self.tpot) if f)
 
     # ------------------------------------------------------------------ kick-off
 
@@ -254,7 +280,11 @@ class MatchDrill(LayeredDrill):
         minds: dict[PlayerRef, Mind] = {}
         for team in (LEFT, RIGHT):
             setup = self.team_setup(facts, n, team)
-            layered = self.kinds[team] is TeamKind.LAYERED
+            layered = self.kinds[team] in (TeamKind.LAYERED, TeamKind.LAYER3)
+            ball_policy = None
+            if self.kinds[team] is TeamKind.LAYER3 and tree is not None:
+                ball_policy = self._layer3_policy(setup, facts, tree, rngs)
+                self.policies[team] = ball_policy
             policy, lead = None, None
             if layered and model_decision(self.net) == "lead":
                 lead = load_net_function(self.net, factor)
@@ -267,10 +297,35 @@ class MatchDrill(LayeredDrill):
                     interception=policy,
                     lead=lead,
                     evaluator=tree if layered else None,
+                    ball_policy=ball_policy,
                 )
                 self.minds_by_ref[PlayerRef(team, number)] = mind
                 minds[PlayerRef(team, number)] = mind
         return minds
+
+    def _layer3_policy(
+        self, setup: TeamSetup, facts: FieldFacts, tree: PassEvaluator, rngs: TrialRngs
+    ) -> TpotBallPolicy:
+        """One team's layer 3 (its own copy of the table: a game never changes the file)."""
+        table = load_table(self.tpot)
+        n = len(FORMATIONS[len(setup.home)])
+        if table.positions != n:
+            raise ValueError(f"{self.tpot}: a table for {table.positions} positions, not {n}")
+        return TpotBallPolicy(
+            table,
+            attack_right=setup.attack_right,
+            half_length_m=setup.half_length_m,
+            half_width_m=setup.half_width_m,
+            unit_m=setup.unit_m,
+            pass_range_m=setup.pass_range_m,
+            pass_power=setup.powers.passing,
+            dt_s=facts.dt_s,
+            evaluator=tree,
+            threshold=PASS_THRESHOLD,
+            rng=rngs["policy"],
+            epsilon=self.explore,
+            learn=self.learn,
+        )
 
     def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:
         """One team's plan on this field (module docstring)."""
@@ -329,7 +384,14 @@ class MatchDrill(LayeredDrill):
         if referee is None:
             raise RuntimeError("judge() before setup()")
         before = referee.last_touch
+        score = referee.score
         referee.step(arena)
+        self._tick = arena.tick
+        if self.policies and referee.score != score:
+            # The referee's goal call, which rcssserver sends every client (layer 3's rewards).
+            scorer = LEFT if referee.score[0] > score[0] else RIGHT
+            for team, ball_policy in self.policies.items():
+                ball_policy.goal(team == scorer, arena.tick)
         holder = referee.last_touch
         if holder is not None:
             self._possession[holder.team] += 1
@@ -350,8 +412,18 @@ class MatchDrill(LayeredDrill):
         return Verdict(label, f"{names[0]} {left}-{right} {names[1]}")
 
     def data(self) -> tuple[float, ...]:
-        """Nothing to learn from."""
-        return ()
+        """Layer 3's experiences when learning (:func:`layer3_experiences`), else nothing."""
+        if not self.learn:
+            return ()
+        out: list[float] = []
+        for team in (LEFT, RIGHT):
+            ball_policy = self.policies.get(team)
+            if ball_policy is None:
+                continue
+            ball_policy.finish(self._tick)
+            for e in ball_policy.experiences:
+                out += [float(team == RIGHT), e.number, e.feature, e.action, e.reward]
+        return tuple(out)
 
     def measures(self) -> dict[str, float]:
         """Goals, possession share, passes, shots and kicks tried, per side."""
@@ -403,6 +475,25 @@ class MatchDrill(LayeredDrill):
     def goalies(self) -> tuple[PlayerRef, ...]:
         """Each team's goalkeeper (number :data:`GOALIE`), left then right."""
         return (PlayerRef(LEFT, GOALIE), PlayerRef(RIGHT, GOALIE))
+
+
+def _number(option: str, value: object) -> float:
+    try:
+        return float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise ValueError(f"{option} must be a number, got {value!r}") from None
+
+
+def layer3_experiences(data: tuple[float, ...]) -> list[tuple[str, Experience]]:
+    """(team, experience) pairs from a learning match's :meth:`MatchDrill.data`, in order."""
+    if len(data) % EXPERIENCE_FIELDS:
+        raise ValueError(f"layer-3 data come in fives, got {len(data)} numbers")
+    out = []
+    for i in range(0, len(data), EXPERIENCE_FIELDS):
+        side, number, feature, action, r = data[i : i + EXPERIENCE_FIELDS]
+        team = RIGHT if side else LEFT
+        out.append((team, Experience(int(number), int(feature), int(action), float(r))))
+    return out
 
 
 def kick_powers(facts: FieldFacts, pass_power: float) -> KickPowers:

@@ -49,7 +49,7 @@ from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import Rng, TrialRngs
 from learning.pass_boost import load_pass_boost
 from learning.pass_features import PASS_SCHEMA
-from learning.pass_tree import load_pass_tree
+from learning.pass_tree_file import load_pass_tree
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept import (
     Launch,

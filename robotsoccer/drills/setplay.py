@@ -18,6 +18,16 @@ the trial's ``"placement"`` stream and faces the ball:
 * two last receivers (left 5, 6) near the goal, each with a defender (right 5, 6) beside it,
   and a goalie (right 7) in front of the goal.
 
+**On the robots** (:data:`ROBOT_SPOTS`) the same spots in units of the table (1 unit =
+2.74 m / 105 = 2.6 cm), but the winger stands level with the first receivers, at (26, 25)
+instead of (32, 25). A receiver kicks the ball on first time (below), and a ball turned by
+less than about 50° from its track runs back into the receiver's own body (it meets the ball
+about 3 units from its centre, and the body with the ball clears 2.3 units). Seen from the
+receiver on the winger's side (left 2, the tree's usual choice), the winger at (32, 25) lies
+about 16° off the first pass's track (from where the starter stops, about (8, 0)); at (26, 25)
+about 36°, which the kick reaches by bending round the body. README "The set play (measured)"
+gives the plays of both spots.
+
 **The play** (:mod:`robotsoccer.skills.setplay`): the starter dribbles toward the goal until it
 sees an opponent within :data:`BLOCKED_UNITS` in its path (the paper's "predetermined
 distance"), stops the ball, turns until both its receivers (left 2, 3) are in view and passes
@@ -32,13 +42,25 @@ and net), triggered by the ball's distance as in the drill of §5.
 sensor periods, but no faster than half the speed a player comes up to the ball at; that
 speed is the one it can stop from, after seeing the ball its sensor latency late, within half
 its kick margin (:func:`stop_speed`; it matters on the robots, whose wheels brake slowly
-and whose camera lags). Passes are layer 1's launch, shots full power.
+and whose camera lags). Passes are layer 1's launch on the Soccer Server and the robot's top
+speed on the robots (:func:`pass_speed`), shots full power.
+
+**Defenders** (option ``defenders``): ``same`` (the default) gives the defenders and goalie
+the attackers' layer 1, as the paper's set play does (§7: "the defenders are all equipped with
+the same ball-interception skill as the receivers"); a behaviour name gives them that one
+whatever the attackers use (``straight``: the baseline's defenders facing layered attackers).
+The winger, uncovered, starts its layer 1 on the cue wherever the ball is on the robots; on
+the Soccer Server it keeps the drill's trigger distance.
 
 **Kicks.** Where the players have an aimable kick (the Soccer Server), they kick. Where they
 do not (the 1997 robots pushed the ball), the coach stands in for the kicker, as layer 1 and
 layer 2's drills launch the ball on that field: a ``Kick`` a set-play attacker sends is not
-passed to the robot but carried out by the coach in the same tick, if that player is then
-within kick reach of the ball: the ball's velocity gains the kick's speed (its power times
+passed to the robot but carried out by the coach, at the first tick within
+:data:`ARMED_PERIODS` sensor period of the one it was sent on at which that player is within
+kick reach of the ball (a kicker that fires when the ball reaches it; the robot's next
+decision comes a camera period later, so a receiver can kick a pass on first time: it sends
+the kick as it sees the ball about to come into reach): the ball's velocity gains the kick's
+speed (its power times
 :attr:`~robotsoccer.drills.intercept.LaunchPlan.launch_speed_mps` / the plan's power, layer
 1's launch at full power) along the player's heading plus the kick's direction, as the
 server's kick adds to the ball's velocity. The kick reach there is touching plus
@@ -64,6 +86,7 @@ first pass's receiver (0 without a pass).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from field_models.arena import Arena, FieldFacts
@@ -81,6 +104,7 @@ from robotsoccer.skills.intercept import (
     Behaviour,
     check_behaviour,
 )
+from robotsoccer.skills.lead import velocity_window
 from robotsoccer.skills.passing import Chooser, PasserMind, ReceiverMind
 from robotsoccer.skills.setplay import BallSense, CarrierMind, KickPowers, SetPlayReceiverMind
 
@@ -106,6 +130,8 @@ SPOTS: dict[PlayerRef, tuple[float, float]] = {
     GOALIE: (50.5, 0.0),
 }
 """Where each player stands before its jitter [units] (module docstring; ours)."""
+ROBOT_SPOTS: dict[PlayerRef, tuple[float, float]] = {**SPOTS, WINGER: (26.0, 25.0)}
+"""The robots' spots: the winger stands level with the first receivers (module docstring)."""
 PLAYERS = tuple(SPOTS)
 STAGES = (FIRST_RECEIVERS, (WINGER,), LAST_RECEIVERS)
 """Who completes the play's first, second and third pass."""
@@ -121,6 +147,8 @@ DRIBBLE_PERIODS = 8.0
 """A dribble kick sends the ball this far in this many sensor periods (2 s on the server)."""
 KICK_MARGIN_UNITS = 1.0
 """Kick reach beyond touching where the coach kicks for the players (the server's margin)."""
+ARMED_PERIODS = 1
+"""A coach's kick stays armed this many sensor periods (to the player's next decision)."""
 TIME_LIMIT_ARRIVALS = 40.0
 RECALL_PERIODS = 2
 """A ball the sensor misses is taken to be where it was last seen for this many periods."""
@@ -139,6 +167,11 @@ class SetPlayDrill(LayeredDrill):
         net: The interception net for ``net``.
         max_time_s: The play's time limit [s]; None: 40 arrival times of layer 1's drill.
         transfer: Accept a tree or net trained on another field model or preset.
+        pass_speed_mps: The passes' speed [m/s]; None: the field's (:func:`kick_powers`).
+        defenders: The defenders' and goalie's interception: ``same`` as the attackers'
+            `interceptor` (the paper's set play, §7: "the defenders are all equipped with the
+            same ball-interception skill as the receivers"), or a behaviour of their own
+            (``straight``: the field's baseline defenders, whatever the attackers use).
 
     Raises:
         ValueError: An unknown chooser or interceptor, a missing model file, a limit <= 0.
@@ -155,6 +188,8 @@ class SetPlayDrill(LayeredDrill):
         net: str = "",
         max_time_s: float | None = None,
         transfer: bool | str = False,
+        pass_speed_mps: float | str | None = None,
+        defenders: Behaviour | str = "same",
     ) -> None:
         self.chooser = choice(Chooser, chooser, "chooser")
         if self.chooser in (Chooser.TREE, Chooser.BOOST) and not model:
@@ -169,6 +204,8 @@ class SetPlayDrill(LayeredDrill):
         self._max_time_s = max_time_s
         self.max_time_s = max_time_s or 60.0
         self.transfer = flag("transfer", transfer)
+        self.pass_speed_mps = None if pass_speed_mps is None else float(pass_speed_mps)
+        self.defenders = defenders if defenders == "same" else check_behaviour(defenders, net)
         self._judge: _SetPlayJudge | None = None
         self._checked: FieldFacts | None = None
 
@@ -189,7 +226,8 @@ class SetPlayDrill(LayeredDrill):
         x_lim = pitch.half_length_m - 2.0 * pitch.player_radius_m
         y_lim = pitch.half_width_m - 2.0 * pitch.player_radius_m
         spots: dict[PlayerRef, tuple[float, float]] = {}
-        for ref, (sx, sy) in SPOTS.items():
+        spots_units = SPOTS if coach_kicks(facts, plan) is None else ROBOT_SPOTS
+        for ref, (sx, sy) in spots_units.items():
             dx, dy = (float(rng.uniform(-JITTER_UNITS, JITTER_UNITS)) for _ in range(2))
             x = min(max((sx + dx) * unit, -x_lim), x_lim)
             y = min(max((sy + dy) * unit, -y_lim), y_lim)
@@ -209,7 +247,7 @@ class SetPlayDrill(LayeredDrill):
         rng = rngs["policy"]
         tree = load_evaluator(self.model)[0] if self.model else None
         sense = ball_sense(facts, plan)
-        powers = kick_powers(facts, plan)
+        powers = kick_powers(facts, plan, self.pass_speed_mps)
 
         def interceptor(kickable: float | None = None) -> Mind:
             return self.interceptor_for(facts, plan, rng, self.interceptor, kickable)
@@ -261,17 +299,29 @@ class SetPlayDrill(LayeredDrill):
                 goal_half_width_m=0.5 * facts.pitch.goal_width_m,
             )
 
+        # The winger collects a kick on that may pass it anywhere (§7: "since the winger is not
+        # covered, it can easily collect the ball"): its layer 1 starts at once on the cue,
+        # wherever the ball is, rather than waiting for it within the drill's trigger distance.
+        # On the Soccer Server (no camera) it keeps the drill's trigger, as before.
+        collect = interceptor()
+        if sense.track_window > 0:
+            reach_all = facts.pitch.length_m
+            anywhere = dataclasses.replace(
+                plan, trigger_distance_m=reach_all, max_distance_m=reach_all
+            )
+            collect = self.interceptor_for(facts, anywhere, rng, self.interceptor)
         minds: dict[PlayerRef, Mind] = {
             STARTER: carrier(FIRST_RECEIVERS, None),
-            WINGER: carrier(LAST_RECEIVERS, interceptor()),
+            WINGER: carrier(LAST_RECEIVERS, collect),
         }
         for slot, ref in enumerate(FIRST_RECEIVERS):
             minds[ref] = kicker(ref, slot, WINGER.number)
         for slot, ref in enumerate(LAST_RECEIVERS):
             minds[ref] = kicker(ref, slot, None)
         kickable = facts.kick.reach_m if facts.kick is not None else None
+        defence = self.interceptor if self.defenders == "same" else Behaviour(self.defenders)
         for ref in DEFENDERS:
-            minds[ref] = interceptor(kickable)
+            minds[ref] = self.interceptor_for(facts, plan, rng, defence, kickable)
         assert self._judge is not None
         self._judge.minds = dict(minds)
         if self._judge.kicks is not None:
@@ -320,7 +370,8 @@ def coach_kicks(facts: FieldFacts, plan: LaunchPlan) -> CoachKicks | None:
     """The coach's kicks for the attackers where they have no aimable kick; else None."""
     if facts.kick is not None and facts.kick.aimable:
         return None
-    return CoachKicks(plan.launch_speed_mps / plan.kick_power, facts.ball_max_speed_mps)
+    armed = ARMED_PERIODS * round(facts.sensor_period_s / facts.dt_s) - 1
+    return CoachKicks(plan.launch_speed_mps / plan.kick_power, facts.ball_max_speed_mps, armed)
 
 
 def ball_sense(facts: FieldFacts, plan: LaunchPlan) -> BallSense:
@@ -338,6 +389,10 @@ def ball_sense(facts: FieldFacts, plan: LaunchPlan) -> BallSense:
     settle = 1 if facts.sensor_latency_s is None else 1 + period_ticks
     margin = kick_reach(facts) - touch
     top = facts.player_top_speed_mps
+    # A camera (a sensor with latency that gives positions: the robots) lets a player fit the
+    # ball's velocity to its sightings, as layer 1's lead defender does; the 1996 server's see
+    # gives none to fit, and there the ball is dead-reckoned as before.
+    camera = facts.sensor_latency_s is not None and bool(facts.landmarks)
     return BallSense(
         facts.ball,
         per_power,
@@ -349,6 +404,8 @@ def ball_sense(facts: FieldFacts, plan: LaunchPlan) -> BallSense:
         approach_power=100.0 * min(1.0, stop_speed(facts, margin) / top),
         turn_settle_ticks=settle,
         recall_ticks=RECALL_PERIODS * period_ticks,
+        landmarks=facts.landmarks if camera else (),
+        track_window=velocity_window(facts.sensor_period_s) if camera else 0,
     )
 
 
@@ -362,11 +419,17 @@ def stop_speed(facts: FieldFacts, distance_m: float) -> float:
     return a * (math.sqrt(lag * lag + distance_m / a) - lag)
 
 
-def kick_powers(facts: FieldFacts, plan: LaunchPlan) -> KickPowers:
-    """Dribble, pass and shot powers: layer 1's launch for passes, full power for shots.
+def kick_powers(
+    facts: FieldFacts, plan: LaunchPlan, pass_speed_mps: float | None = None
+) -> KickPowers:
+    """Dribble, pass and shot powers: full power for shots; passes at `pass_speed_mps`.
+
+    Passes default to layer 1's launch where the players have an aimable kick (the Soccer
+    Server) and to :func:`pass_speed` where the coach kicks for them (the robots).
 
     Raises:
-        ValueError: No kick sends the ball :data:`DRIBBLE_UNITS` in the dribble's time.
+        ValueError: No kick sends the ball :data:`DRIBBLE_UNITS` in the dribble's time, or
+            the pass speed is beyond the top kick.
     """
     sense = ball_sense(facts, plan)
     time_s = DRIBBLE_PERIODS * facts.sensor_period_s
@@ -376,31 +439,73 @@ def kick_powers(facts: FieldFacts, plan: LaunchPlan) -> KickPowers:
     # A carrier must catch up with its ball at its last approach speed, from which it can stop
     # beside it (the robots' slow wheels): half that speed at most.
     speed = min(speed, 0.5 * stop_speed(facts, sense.reach_m - sense.touch_m))
+    passing = plan.kick_power
+    if pass_speed_mps is None and coach_kicks(facts, plan) is not None:
+        pass_speed_mps = pass_speed(facts)
+    if pass_speed_mps is not None:
+        top = sense.speed(sense.max_power)
+        if not 0.0 < pass_speed_mps <= top:
+            raise ValueError(
+                f"pass_speed_mps must be in (0, {top:.3g}] m/s, got {pass_speed_mps!r}"
+            )
+        passing = pass_speed_mps / sense.speed_per_power_mps
     return KickPowers(
-        dribble=speed / sense.speed_per_power_mps, passing=plan.kick_power, shot=sense.max_power
+        dribble=speed / sense.speed_per_power_mps, passing=passing, shot=sense.max_power
     )
+
+
+def pass_speed(facts: FieldFacts) -> float:
+    """A pass's speed [m/s] where the coach kicks for the players (the robots).
+
+    The robot's top speed (1.2 m/s on ``small_size_1997``): about what a 1997 robot without a
+    kicker gives the ball by driving through it, and the top of the range of ball speeds
+    layer 1's lead net was trained on there (0.6-1.2 m/s, :mod:`robotsoccer.drills.intercept`'s
+    robot drill), so the learned skill meets passes it knows. Layer 1's launch (2.05 m/s on
+    that table) is a shot's speed: a receiver cannot turn such a ball toward the winger with
+    one kick of at most that speed.
+    """
+    return facts.player_top_speed_mps
 
 
 class CoachKicks:
     """Kicks the coach carries out for players without an aimable kick (module docstring).
 
+    A kick stays armed for `armed_ticks` after the tick it was sent on (a robot's next decision
+    comes a camera period later and replaces it): it fires at the first tick its player is
+    within kick reach of the ball, as a kicker that fires when the ball reaches it would; one
+    whose ball never comes is dropped.
+
     Args:
         speed_per_power_mps: Ball speed a kick adds per unit of power [m/s].
         max_speed_mps: The ball's top speed [m/s].
+        armed_ticks: Ticks a kick waits for the ball after the one it was sent on.
     """
 
-    def __init__(self, speed_per_power_mps: float, max_speed_mps: float) -> None:
+    def __init__(
+        self, speed_per_power_mps: float, max_speed_mps: float, armed_ticks: int = 0
+    ) -> None:
         self.speed_per_power_mps = speed_per_power_mps
         self.max_speed_mps = max_speed_mps
-        self.pending: list[tuple[PlayerRef, Kick]] = []
+        self.armed_ticks = armed_ticks
+        self.pending: dict[PlayerRef, tuple[Kick, int]] = {}
+        self.fired = 0
+        """Kicks carried out so far."""
+
+    def arm(self, ref: PlayerRef, kick: Kick, tick: int) -> None:
+        """`ref` sends `kick` at `tick` (it replaces one of its own still armed)."""
+        self.pending[ref] = (kick, tick + self.armed_ticks)
 
     def apply(self, arena: Arena, reach_m: float) -> None:
-        """Carry out this tick's kicks of players within `reach_m` of the ball."""
-        for ref, kick in self.pending:
+        """Carry out the armed kicks of players within `reach_m` of the ball; drop stale ones."""
+        for ref, (kick, until) in list(self.pending.items()):
             x, y, _, vx, vy = arena.ball_state()
             p = arena.player_state(ref)
             if (p.x - x) ** 2 + (p.y - y) ** 2 > reach_m * reach_m:
-                continue  # a kick that misses the ball, as on the server
+                if arena.tick >= until:
+                    del self.pending[ref]  # a kick that misses the ball, as on the server
+                continue
+            del self.pending[ref]
+            self.fired += 1
             speed = max(0.0, min(100.0, kick.power)) * self.speed_per_power_mps
             direction = p.heading + kick.direction_rad
             vx += speed * math.cos(direction)
@@ -409,7 +514,6 @@ class CoachKicks:
             if top > self.max_speed_mps:
                 vx, vy = vx * self.max_speed_mps / top, vy * self.max_speed_mps / top
             arena.place_ball(x, y, vx, vy)
-        self.pending.clear()
 
 
 class _CoachKickRelay:
@@ -431,7 +535,7 @@ class _CoachKickRelay:
         kept: list[Action] = []
         for action in actions:
             if isinstance(action, Kick):
-                self.kicks.pending.append((self.ref, action))
+                self.kicks.arm(self.ref, action, percept.tick)
             else:
                 kept.append(action)
         return tuple(kept)

@@ -8,6 +8,14 @@
 * :mod:`robotsoccer.envs.passing` — the pass drill's decisions (layer 2's choice of receiver,
   layer 1's TA for the receiver and the defenders) as a PettingZoo parallel environment,
   :func:`~robotsoccer.envs.passing.pass_parallel_env`;
+* :mod:`robotsoccer.envs.match` — a whole match, every player (or some) an agent, in the
+  field's own actions or the team minds' macro-actions (:mod:`robotsoccer.envs.macros`), as a
+  PettingZoo parallel environment, :func:`~robotsoccer.envs.match.match_parallel_env`, on the
+  loop it shares with half-field offense (:mod:`robotsoccer.envs.play`, agent names in
+  :mod:`robotsoccer.envs.agents`);
+* :mod:`robotsoccer.envs.hfo` — half-field offense in HFO's shape (attackers against defenders
+  and a goalie), :func:`~robotsoccer.envs.hfo.half_field_offense_env`, and
+  :mod:`robotsoccer.envs.hfo_eval`, the attackers' goal rate for a ball-holder policy;
 * :mod:`robotsoccer.envs.control` — per-step control: ``robotsoccer/GoToBall-v0`` and
   ``robotsoccer/Score-v0`` on either field model (spaces in
   :mod:`robotsoccer.envs.control_spaces`; ``gymnasium.make_vec`` gives Gymnasium's sync or,
@@ -24,8 +32,10 @@ from __future__ import annotations
 from gymnasium.envs.registration import register, registry
 
 from robotsoccer.envs.control import GoToBallEnv, ScoreEnv
+from robotsoccer.envs.hfo import HalfFieldOffenseEnv, half_field_offense_env
 from robotsoccer.envs.intercept import InterceptEnv
 from robotsoccer.envs.intercept_vector import InterceptVectorEnv
+from robotsoccer.envs.match import MatchParallelEnv, match_parallel_env
 from robotsoccer.envs.passing import PassParallelEnv, pass_parallel_env
 
 INTERCEPT_ID = "robotsoccer/Intercept-v0"
@@ -53,9 +63,13 @@ __all__ = [
     "INTERCEPT_ID",
     "SCORE_ID",
     "GoToBallEnv",
+    "HalfFieldOffenseEnv",
     "InterceptEnv",
     "InterceptVectorEnv",
+    "MatchParallelEnv",
     "PassParallelEnv",
     "ScoreEnv",
+    "half_field_offense_env",
+    "match_parallel_env",
     "pass_parallel_env",
 ]

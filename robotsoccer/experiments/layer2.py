@@ -6,7 +6,7 @@ The pipeline for one field model, on top of layer 1's net from the same run:
    receiver: the plan's trials (paper: 5000). Each trial that passed becomes a row of 174
    attributes and the coach's label, saved as a :class:`~learning.pass_dataset.PassDataset`
    with its provenance.
-2. :func:`train_tree` — the C4.5-like tree (:func:`learning.pass_tree.fit_pass_tree`), saved as
+2. :func:`train_tree` — the C4.5-like tree (:func:`learning.pass_tree_grow.fit_pass_tree`), saved as
    JSON with its provenance: its node count and training error go beside the paper's 87 nodes
    and 26%, and its first levels are printed in Figure 14's style.
 3. The test conditions (:func:`layer2_conditions`), the plan's trials each (paper: 5000), on one
@@ -39,7 +39,9 @@ import numpy as np
 from learning.pass_boost import PassBoost, fit_pass_boost, save_pass_boost
 from learning.pass_dataset import PassDataset
 from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
-from learning.pass_tree import LABELS, PassTree, fit_pass_tree, save_pass_tree
+from learning.pass_tree import LABELS, PassTree
+from learning.pass_tree_file import save_pass_tree
+from learning.pass_tree_grow import fit_pass_tree
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
 from robotsoccer.experiments.report import (

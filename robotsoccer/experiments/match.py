@@ -62,11 +62,17 @@ def game_from(result: TrialResult, layered_left: bool) -> Game:
     return Game(layered_left, outcome, layered, baseline)
 
 
-def series_specs(base: TrialSpec) -> tuple[TrialSpec, TrialSpec]:
-    """The two specs of a series: layered on the left, then on the right (same seed)."""
+def series_specs(
+    base: TrialSpec, teams: tuple[str, str] = ("layered", "baseline")
+) -> tuple[TrialSpec, TrialSpec]:
+    """The two specs of a series: layered on the left, then on the right (same seed).
+
+    `teams` names the two kinds (the first plays the "layered" part of a :class:`Game`).
+    """
+    first, second = teams
     return (
-        base.with_options(left="layered", right="baseline"),
-        base.with_options(left="baseline", right="layered"),
+        base.with_options(left=first, right=second),
+        base.with_options(left=second, right=first),
     )
 
 
@@ -78,17 +84,19 @@ def run_series(
     workers: int | None,
     resume: bool = False,
     progress: bool = True,
+    teams: tuple[str, str] = ("layered", "baseline"),
 ) -> list[Game]:
     """Play `games` matches (half with the layered team on each side) into `out`.
 
     `base` is a ``match`` spec with the layered team's files (options ``net``, ``tree``); the
-    sides are set here. The first side gets the odd game when `games` is odd.
+    sides are set here. The first side gets the odd game when `games` is odd. `teams`: the two
+    kinds that meet (:func:`series_specs`).
     """
     if games < 1:
         raise ValueError(f"games must be >= 1, got {games}")
     counts = ((games + 1) // 2, games // 2)
     played: list[Game] = []
-    for side, spec, n in zip(SIDES, series_specs(base), counts, strict=True):
+    for side, spec, n in zip(SIDES, series_specs(base, teams), counts, strict=True):
         if n == 0:
             continue
         folder = out / side
@@ -136,17 +144,23 @@ def share_interval(successes: int, n: int) -> Interval:
     return Interval(successes / n if n else math.nan, low, high)
 
 
-def summary_lines(games: Sequence[Game], title: str) -> list[str]:
-    """The series' report in markdown: results, goal difference, per-team figures."""
+def summary_lines(
+    games: Sequence[Game], title: str, names: tuple[str, str] = ("layered", "baseline")
+) -> list[str]:
+    """The series' report in markdown: results, goal difference, per-team figures.
+
+    `names`: what the report calls the two teams (the games' "layered" and "baseline" parts).
+    """
     n = len(games)
-    lines = [f"# {title}", "", f"{n} games; the layered team's results, 95% intervals.", ""]
+    first, second = names
+    lines = [f"# {title}", "", f"{n} games; the {first} team's results, 95% intervals.", ""]
     lines += ["| result | games | share |", "|---|---|---|"]
     for key, name in (("W", "wins"), ("D", "draws"), ("L", "losses")):
         k = sum(g.result == key for g in games)
         lines.append(f"| {name} | {k} | {share_interval(k, n).text(1, percent=True)} % |")
     diff = mean_interval([g.goal_difference for g in games])
-    lines += ["", f"Mean goal difference (layered − baseline): {diff.text()} per game.", ""]
-    lines += ["| per game | layered | baseline |", "|---|---|---|"]
+    lines += ["", f"Mean goal difference ({first} − {second}): {diff.text()} per game.", ""]
+    lines += [f"| per game | {first} | {second} |", "|---|---|---|"]
     for figure in TEAM_FIGURES:
         percent = figure == "possession"
         cells = [
@@ -158,7 +172,7 @@ def summary_lines(games: Sequence[Game], title: str) -> list[str]:
         unit = " (%)" if percent else ""
         lines.append(f"| {figure}{unit} | {cells[0]} | {cells[1]} |")
     by_side = {side: [g for g in games if g.layered_left == (side == SIDES[0])] for side in SIDES}
-    lines += ["", "| layered team on | games | W-D-L | goal difference |", "|---|---|---|---|"]
+    lines += ["", f"| {first} team on | games | W-D-L | goal difference |", "|---|---|---|---|"]
     for side, subset in by_side.items():
         if not subset:
             continue
@@ -168,9 +182,15 @@ def summary_lines(games: Sequence[Game], title: str) -> list[str]:
     return lines
 
 
-def write_report(games: Sequence[Game], out: Path, title: str, log: Callable[[str], None]) -> Path:
+def write_report(
+    games: Sequence[Game],
+    out: Path,
+    title: str,
+    log: Callable[[str], None],
+    names: tuple[str, str] = ("layered", "baseline"),
+) -> Path:
     """Write ``<out>/report.md`` and echo it through `log`."""
-    lines = summary_lines(games, title)
+    lines = summary_lines(games, title, names)
     path = out / "report.md"
     path.write_text("\n".join(lines) + "\n")
     for line in lines:

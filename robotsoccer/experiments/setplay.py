@@ -7,11 +7,15 @@ counts how often, on each field model it is given, with two sets of minds:
 
 * ``layered`` — layer 2's tree chooses the passes (``chooser=tree`` with that field's
   ``pass_tree.json``) and everyone intercepts with layer 1's net (``interceptor=net`` with
-  that field's ``net_750.npz``), the defenders included;
+  that field's ``net_750.npz``), the defenders included: the paper's set-up ("the defenders
+  are all equipped with the same ball-interception skill as the receivers", §7);
+* ``layered_fixed`` — the same layered attackers against the baseline's defenders (straight
+  interception): only the attackers' layers differ from the baseline, so the paired
+  difference is what the learned layers do for the team that uses them;
 * ``baseline`` — the closest receiver (the paper's heuristic) and straight interception.
 
-Both conditions of a field share the experiment seed, so play i places every player
-identically in both (paired). Each condition's plays go through the process pool
+All conditions of a field share the experiment seed, so play i places every player
+identically in each (paired). Each condition's plays go through the process pool
 (:func:`robotsoccer.runs.pool.run_trials`), streamed to ``results/<model>/<condition>.csv``;
 rerunning the study on its folder resumes them (finished plays are kept, and a table another
 run made is refused). The folder also gets ``config.json`` (what ran; a folder holding another
@@ -19,7 +23,8 @@ study's configuration is refused), a few rerun recordings under ``recordings/<mo
 ``report.md``: per field and condition the number of plays, the shares of plays completing at
 least 1, 2 and 3 of the play's passes and exactly 1, 2 or 3, shots, goals and the labels of
 :class:`robotsoccer.drills.setplay.SetPlayDrill`, each with its 95% Wilson interval, and the
-layered − baseline differences, paired play by play. Every number in it comes from the run.
+differences of each other condition from the baseline, paired play by play. Every number in it
+comes from the run.
 
 The study names no field model: the caller passes the (model, preset) pairs.
 """
@@ -106,6 +111,8 @@ def play_conditions(field: Field, models: Path | None, seed: int) -> list[PlayCo
             chooser="tree", model=str(tree.resolve()), interceptor="net", net=str(net.resolve())
         )
         conditions.append(PlayCondition("layered", layered))
+        fixed = layered.with_options(defenders="straight")
+        conditions.append(PlayCondition("layered_fixed", fixed))
     baseline = base.with_options(chooser="closest", interceptor="straight")
     conditions.append(PlayCondition("baseline", baseline))
     return conditions
@@ -272,17 +279,16 @@ def field_lines(section: FieldResults) -> list[str]:
         f"{name} {len(section.plays[name])} plays in {section.wall_s[name]:.0f} s" for name in names
     )
     lines += [f"Plays per condition and wall time in this run: {timing}.", ""]
-    paired = "layered" in section.plays and "baseline" in section.plays
+    compared = [n for n in names if n != "baseline"] if "baseline" in section.plays else []
     head = ["measure", *(f"{name} (n={len(section.plays[name])})" for name in names)]
-    if paired:
-        head.append("layered − baseline, paired [points]")
+    head += [f"{name} − baseline, paired [points]" for name in compared]
     lines += ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for title, predicate in measures():
         cells = [share_cell(section.plays[name], predicate) for name in names]
-        if paired:
-            cells.append(
-                paired_cell(section.plays["layered"], section.plays["baseline"], predicate)
-            )
+        cells += [
+            paired_cell(section.plays[name], section.plays["baseline"], predicate)
+            for name in compared
+        ]
         lines.append(f"| {title} | " + " | ".join(cells) + " |")
     lines.append("")
     if section.recordings:
@@ -300,9 +306,11 @@ def setplay_markdown(
         "",
         "Cells: plays counted — percent of the plays [95% Wilson interval]. Passes are the "
         "play's own, in order (`robotsoccer.drills.setplay`): to a first receiver, to the "
-        "winger, to a last receiver. The paired column is the mean of the play-by-play "
-        "difference with a normal 95% interval (same seed: play i is placed identically in "
-        "both conditions).",
+        "winger, to a last receiver. A paired column is the mean of the play-by-play "
+        "difference from the baseline with a normal 95% interval (same seed: play i is placed "
+        "identically in every condition). `layered`: layered attackers and defenders (the "
+        "paper's set-up); `layered_fixed`: layered attackers against the baseline's straight "
+        "defenders.",
         "",
         f"Seed {seed}; {workers or 'all'} worker(s); {wall_s:.0f} s of wall time in this run "
         "(resumed plays cost none).",

@@ -11,7 +11,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from field_models.protocol import Pitch, PlayerRef
-from robotsoccer.replay.rcg import read_rcg
+from robotsoccer.replay.rcg_read import read_rcg
 
 SERVER_PITCH = Pitch(
     length_m=105.0,

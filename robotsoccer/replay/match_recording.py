@@ -2,10 +2,12 @@
 
 A :class:`MatchRecorder` writes one ``.rrd`` file per match from :class:`GameFrame` records
 (the truth, the play mode and the score of every tick), the selected player's percepts and
-the arena's events. It is a :class:`~robotsoccer.replay.recording.TrialRecorder` with more on
-the field: it reuses the trial recorder's static pitch, team colours, heading arrows (and the
-rotated outlines of square robots), perceived-ball rings, buffered ``send_columns`` and the
-display flip (y up), and adds or changes:
+the arena's events. Like a trial's recording
+(:class:`~robotsoccer.replay.recording.TrialRecorder`) it is a thin layer on the drawing toolkit:
+a :class:`~robotsoccer.replay.field_recorder.FieldRecorder` (static pitch, team colours, heading
+arrows and the rotated outlines of square robots, perceived-ball rings, buffered
+``send_columns``, the display flip, y up) with the match's own pieces from
+:mod:`robotsoccer.replay.match_drawing`. It adds or changes:
 
 - players labelled with their numbers only (with 22 players ``left10`` labels clutter);
   round players get no outline (their arrow shows the heading; 22 outlines a tick were
@@ -52,68 +54,47 @@ Rerun is imported inside functions only, so importing this module does not load 
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from field_models.arena import ArenaEvent, PlayerShape
 from field_models.protocol import LEFT, RIGHT, BodyState, Percept, Pitch, PlayerRef
+from robotsoccer.replay.field_recorder import FieldRecorder
 from robotsoccer.replay.frames import GameFrame
-from robotsoccer.replay.recording import (
-    ROUTINE_DECISIONS,
-    SIM_TIME,
-    DrawSizes,
-    TrialRecorder,
-    draw_sizes,
-    egocentric_to_field,
-    entity_name,
-    team_colour,
-    text_log_view,
-    text_strokes,
-    text_width,
-    time_indexes,
+from robotsoccer.replay.geometry import DrawSizes, draw_sizes, egocentric_to_field, view_bounds
+from robotsoccer.replay.match_drawing import (
+    HALO,
+    SELECTED_COLOUR,
+    STATUS_COLOUR,
+    BallTrail,
+    Scoreboard,
+    ScoreRows,
+    SightRows,
+    log_match_styles,
+    send_halo,
 )
+from robotsoccer.replay.palette import ROUTINE_DECISIONS, entity_name
+from robotsoccer.replay.rows import StrokeRows
+from robotsoccer.replay.toolkit import field_view, side_by_side, text_log_view, time_indexes
 
 if TYPE_CHECKING:
-    import rerun as rr
     import rerun.blueprint as rrb
 
 TRAIL_SECONDS = 1.5
 """Default length of the ball's trail [s]."""
 MIN_BALL_FRACTION = 0.009
 """The ball is drawn with a radius of at least this fraction of the pitch length."""
-MAX_TRAIL_POINTS = 24
-"""At most this many past positions make up the trail (thinned on fine ticks)."""
 SHOWN_CHANNELS = frozenset({"referee", "decision"})
 """Arena event channels that reach the event log; the others are dropped."""
 
-_SELECTED_COLOUR = (255, 70, 220)  # magenta: far from both team colours, the ball and the grass
-_BALL_COLOUR = (255, 120, 0)  # as recording.py draws the ball
-_PITCH_COLOUR = (24, 64, 36)  # and the grass
-_WHITE = (235, 235, 235)
-_STATUS_COLOUR = (200, 200, 200)
-_TRAIL_FADE = 0.85  # the oldest segment is this far blended into the grass, not invisible
-_TRAIL_WIDE_PT, _TRAIL_THIN_PT = 3.0, 1.0  # newest and oldest segment half-widths [ui points]
-# A trail segment longer than this fraction of the pitch length is a restart (the ball put
-# back on a spot), not a kick; the trail is cut there rather than drawn across the field.
-_TRAIL_JUMP_FRACTION = 0.15
-# Draw orders (the trial recorder's: markings 10, players 30-32, ball 40, percepts 50).
-_HALO = 1.6  # the halo's radius in player sizes: clear of a square robot's corners (1.41)
-_ORDER_HALO = 29.0
-_ORDER_SIGHT = 29.5  # over the halo, under the players: it must not hide a player's arrow
-_ORDER_TRAIL = 35.0
-_ORDER_BOARD = 60.0
-# The scoreboard, above the top side line, in fractions of the pitch length.
-_BOARD_BASE, _BOARD_HEIGHT, _BOARD_WIDTH = 0.05, 0.045, 0.92
-_STATUS_BASE, _STATUS_HEIGHT = 0.012, 0.022
 _VIEW_TOP = 0.11
 
 
-class MatchRecorder(TrialRecorder):
+class MatchRecorder(FieldRecorder):
     """Writes one match to a rerun ``.rrd`` file, headless, with a layout for watching it.
 
     Use it as a context manager, or call :meth:`close` at the end (the file's footer is only
@@ -180,26 +161,17 @@ class MatchRecorder(TrialRecorder):
         self.team_names = (teams[0], teams[1])
         self.selected = selected
         self.trail_ticks = trail_ticks
-        # Thin the trail to at most MAX_TRAIL_POINTS past positions, on a fixed grid of ticks
-        # so a point does not slide along the path from one frame to the next.
-        every = max(1, every_ticks)
-        self._trail_stride = every * max(1, math.ceil(trail_ticks / (every * MAX_TRAIL_POINTS)))
-        self._trail_hist_ticks = np.zeros(0, dtype=np.int64)
-        self._trail_hist_xy = np.zeros((0, 2))
+        self._trail = BallTrail(trail_ticks, every_ticks, pitch.length_m)
         self._selected_index = -1 if selected is None else players.index(selected)
         # The line of sight, one row per percept of the selected player (as its ball ring):
         # from where it stood to where it saw the ball; an empty row clears it.
-        self._sight_ticks: list[int] = []
-        self._sight_xy: list[float] = []  # 4 floats (from, to) per row that has a line
-        self._sight_lengths: list[int] = []
-        self._sight_expires: int | None = None
+        self._sight = SightRows()
         self._score: tuple[int, int] | None = None
         self._play_mode: str | None = None
         self._clock_s = -1
-        self._score_ticks: list[int] = []
-        self._score_values: list[float] = []  # left, right per row
-        self._board = _StrokeRows()
-        self._status = _StrokeRows()
+        self._scores = ScoreRows()
+        self._board = StrokeRows()
+        self._status = StrokeRows()
         super().__init__(
             path,
             pitch=pitch,
@@ -212,12 +184,7 @@ class MatchRecorder(TrialRecorder):
             sensor_period_s=sensor_period_s,
             title=title,
         )
-        length = pitch.length_m
-        self._max_trail_step_m = _TRAIL_JUMP_FRACTION * length
-        # One height for the whole match: wide enough for two-digit scores, so the letters do
-        # not change size when a team reaches ten.
-        units = text_width(self._board_text(88, 88), 1.0)
-        self._board_height_m = min(_BOARD_HEIGHT * length, _BOARD_WIDTH * length / units)
+        self._scoreboard = Scoreboard(pitch, self.team_names, self._teams)
 
     # --- layout -------------------------------------------------------------------------------
 
@@ -237,13 +204,11 @@ class MatchRecorder(TrialRecorder):
 
     def _percept_colour(self, observer: PlayerRef) -> tuple[int, int, int]:
         """The selected player's percepts are magenta, like its halo and line of sight."""
-        return _SELECTED_COLOUR
+        return SELECTED_COLOUR
 
     def _view_bounds(self) -> tuple[list[float], list[float]]:
         """The field view's x and y ranges (view frame: y down), with the scoreboard's room."""
-        x_range, (_, bottom) = super()._view_bounds()
-        top = self.pitch.half_width_m + _VIEW_TOP * self.pitch.length_m
-        return x_range, [-top, bottom]
+        return view_bounds(self.pitch, _VIEW_TOP)
 
     def _blueprint(self) -> rrb.Blueprint:
         """The field on the left; the legend, the goals over time and the events on the right.
@@ -256,18 +221,11 @@ class MatchRecorder(TrialRecorder):
         """
         import rerun.blueprint as rrb
 
-        x_range, y_range = self._view_bounds()
         contents = ["+ /field/**"]
         if self.selected is not None:
             contents.append(f"- /field/perceived/{entity_name(str(self.selected))}/players")
         left, right = self.team_names
-        field_view = rrb.Spatial2DView(
-            name=f"{left} (blue) vs {right} (yellow)",
-            origin="/",
-            contents=contents,
-            background=rrb.Background(kind="SolidColor", color=_PITCH_COLOUR),
-            visual_bounds=rrb.VisualBounds2D(x_range=x_range, y_range=y_range),
-        )
+        field = field_view(f"{left} (blue) vs {right} (yellow)", contents, self._view_bounds())
         legend = rrb.TextDocumentView(name="legend", origin="/legend")
         # The whole match, always: by default the view follows the last minute or so, and a
         # goal scored earlier would not show as a step.
@@ -284,61 +242,14 @@ class MatchRecorder(TrialRecorder):
         events = text_log_view(
             "events", "/events", entity_column=False, hidden=(ROUTINE_DECISIONS,)
         )
-        return rrb.Blueprint(
-            rrb.Horizontal(
-                field_view,
-                rrb.Vertical(legend, goals, events, row_shares=[3, 2, 4]),
-                column_shares=[7, 3],
-            ),
-            rrb.BlueprintPanel(state="collapsed"),
-            rrb.SelectionPanel(state="collapsed"),
-            rrb.TimePanel(timeline=SIM_TIME, state="collapsed"),
+        return side_by_side(
+            field, (legend, goals, events), row_shares=[3, 2, 4], column_shares=[7, 3]
         )
 
     def _log_static(self) -> None:
         """The trial recorder's statics, then the trail, halo, sight and score styles."""
-        import rerun as rr
-
         super()._log_static()
-        rec = self._rec
-        rec.log(
-            "field/ball/trail", rr.LineStrips2D.from_fields(draw_order=_ORDER_TRAIL), static=True
-        )
-        rec.log(
-            "field/selected",
-            rr.Ellipses2D.from_fields(
-                line_radii=rr.Radius.ui_points(2.5),
-                colors=_SELECTED_COLOUR,
-                show_labels=False,
-                draw_order=_ORDER_HALO,
-            ),
-            static=True,
-        )
-        rec.log(
-            "field/selected/sight",
-            rr.LineStrips2D.from_fields(
-                radii=rr.Radius.ui_points(1.0), colors=_SELECTED_COLOUR, draw_order=_ORDER_SIGHT
-            ),
-            static=True,
-        )
-        rec.log(
-            "field/scoreboard",
-            rr.LineStrips2D.from_fields(radii=rr.Radius.ui_points(2.5), draw_order=_ORDER_BOARD),
-            static=True,
-        )
-        rec.log(
-            "field/scoreboard/status",
-            rr.LineStrips2D.from_fields(
-                radii=rr.Radius.ui_points(1.5), colors=_STATUS_COLOUR, draw_order=_ORDER_BOARD
-            ),
-            static=True,
-        )
-        for side, name in zip((LEFT, RIGHT), self.team_names, strict=True):
-            rec.log(
-                f"score/{side}",
-                rr.SeriesLines(colors=team_colour(side, self._teams), names=name, widths=2.0),
-                static=True,
-            )
+        log_match_styles(self._rec, self.team_names, self._teams)
 
     def legend(self, outcome: str = "") -> str:
         """The legend beside the field (markdown): the teams and the key to the drawing."""
@@ -379,8 +290,7 @@ class MatchRecorder(TrialRecorder):
         Raises:
             RuntimeError: If the recorder is closed.
         """
-        if self._closed:
-            raise RuntimeError("MatchRecorder is closed")
+        self._check_open()
         tick = frame.truth.tick
         score = frame.score
         changed = score != self._score
@@ -390,10 +300,10 @@ class MatchRecorder(TrialRecorder):
         if frame.play_mode != self._play_mode or clock_s != self._clock_s:
             self._play_mode = frame.play_mode
             self._clock_s = clock_s
-            self._status.add(tick, self._status_strokes(frame.play_mode, clock_s), _STATUS_COLOUR)
+            strokes = self._scoreboard.status_strokes(frame.play_mode, clock_s)
+            self._status.add(tick, strokes, STATUS_COLOUR)
         if changed or tick % self.every_ticks == 0:
-            self._score_ticks.append(tick)
-            self._score_values.extend(score)
+            self._scores.add(tick, score)
         self.log_truth(frame.truth)
 
     def log_percept(self, percept: Percept, observer: BodyState) -> None:
@@ -409,32 +319,24 @@ class MatchRecorder(TrialRecorder):
         # Kept at the percept's tick with the ring's lifetime, not per frame from the latest
         # percept: a runner logs a tick's frame before its percepts, and the line would blink.
         tick = percept.tick
-        if self._sight_expires is not None and tick > self._sight_expires:
-            self._add_sight(self._sight_expires, None)  # went stale before this one came
+        sight = self._sight
+        if sight.expires is not None and tick > sight.expires:
+            sight.add(sight.expires, None)  # went stale before this one came
         life = self._percept_life
-        self._sight_expires = None if life is None else tick + life
+        sight.expires = None if life is None else tick + life
         ball = percept.ball
         seen = (
             None if ball is None else egocentric_to_field(observer, ball.distance_m, ball.angle_rad)
         )
-        self._add_sight(tick, None if seen is None else (observer.x, observer.y, *seen))
-
-    def _add_sight(self, tick: int, line: tuple[float, float, float, float] | None) -> None:
-        """One row of the line of sight: (from x, y, to x, y), or None to clear it."""
-        self._sight_ticks.append(tick)
-        if line is None:
-            self._sight_lengths.append(0)
-        else:
-            self._sight_xy.extend(line)
-            self._sight_lengths.append(1)
+        sight.add(tick, None if seen is None else (observer.x, observer.y, *seen))
 
     def _expire_percepts(self) -> None:
         """Clear stale percepts (the trial recorder's) and a stale line of sight, at closing."""
         super()._expire_percepts()
-        expires = self._sight_expires
+        expires = self._sight.expires
         if expires is not None and expires <= self._last_tick:
-            self._add_sight(expires, None)
-            self._sight_expires = None
+            self._sight.add(expires, None)
+            self._sight.expires = None
 
     def log_events(self, events: Sequence[ArenaEvent]) -> None:
         """Buffer the referee's and the minds' events; commands, sees, hears and links are dropped.
@@ -442,8 +344,7 @@ class MatchRecorder(TrialRecorder):
         Raises:
             RuntimeError: If the recorder is closed.
         """
-        if self._closed:
-            raise RuntimeError("MatchRecorder is closed")
+        self._check_open()
         kept = [event for event in events if event.channel in SHOWN_CHANNELS]
         if kept:
             super().log_events(kept)
@@ -453,7 +354,7 @@ class MatchRecorder(TrialRecorder):
         left, right = self.team_names
         previous = self._score
         self._score = score
-        self._board.extend(tick, self._board_strokes(score))
+        self._board.extend(tick, self._scoreboard.strokes(score))
         if previous is None:
             return
         scorers = [
@@ -465,228 +366,25 @@ class MatchRecorder(TrialRecorder):
         line = f"[goal] {who}: {left} {score[0]} : {score[1]} {right}"
         self._add_text("events/score", tick, line, "INFO")
 
-    # --- the scoreboard -----------------------------------------------------------------------
-
-    def _board_text(self, left_goals: int, right_goals: int) -> str:
-        """The score line, ``layered 2 : 1 baseline``."""
-        left, right = self.team_names
-        return f"{left} {left_goals} : {right_goals} {right}"
-
-    def _board_strokes(self, score: tuple[int, int]) -> list[tuple[np.ndarray, tuple[int, ...]]]:
-        """The score line's strokes, each with its colour: the teams' parts in their colours.
-
-        Each part is drawn from the whole line with every other character blanked (a blank
-        leaves a gap of the same width), so the parts land where they would in the whole line.
-        """
-        left = self.team_names[0]
-        text = self._board_text(*score)
-        colon = text.index(":", len(left) + 1)
-        parts = (
-            (0, colon - 1, team_colour(LEFT, self._teams)),
-            (colon, colon + 1, _WHITE),
-            (colon + 2, len(text), team_colour(RIGHT, self._teams)),
-        )
-        base = self.pitch.half_width_m + _BOARD_BASE * self.pitch.length_m
-        out: list[tuple[np.ndarray, tuple[int, ...]]] = []
-        for start, stop, colour in parts:
-            masked = " " * start + text[start:stop] + " " * (len(text) - stop)
-            for stroke in text_strokes(
-                masked, height_m=self._board_height_m, centre_x_m=0.0, base_y_m=base
-            ):
-                out.append((stroke, colour))
-        return out
-
-    def _status_strokes(self, play_mode: str, clock_s: int) -> list[np.ndarray]:
-        """Play mode and clock beneath the score: ``PLAY ON  12:34`` (``_`` reads as a gap)."""
-        minutes, seconds = divmod(clock_s, 60)
-        length = self.pitch.length_m
-        return text_strokes(
-            f"{play_mode}  {minutes:02d}:{seconds:02d}",
-            height_m=_STATUS_HEIGHT * length,
-            centre_x_m=0.0,
-            base_y_m=self.pitch.half_width_m + _STATUS_BASE * length,
-        )
-
     # --- flushing -----------------------------------------------------------------------------
 
     def flush(self) -> None:
         """Send everything buffered: the match's own rows, then the trial recorder's."""
         self._flush_match_truth()
-        self._flush_sight()
-        self._flush_score()
+        self._sight.send(self._rec, "field/selected/sight", self.dt_s)
+        self._scores.send(self._rec, self.dt_s)
         self._board.send(self._rec, "field/scoreboard", self.dt_s)
         self._status.send(self._rec, "field/scoreboard/status", self.dt_s)
         super().flush()
 
     def _flush_match_truth(self) -> None:
         """The trail and the halo of the buffered truth rows (before the base sends them)."""
-        if not self._ticks:
+        truth = self._truth
+        if not truth.ticks:
             return
-        import rerun as rr
-
-        rec = self._rec
-        ticks = np.asarray(self._ticks, dtype=np.int64)
-        n_rows = len(ticks)
-        indexes = time_indexes(self._ticks, self.dt_s)
-        ball = np.asarray(self._ball_xy, dtype=np.float64).reshape(n_rows, 2)
-        strips, colours, radii, lengths = self._trail_rows(ticks, ball)
-        rec.send_columns(
-            "field/ball/trail",
-            indexes=indexes,
-            columns=rr.LineStrips2D.columns(strips=strips, colors=colours, radii=radii).partition(
-                lengths
-            ),
-        )
+        indexes = time_indexes(truth.ticks, self.dt_s)
+        ticks = np.asarray(truth.ticks, dtype=np.int64)
+        self._trail.send(self._rec, indexes, ticks, truth.ball())
         if self._selected_index >= 0:
-            poses = np.asarray(self._poses, dtype=np.float64).reshape(n_rows, len(self.players), 3)
-            me = poses[:, self._selected_index, :2]
-            here = ~np.isnan(me[:, 0])
-            # A circle, not a disc: a filled disc swamps a robot drawn at its true size. The
-            # sizes go in every row (Ellipses2D's required component, as for percept rings).
-            centres = me[here]
-            rec.send_columns(
-                "field/selected",
-                indexes=indexes,
-                columns=rr.Ellipses2D.columns(
-                    centers=centres, half_sizes=np.full_like(centres, _HALO * self.sizes.player_m)
-                ).partition(here.astype(int)),
-            )
-
-    def _flush_sight(self) -> None:
-        """Send the buffered rows of the selected player's line of sight."""
-        if not self._sight_ticks:
-            return
-        import rerun as rr
-
-        self._rec.send_columns(
-            "field/selected/sight",
-            indexes=time_indexes(self._sight_ticks, self.dt_s),
-            columns=rr.LineStrips2D.columns(
-                strips=np.asarray(self._sight_xy, dtype=np.float32).reshape(-1, 2, 2)
-            ).partition(self._sight_lengths),
-        )
-        self._sight_ticks, self._sight_xy, self._sight_lengths = [], [], []
-
-    def _trail_rows(
-        self, ticks: np.ndarray, ball: np.ndarray
-    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[int]]:
-        """The trail of each buffered row: its segments (S, 2, 2), colours, radii, counts.
-
-        A row's trail joins the ball's positions at the recorded ticks on the trail's grid
-        within the last ``trail_ticks`` to the ball's position now; it is cut at the latest
-        jump (a restart). Older segments are blended further into the grass and drawn thinner.
-        """
-        hist = len(self._trail_hist_ticks)
-        all_ticks = np.concatenate([self._trail_hist_ticks, ticks])
-        all_xy = np.concatenate([self._trail_hist_xy, ball])
-        on_grid = all_ticks % self._trail_stride == 0
-        starts = np.searchsorted(all_ticks, ticks - self.trail_ticks, side="right")
-        step = np.zeros(len(all_ticks))
-        step[1:] = np.hypot(*(all_xy[1:] - all_xy[:-1]).T)  # from the previous recorded tick
-        jumps = np.flatnonzero(step > self._max_trail_step_m)
-        seg_a: list[np.ndarray] = []
-        seg_b: list[np.ndarray] = []
-        ages: list[np.ndarray] = []
-        lengths: list[int] = []
-        for row, start in enumerate(starts.tolist()):
-            now = hist + row
-            # Cut at the latest jump into this window: the trail starts where the ball landed.
-            cut = np.searchsorted(jumps, now, side="right")
-            if cut and jumps[cut - 1] > start:
-                start = int(jumps[cut - 1])
-            idx = np.flatnonzero(on_grid[start:now]) + start
-            idx = np.append(idx, now)
-            pts = all_xy[idx]
-            seg_a.append(pts[:-1])
-            seg_b.append(pts[1:])
-            ages.append((all_ticks[now] - all_ticks[idx[:-1]]) / self.trail_ticks)
-            lengths.append(len(idx) - 1)
-        strips = np.stack([np.concatenate(seg_a), np.concatenate(seg_b)], axis=1)
-        age = np.clip(np.concatenate(ages), 0.0, 1.0)[:, None]
-        ball_rgb = np.asarray(_BALL_COLOUR, dtype=np.float64)
-        grass = np.asarray(_PITCH_COLOUR, dtype=np.float64)
-        colours = np.rint((1.0 - _TRAIL_FADE * age) * ball_rgb + _TRAIL_FADE * age * grass)
-        # Negative radii are ui points (rerun's Radius.ui_points): the trail reads at any zoom.
-        radii = -(_TRAIL_WIDE_PT - (_TRAIL_WIDE_PT - _TRAIL_THIN_PT) * age[:, 0])
-        keep = all_ticks > ticks[-1] - self.trail_ticks
-        self._trail_hist_ticks = all_ticks[keep]
-        self._trail_hist_xy = all_xy[keep]
-        return strips, colours.astype(np.uint8), radii.astype(np.float32), lengths
-
-    def _flush_score(self) -> None:
-        """Send the buffered score rows as one scalar series per team."""
-        if not self._score_ticks:
-            return
-        import rerun as rr
-
-        indexes = time_indexes(self._score_ticks, self.dt_s)
-        values = np.asarray(self._score_values, dtype=np.float64).reshape(-1, 2)
-        for column, side in enumerate((LEFT, RIGHT)):
-            self._rec.send_columns(
-                f"score/{side}",
-                indexes=indexes,
-                columns=rr.Scalars.columns(scalars=values[:, column]),
-            )
-        self._score_ticks = []
-        self._score_values = []
-
-    def __enter__(self) -> MatchRecorder:
-        return self
-
-
-class _StrokeRows:
-    """Rows of stroke text (a scoreboard line) waiting for ``send_columns``: one per change."""
-
-    __slots__ = ("colours", "lengths", "strips", "ticks")
-
-    def __init__(self) -> None:
-        self.ticks: list[int] = []
-        self.strips: list[np.ndarray] = []
-        self.colours: list[tuple[int, ...]] = []
-        self.lengths: list[int] = []
-
-    def add(self, tick: int, strokes: list[np.ndarray], colour: tuple[int, ...]) -> None:
-        """One row of `strokes`, all in `colour`."""
-        self.extend(tick, [(stroke, colour) for stroke in strokes])
-
-    def extend(self, tick: int, strokes: list[tuple[np.ndarray, tuple[int, ...]]]) -> None:
-        """One row of strokes, each with its own colour."""
-        self.ticks.append(tick)
-        self.strips.extend(stroke for stroke, _ in strokes)
-        self.colours.extend(colour for _, colour in strokes)
-        self.lengths.append(len(strokes))
-
-    def send(self, rec: rr.RecordingStream, entity: str, dt_s: float) -> None:
-        """Send the rows to `entity` of the recording stream `rec`, and empty the buffer."""
-        if not self.ticks:
-            return
-        import rerun as rr
-
-        rec.send_columns(
-            entity,
-            indexes=time_indexes(self.ticks, dt_s),
-            columns=rr.LineStrips2D.columns(
-                strips=_strips_array(self.strips), colors=np.asarray(self.colours, dtype=np.uint8)
-            ).partition(self.lengths),
-        )
-        self.ticks, self.strips, self.colours, self.lengths = [], [], [], []
-
-
-def _strips_array(strips: Sequence[np.ndarray]) -> Any:
-    """Line strips of different lengths as one Arrow array of rerun's ``LineStrip2D`` type.
-
-    rerun 0.41 converts a list of strips one by one (~40 µs each); a match's clock alone has
-    thousands of strokes. Built here from one concatenated array, it is the same Arrow array,
-    several times faster.
-    """
-    import pyarrow as pa
-    import rerun as rr
-
-    arrow_type = rr.components.LineStrip2DBatch([]).as_arrow_array().type
-    points = (
-        np.concatenate(strips).astype(np.float32).ravel() if strips else np.zeros(0, np.float32)
-    )
-    offsets = np.zeros(len(strips) + 1, dtype=np.int32)
-    np.cumsum([len(strip) for strip in strips], out=offsets[1:])
-    inner = pa.FixedSizeListArray.from_arrays(pa.array(points), 2)
-    return pa.ListArray.from_arrays(pa.array(offsets), inner).cast(arrow_type)
+            me = truth.pose_array()[:, self._selected_index, :2]
+            send_halo(self._rec, indexes, me, HALO * self.sizes.player_m)

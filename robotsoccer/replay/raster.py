@@ -1,9 +1,10 @@
 """Frames of the field as RGB arrays, drawn headless with numpy (``render_mode="rgb_array"``).
 
-The same picture a recording shows (:mod:`robotsoccer.replay.recording`): the pitch's
+The same picture a recording shows (:mod:`robotsoccer.replay.recording`, drawn with the toolkit's
+:mod:`~robotsoccer.replay.geometry` and :mod:`~robotsoccer.replay.palette`): the pitch's
 geometry from its own functions (boundary, centre line and circle, penalty areas, goals and
 posts), players as filled bodies in their team's colour with a heading tick, the ball as a
-disc, and the same minimum drawing sizes (:func:`~robotsoccer.replay.recording.draw_sizes`) so
+disc, and the same minimum drawing sizes (:func:`~robotsoccer.replay.geometry.draw_sizes`) so
 the Soccer Server's ball shows on its large pitch. No display and no window library: the
 static pitch is drawn once into an array, and each frame copies it and fills a few masks.
 
@@ -23,17 +24,14 @@ import numpy.typing as npt
 
 from field_models.arena import PlayerShape
 from field_models.protocol import Pitch, PlayerRef, Truth
-from robotsoccer.replay.recording import (
-    _BALL_COLOUR,
-    _LINE_COLOUR,
-    _PITCH_COLOUR,
+from robotsoccer.replay.geometry import (
     draw_sizes,
     goal_box,
     goal_posts,
     pitch_lines,
     pitch_markings,
-    team_colour,
 )
+from robotsoccer.replay.palette import BALL_COLOUR, LINE_COLOUR, PITCH_COLOUR, team_colour
 
 Frame = npt.NDArray[np.uint8]
 """An RGB image, shape (height, width, 3)."""
@@ -107,7 +105,7 @@ class FieldPainter:
             ex, ey = cx + tip * math.cos(state.heading), cy - tip * math.sin(state.heading)
             _line(image, cx, cy, ex, ey, _HEADING, 1.0)
         bx, by = self.pixel(truth.ball.x, truth.ball.y)
-        _disc(image, bx, by, self._ball_px, _BALL_COLOUR)
+        _disc(image, bx, by, self._ball_px, BALL_COLOUR)
         return image
 
     # ------------------------------------------------------------------ internals
@@ -119,15 +117,15 @@ class FieldPainter:
         pitch = self.pitch
         x0, y0 = self.pixel(-pitch.half_length_m, pitch.half_width_m)
         x1, y1 = self.pixel(pitch.half_length_m, -pitch.half_width_m)
-        image[max(0, round(y0)) : round(y1), max(0, round(x0)) : round(x1)] = _PITCH_COLOUR
+        image[max(0, round(y0)) : round(y1), max(0, round(x0)) : round(x1)] = PITCH_COLOUR
         width = max(1.0, self.width_px / 320.0)
         strips = [*pitch_lines(pitch), *pitch_markings(pitch)]
         strips += [goal_box(pitch, side) for side in (-1.0, 1.0)]
         for strip in strips:
             for (ax, ay), (bx, by) in itertools.pairwise(strip):
-                _line(image, *self.pixel(ax, ay), *self.pixel(bx, by), _LINE_COLOUR, width)
+                _line(image, *self.pixel(ax, ay), *self.pixel(bx, by), LINE_COLOUR, width)
         for px, py in goal_posts(pitch):
-            _disc(image, *self.pixel(px, py), max(1.5, width), _LINE_COLOUR)
+            _disc(image, *self.pixel(px, py), max(1.5, width), LINE_COLOUR)
         return image
 
     def _body(self, image: Frame, cx: float, cy: float, heading: float, colour: Colour) -> None:

@@ -403,14 +403,14 @@ def _play_match_recorded(
 ) -> Verdict:
     """Play match `index` with a rerun recording (and an ``.rcg`` game log on a server pitch).
 
-    The game log (:mod:`robotsoccer.replay.rcg`) is written only on a field drawn in Soccer
+    The game log (:mod:`robotsoccer.replay.rcg_write`) is written only on a field drawn in Soccer
     Server metres (``unit_m`` 1): the format's tools draw the server's pitch. It starts at
     cycle 1, as a server's does, and ends with ``time_over``. Both files are written under
     part names and renamed once the match is over (``match_<index>_<LABEL>.rrd`` / ``.rcg``).
     The left team's last player's percepts are drawn beside the truth.
     """
     from robotsoccer.replay.match_recording import MatchRecorder  # rerun loads late
-    from robotsoccer.replay.rcg import RcgWriter, log_team_name
+    from robotsoccer.replay.rcg_write import RcgWriter, log_team_name
 
     assert spec.record_dir is not None
     facts = arena.facts

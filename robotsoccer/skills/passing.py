@@ -10,7 +10,7 @@ with its length and hearing limits; on the robots the central host relays the te
    periods apart by uniform number. The slots exist because the 1996 server lets a player hear
    only one message every two cycles (``hear_decay`` 2, ``hear_inc`` 1), so three replies in
    one cycle would be lost. A report is ``r<NN>`` and then the receiver's view
-   (:func:`learning.pass_features.encode_view`): the passer's distance and direction, and every
+   (:func:`learning.pass_codec.encode_view`): the passer's distance and direction, and every
    other player it sees. When the field's say limit cannot hold that view (rcssserver 19 allows
    10 characters), it says only ``r<NN>d<distance>``, its distance to the passer. Then the passer
    decides on its own half of the attributes; the receiver's half is *unknown* (§6: "marked as
@@ -57,9 +57,8 @@ import numpy as np
 from field_models.arena import BallLaw
 from field_models.protocol import Action, Kick, Mind, Percept, Say, SeenPlayer, Turn, wrap_angle
 from field_models.seeding import Rng
+from learning.pass_codec import decode_view, encode_view
 from learning.pass_features import (
-    decode_view,
-    encode_view,
     pass_attributes,
     passer_attributes,
     receiver_attributes,

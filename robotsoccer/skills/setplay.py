@@ -26,6 +26,19 @@ until a percept shows its last kick (:meth:`BallTracker.fresh`). It comes up to 
 slowly enough to stop beside it, and stands with a dash of no power (:data:`STAND`): a robot
 would otherwise drive on into the ball. On the Soccer Server (no latency) these change nothing.
 
+**A camera** (the robots: a pose from the goals in every percept, :attr:`BallSense.track_window`
+> 0). A receiver then keeps the ball's velocity in the field frame, fitted to the camera's
+sightings once a full window of them follows the last kick (:class:`CameraBall`; dead
+reckoning from the announced pass until then), and reckons its own heading now from the
+camera's last two poses rather than from the turns it commanded (a robot carries a turn out
+only in part before its next command). It meets the pass with layer 1, stands still for the
+last :data:`SET_PERIODS` periods (so that the heading its kick is aimed by is known), and sends
+its kick on first time as soon as the ball will come into reach within a period
+(:func:`reach_entry`): the drill's coach fires it when the ball gets there. A first-time kick
+whose path would run back into the body is bent round it (:meth:`BallTracker.aim`). It checks
+afterwards that the ball went, and meets it again if not. Carriers dribble by dead reckoning
+(their own kicks), as on the server; a winger uses the camera while it collects.
+
 Skills, each a small function of one percept:
 
 * :func:`chase` — face the ball and run at it (the approach of a dribble);
@@ -85,6 +98,8 @@ from field_models.protocol import (
     Turn,
     wrap_angle,
 )
+from robotsoccer.skills.lead import BallTrack
+from robotsoccer.skills.localise import Localiser
 from robotsoccer.skills.passing import PasserMind, ReceiverMind, announced_number
 
 WINGER_CUE = "wing"
@@ -116,6 +131,16 @@ BLOCK_MARGIN_SHARE = 0.15
 """A ball seen within touching distance plus this share of the kick margin has met the body."""
 CLEAR_MARGIN_SHARE = 0.3
 """A kick's path clears the body by touching distance plus this share of the kick margin."""
+ONE_TOUCH_PERIODS = 1.0
+"""A camera-guided receiver sends its kick on when the ball will come into reach within this
+many sensor periods: the kick then stays armed until the next decision (drill module)."""
+FIRST_TIME_BEND_RAD = math.radians(45.0)
+"""A first-time kick on is bent by at most this to clear the kicker's body."""
+SET_PERIODS = 3.0
+"""A camera-guided receiver stops turning and stands when the ball will come into reach within
+this many sensor periods: a turn shows in its percepts only after the camera's latency and the
+turn's own time (:attr:`BallSense.turn_settle_ticks`), and the kick on is aimed relative to a
+heading it must know."""
 SHOT_AIM_SHARE = 0.6
 """A shot aims this share of the goal's half width off its centre, away from the goalie."""
 
@@ -152,6 +177,10 @@ class BallSense:
         approach_power: The dash power a player comes up to the ball with at the last, slow
             enough to stop within its kick reach.
         recall_ticks: A ball the sensor missed is recalled this long after its last sighting.
+        landmarks: (name, x [m], y [m]) of the field's landmarks, for a pose from a percept.
+        track_window: Camera sightings in a velocity fit of the ball (:class:`CameraBall`);
+            0: the ball's velocity is dead-reckoned only (the Soccer Server, whose 1996 see
+            gives no positions to fit).
     """
 
     law: BallLaw
@@ -164,6 +193,8 @@ class BallSense:
     approach_power: float = 40.0
     turn_settle_ticks: int = 1
     recall_ticks: int = 0
+    landmarks: tuple[tuple[str, float, float], ...] = ()
+    track_window: int = 0
 
     def heading(self) -> Heading:
         """A fresh heading reckoner with this field's settle and recall times."""
@@ -194,6 +225,41 @@ class BallTracker:
         self.known = False
         self._tick: int | None = None
         self.kicked_tick = -1
+        self.camera = CameraBall(sense) if sense.track_window > 0 else None
+        self._fit: tuple[int, Vector] | None = None  # (tick, body-frame velocity) of the camera
+        self._frame: float | None = None  # the body frame's heading in the field [rad]
+        self._world: tuple[Vector, int] | None = None  # (field-frame velocity, its tick)
+
+    def observe(self, raw: Percept) -> tuple[float, float] | None:
+        """Take the camera's view of the ball and of the player's own heading (robots).
+
+        `raw` is the percept as it came. Returns (the heading now in the field frame, the turn
+        since the sample) [rad] for :meth:`Heading.view`, or None without a camera pose. With
+        the pose the estimate is kept in the field frame between percepts and turned into
+        the body frame of the heading now (:meth:`CameraBall.update`), rather than rotated by
+        each turn commanded: a robot's turn is not carried out whole before the next command. The
+        velocity fitted to the sightings replaces the dead reckoning once its window is full;
+        a kick (the player's own, or a teammate's pass to it) restarts the fit from the first
+        percept that can show it (:meth:`note`, :meth:`launched`).
+        """
+        camera = self.camera
+        if camera is None:
+            return None
+        turn, fit = camera.update(raw)
+        if turn is None:
+            return None
+        frame = camera.heading_now
+        self._frame = frame
+        if self._world is not None:
+            (wx, wy), tick = self._world
+            cos, sin = math.cos(-frame), math.sin(-frame)
+            self.vx, self.vy = cos * wx - sin * wy, sin * wx + cos * wy
+            self._tick = tick
+        if fit is not None:
+            self._fit = (raw.tick, fit)
+            self.vx, self.vy = fit
+            self.known, self._tick = True, raw.tick
+        return frame, turn
 
     def fresh(self, percept: Percept) -> bool:
         """Whether `percept` was sampled after the player's last kick showed (its settle time).
@@ -216,8 +282,9 @@ class BallTracker:
         if ball is None or lag <= 0.0 or not self.known:
             return percept
         self._advance(percept.tick)
-        x = ball.distance_m * math.cos(ball.angle_rad) + self.vx * lag
-        y = ball.distance_m * math.sin(ball.angle_rad) + self.vy * lag
+        ox, oy = (0.0, 0.0) if self.camera is None else self.camera.own_velocity
+        x = ball.distance_m * math.cos(ball.angle_rad) + (self.vx - ox) * lag
+        y = ball.distance_m * math.sin(ball.angle_rad) + (self.vy - oy) * lag
         return replace(percept, ball=SeenBall(math.hypot(x, y), math.atan2(y, x)))
 
     def rest(self, tick: int) -> None:
@@ -236,11 +303,47 @@ class BallTracker:
         heading = ball.angle_rad + math.pi
         self.vx, self.vy = speed_mps * math.cos(heading), speed_mps * math.sin(heading)
         self.known, self._tick = True, kick_tick
+        self._fit = None
+        if self.camera is not None:  # sightings from before the pass would bend the fit
+            self.camera.restart(kick_tick + self.sense.turn_settle_ticks)
         self._advance(percept.tick)
 
+    def detach(self) -> None:
+        """Reckon the ball from here on without the camera (dead reckoning, as on the server).
+
+        A carrier dribbles by its own kicks, which it knows better than a fit that lags them.
+        """
+        self.camera = None
+        self._fit = self._world = self._frame = None
+
+    def closing_velocity(self, percept: Percept) -> Vector:
+        """The ball's velocity relative to the moving player [m/s, body frame].
+
+        The camera gives the player's own motion (:attr:`CameraBall.own_velocity`); without
+        it the player is taken as still.
+        """
+        vx, vy = self.velocity(percept)
+        if self.camera is None:
+            return vx, vy
+        ox, oy = self.camera.own_velocity
+        return vx - ox, vy - oy
+
+    def fitted(self, percept: Percept) -> Vector | None:
+        """The camera's velocity fit for this percept [m/s, body frame], or None (not ready)."""
+        fit = self._fit
+        return fit[1] if fit is not None and fit[0] == percept.tick else None
+
     def velocity(self, percept: Percept) -> Vector:
-        """The estimate at this percept [m/s, body frame]; a ball at the body has stopped."""
+        """The estimate at this percept [m/s, body frame]; a ball at the body has stopped.
+
+        Where the camera's fit is ready for this percept (:meth:`observe`), it is the estimate:
+        it sees a ball that bounced off a body or was pushed, which dead reckoning cannot.
+        """
         self._advance(percept.tick)
+        fit = self._fit
+        if fit is not None and fit[0] == percept.tick:
+            self.vx, self.vy = fit[1]
+            return self.vx, self.vy
         ball = percept.ball
         if ball is not None and self._at_body(ball.distance_m) and self.fresh(percept):
             self.vx = self.vy = 0.0  # it met the body (a block, or the player ran into it)
@@ -251,31 +354,74 @@ class BallTracker:
         for action in actions:
             if isinstance(action, Kick):
                 self.kicked_tick = tick
+                self._fit = None
+                if self.camera is not None:  # the kick may fire up to a period later
+                    self.camera.restart(tick + self.sense.turn_settle_ticks)
                 speed = self.sense.speed(action.power)
                 self.vx += speed * math.cos(action.direction_rad)
                 self.vy += speed * math.sin(action.direction_rad)
-            elif isinstance(action, Turn):
+            elif isinstance(action, Turn) and self._frame is None:
                 cos, sin = math.cos(-action.angle_rad), math.sin(-action.angle_rad)
                 self.vx, self.vy = cos * self.vx - sin * self.vy, sin * self.vx + cos * self.vy
+        frame = self._frame
+        if frame is not None and self._tick is not None:  # kept in the field frame (observe)
+            cos, sin = math.cos(frame), math.sin(frame)
+            self._world = (
+                (cos * self.vx - sin * self.vy, sin * self.vx + cos * self.vy),
+                self._tick,
+            )
 
     def aim(
-        self, percept: Percept, speed_mps: float, direction_rad: float
+        self,
+        percept: Percept,
+        speed_mps: float,
+        direction_rad: float,
+        *,
+        first_time: Vector | None = None,
     ) -> tuple[Kick | None, bool]:
         """The kick toward `direction_rad` at `speed_mps`, and whether it is that kick.
 
         A ball kicked from where it lies would run through the player's own body when the
         direction points back past it (the server then bounces it off the body, §4). The
         player then first taps the ball aside, out of that path, and kicks at its next
-        percept: (tap, False).
+        percept: (tap, False). A `first_time` kick (a camera-guided receiver's, armed as the
+        ball comes: no time for a tap; the body-frame point where it will meet the ball) is
+        instead bent by the least angle that clears the body from there
+        (:data:`FIRST_TIME_BEND_RAD` at most; beyond, the tap as before): the next player
+        collects it with layer 1.
         """
         if not self.fresh(percept):
             return None, False  # the last kick does not show yet: wait for a percept that does
         ball = percept.ball
         if ball is not None:
             side = self._blocking_side(ball.distance_m, ball.angle_rad, direction_rad)
+            if first_time is not None:
+                at = (math.hypot(*first_time), math.atan2(first_time[1], first_time[0]))
+                side = self._blocking_side(*at, direction_rad)
+                bent = direction_rad if side is None else self._bend(*at, direction_rad, side)
+                if bent is not None:
+                    return self.kick_to(percept, speed_mps, bent), True
             if side is not None:
                 return self._tap(percept, side, direction_rad), False
         return self.kick_to(percept, speed_mps, direction_rad), True
+
+    def _bend(
+        self, distance_m: float, angle_rad: float, direction_rad: float, lateral: float
+    ) -> float | None:
+        """The direction nearest `direction_rad` whose path clears the body, or None.
+
+        It searches both ways in steps of a degree, the way that makes the ball's offset from
+        the path (`lateral`, positive with the ball to the path's left) grow first: that side
+        clears soonest as long as the ball lies within a right angle of the path's reverse.
+        """
+        sign = 1.0 if lateral >= 0.0 else -1.0
+        step = math.radians(1.0)
+        for k in range(1, round(FIRST_TIME_BEND_RAD / step) + 1):
+            for turn in (sign, -sign):
+                bent = wrap_angle(direction_rad + turn * k * step)
+                if self._blocking_side(distance_m, angle_rad, bent) is None:
+                    return bent
+        return None
 
     def _blocking_side(
         self, distance_m: float, angle_rad: float, direction_rad: float
@@ -369,6 +515,72 @@ class BallTracker:
         self.vy *= factor
 
 
+class CameraBall:
+    """The ball's velocity fitted to a camera's sightings, in the player's body frame (robots).
+
+    The robots' host gives both goals in every percept, so the player's pose is the camera's
+    own detection (:class:`~robotsoccer.skills.localise.Localiser`) and the ball comes out in
+    the field frame as the camera saw it; its velocity is the least-squares slope over the
+    last :attr:`BallSense.track_window` sightings (:class:`~robotsoccer.skills.lead.BallTrack`,
+    the fit layer 1's lead defender uses), at the sensor's sample times.
+    """
+
+    def __init__(self, sense: BallSense) -> None:
+        self.sense = sense
+        self._localiser = Localiser(sense.landmarks)
+        self._track = BallTrack(sense.track_window)
+        self._from_tick = 0
+        self._pose: tuple[float, float, float, float] | None = None  # (t [s], heading, x, y)
+        self.heading_now = 0.0
+        """The player's heading now in the field frame [rad] (:meth:`update`)."""
+        self.own_velocity: Vector = (0.0, 0.0)
+        """The player's own velocity over the last two poses, in the body frame now [m/s]."""
+
+    def restart(self, from_tick: int) -> None:
+        """Forget the sightings; take none sampled before `from_tick` (a kick changed the ball)."""
+        self._track = BallTrack(self.sense.track_window)
+        self._from_tick = from_tick
+
+    def update(self, raw: Percept) -> tuple[float | None, Vector | None]:
+        """Add the percept's sighting; (the turn since the sample, the fit), None where unknown.
+
+        The turn [rad] is the player's since the camera's sample; the fit [m/s] is the ball's
+        velocity in the body frame of the heading now, once the window is full.
+
+        The heading now (:attr:`heading_now`) is the camera's heading at the sample carried
+        on over the sensor latency at the turn rate of the last two poses: the camera's own
+        prediction, which needs no model of how the robot carries out its commands.
+        """
+        pose = self._localiser.update(raw)
+        if pose is None:
+            return None, None
+        sampled = raw.observed_tick * self.sense.law.dt_s
+        rate, own = 0.0, (0.0, 0.0)
+        last = self._pose
+        if last is not None and sampled > last[0]:
+            span = sampled - last[0]
+            rate = wrap_angle(pose.heading - last[1]) / span
+            own = ((pose.x - last[2]) / span, (pose.y - last[3]) / span)
+        self._pose = (sampled, pose.heading, pose.x, pose.y)
+        turn = rate * (raw.tick - raw.observed_tick) * self.sense.law.dt_s
+        frame = pose.heading + turn
+        self.heading_now = frame
+        cos, sin = math.cos(-frame), math.sin(-frame)
+        self.own_velocity = (cos * own[0] - sin * own[1], sin * own[0] + cos * own[1])
+        ball = raw.ball
+        if ball is None or raw.observed_tick < self._from_tick:
+            return turn, None
+        bearing = pose.heading + ball.angle_rad
+        x = pose.x + ball.distance_m * math.cos(bearing)
+        y = pose.y + ball.distance_m * math.sin(bearing)
+        self._track.add(sampled, x, y)
+        fit = self._track.velocity()
+        if fit is None or not self._track.full():
+            return turn, None
+        cos, sin = math.cos(-frame), math.sin(-frame)
+        return turn, (cos * fit[0] - sin * fit[1], sin * fit[0] + cos * fit[1])
+
+
 class Heading:
     """A player's heading reckoned from its own turns, and bearings remembered in that frame.
 
@@ -382,6 +594,8 @@ class Heading:
         self.settle_ticks = settle_ticks
         self.recall_ticks = recall_ticks
         self.rad = 0.0
+        self.unseen_rad = 0.0
+        """The turns commanded that the last percept viewed does not show yet [rad]."""
         self.bearings: dict[str, float] = {}
         self._turns: list[tuple[int, float]] = []  # (tick commanded, angle), maybe not seen yet
         self._ball: tuple[int, float, float] | None = None  # (tick, distance, bearing)
@@ -393,17 +607,24 @@ class Heading:
                 self.rad = wrap_angle(self.rad + action.angle_rad)
                 self._turns.append((tick, action.angle_rad))
 
-    def view(self, percept: Percept) -> Percept:
+    def view(self, percept: Percept, camera: tuple[float, float] | None = None) -> Percept:
         """`percept` in the frame of the turns commanded so far, its ball recalled if missed.
 
         A turn shows in percepts observed :attr:`settle_ticks` after it was commanded. A ball
         the sensor missed but that was seen within :attr:`recall_ticks` is put back where it
         was last seen (a missed camera detection is not a ball gone out of sight).
+
+        `camera`: (the heading now in the field frame, the turn since the sample) [rad], from
+        the camera's poses (:meth:`CameraBall.update`): they replace the reckoning from the
+        turns commanded, which a robot carries out only in part before its next command.
         """
         turns = self._turns
         while turns and turns[0][0] + self.settle_ticks <= percept.observed_tick:
             turns.pop(0)
         unseen = sum(angle for _, angle in turns)
+        if camera is not None:
+            self.rad, unseen = wrap_angle(camera[0]), camera[1]
+        self.unseen_rad = unseen
         view = percept if unseen == 0.0 else rotated(percept, -unseen)
         ball = view.ball
         if ball is not None:
@@ -590,15 +811,45 @@ def receive(
     return interceptor.act(raw)
 
 
-def arrives(percept: Percept, tracker: BallTracker) -> bool:
+def reach_entry(percept: Percept, tracker: BallTracker, periods: float) -> Vector | None:
+    """Where the ball comes into reach [m, body frame], if it does within `periods`; else None.
+
+    The ball's motion is the tracker's, relative to the moving player; the time is its entry
+    into the kick reach (its first crossing of the reach circle), not its closest approach: a
+    kick armed now must find it within the reach before the next decision. A ball in reach
+    now is where it is.
+    """
+    ball = percept.ball
+    if ball is None or not tracker.known:
+        return None
+    rx = ball.distance_m * math.cos(ball.angle_rad)
+    ry = ball.distance_m * math.sin(ball.angle_rad)
+    reach = tracker.sense.reach_m
+    if ball.distance_m <= reach:
+        return rx, ry
+    vx, vy = tracker.closing_velocity(percept)
+    speed2 = vx * vx + vy * vy
+    if speed2 <= 0.0:
+        return None
+    along = rx * vx + ry * vy
+    disc = along * along - speed2 * (ball.distance_m**2 - reach * reach)
+    if along >= 0.0 or disc < 0.0:
+        return None  # moving away, or passing wide of the reach
+    entry_s = (-along - math.sqrt(disc)) / speed2
+    if entry_s > periods * tracker.sense.sensor_period_s:
+        return None
+    return rx + vx * entry_s, ry + vy * entry_s
+
+
+def arrives(percept: Percept, tracker: BallTracker, periods: float = RECEIVE_PERIODS) -> bool:
     """Whether the ball, as the tracker reckons its motion, will pass within reach soon.
 
-    Soon: within :data:`RECEIVE_PERIODS` sensor periods.
+    Soon: within `periods` sensor periods (:data:`RECEIVE_PERIODS` by default).
     """
     ball = percept.ball
     if ball is None or not tracker.known:
         return False
-    vx, vy = tracker.velocity(percept)
+    vx, vy = tracker.closing_velocity(percept)
     speed2 = vx * vx + vy * vy
     if speed2 <= 0.0:
         return False
@@ -609,7 +860,7 @@ def arrives(percept: Percept, tracker: BallTracker) -> bool:
         return False
     miss = abs(rx * vy - ry * vx) / math.sqrt(speed2)
     sense = tracker.sense
-    return miss <= sense.reach_m and t <= RECEIVE_PERIODS * sense.sensor_period_s
+    return miss <= sense.reach_m and t <= periods * sense.sensor_period_s
 
 
 class CarrierMind:
@@ -655,6 +906,8 @@ class CarrierMind:
         self.phase = "dribble" if interceptor is None else "wait"
         self.passed_tick: int | None = None
         self.tracker = BallTracker(sense)
+        if interceptor is None:
+            self.tracker.detach()  # it starts with the ball: it dribbles
         self.heading = sense.heading()
         self._raw: Percept | None = None
         self.calling = False
@@ -681,7 +934,8 @@ class CarrierMind:
         if not self.tracker.known and self.interceptor is None:
             self.tracker.rest(percept.tick)  # a set play starts with the ball at rest
         self._raw = percept
-        view = self.tracker.project(self.heading.view(percept))
+        view = self.heading.view(percept, self.tracker.observe(percept))
+        view = self.tracker.project(view)
         self._see(view)
         actions = self._decide(view)
         self.tracker.note(actions, percept.tick)
@@ -703,6 +957,7 @@ class CarrierMind:
                 assert self.interceptor is not None
                 return receive(percept, self.raw, self.tracker, self.interceptor)
             self.phase = "dribble"
+            self.tracker.detach()
         if self.phase == "dribble":
             return self._dribble(percept)
         if self.phase == "look":
@@ -869,7 +1124,8 @@ class SetPlayReceiverMind:
         in its reckoned frame (:meth:`Heading.view`).
         """
         self._raw = percept
-        view = self.tracker.project(self.heading.view(percept))
+        view = self.heading.view(percept, self.tracker.observe(percept))
+        view = self.tracker.project(view)
         self._see(view)
         actions = self._decide(view)
         self.tracker.note(actions, percept.tick)
@@ -900,12 +1156,62 @@ class SetPlayReceiverMind:
             self.done = self.receiver.done
             return actions
         if self.kicked_tick is not None:
-            self.done = True
-            return ()
+            after = self._after_kick(percept)
+            if after != "again":
+                self.done = after == "done"
+                return STAND if after == "wait" else ()
+            self.kicked_tick = None  # the ball never came into reach: meet it again
         ball = percept.ball
         if ball is not None and ball.distance_m <= self.reach_m:
             return self._kick_on(percept)
+        if self.tracker.camera is not None:
+            return self._meet(percept)
         return receive(percept, self.raw, self.tracker, self.receiver.interceptor)
+
+    def _meet(self, percept: Percept) -> tuple[Action, ...]:
+        """A camera-guided receiver meets the pass and kicks it on first time (robots).
+
+        The camera shows the ball its latency late and a decision comes once a frame, so a
+        receiver that waits to see the ball in reach sees it after it has hit its body and
+        bounced off (the robot's restitution, ``robot.elasticity``): it sends its kick on as
+        soon as the ball will come into reach within :data:`ONE_TOUCH_PERIODS` sensor periods
+        (the kicker fires when the ball reaches it: :mod:`robotsoccer.drills.setplay`). A ball
+        no longer coming at it (deflected, or stopped short) it comes up to gently
+        (:func:`approach`), so as not to push it away; else layer 1 takes it into the path.
+        """
+        ball = percept.ball
+        if ball is None:
+            return receive(percept, self.raw, self.tracker, self.receiver.interceptor)
+        entry = reach_entry(percept, self.tracker, ONE_TOUCH_PERIODS)
+        if entry is not None:
+            return self._kick_on(percept, entry)
+        if arrives(percept, self.tracker, SET_PERIODS):
+            return STAND  # no more turns: the kick's direction is reckoned from a still heading
+        vx, vy = self.tracker.velocity(percept)
+        closing = -(vx * math.cos(ball.angle_rad) + vy * math.sin(ball.angle_rad))
+        if closing < STILL_SHARE * self.sense.speed(self.powers.passing):
+            return approach(percept, self.reach_m, self.sense.approach_power)
+        return receive(percept, self.raw, self.tracker, self.receiver.interceptor)
+
+    def _after_kick(self, percept: Percept) -> str:
+        """After the kick on: ``"done"``, ``"wait"`` (to see where the ball went) or ``"again"``.
+
+        On the Soccer Server a kick is a kick: done. A camera-guided receiver's kick fires only
+        if the ball comes into reach while it is armed, so the receiver stands until a percept
+        shows the ball beyond its slow zone (done) or its fitted velocity shows the ball still
+        by it and slow (the kick missed: again).
+        """
+        ball = percept.ball
+        if self.tracker.camera is None:
+            return "done"
+        if ball is None or not self.tracker.fresh(percept):
+            return "wait"
+        if ball.distance_m > SLOW_ZONE_REACHES * self.reach_m:
+            return "done"
+        fit = self.tracker.fitted(percept)
+        if fit is not None and math.hypot(*fit) < 0.5 * self.sense.speed(self.powers.passing):
+            return "again"
+        return "wait"
 
     def _look_for_goal(self, percept: Percept) -> tuple[Action, ...]:
         """A last receiver, before the play reaches it: find the goal once, then face the ball."""
@@ -919,20 +1225,38 @@ class SetPlayReceiverMind:
         kick_tick = _heard_tick(percept, texts)
         self.tracker.launched(percept, self.sense.speed(self.powers.passing), kick_tick)
 
-    def _kick_on(self, percept: Percept) -> tuple[Action, ...]:
+    def _kick_on(self, percept: Percept, entry: Vector | None = None) -> tuple[Action, ...]:
+        """Kick to the winger, or shoot; `entry`: where an armed kick will meet the ball."""
         if self.next_teammate is None:
-            return self._shoot(percept)
+            return self._shoot(percept, entry)
         winger = find_teammate(percept, self.next_teammate)
         direction = winger.angle_rad if winger is not None else self.heading.relative("call")
         if direction is None:  # never seen nor heard: hold the ball and look
             return self._stop_then(percept, (Turn(SEARCH_TURN_RAD),))
-        kick, kicked = self.tracker.aim(percept, self.sense.speed(self.powers.passing), direction)
+        speed = self.sense.speed(self.powers.passing)
+        kick, kicked = self.tracker.aim(
+            percept, speed, direction, first_time=self._first(percept, entry)
+        )
         if not kicked:
             return () if kick is None else (kick,)
         self.kicked_tick = percept.tick
         return (Say(WINGER_CUE),) if kick is None else (Say(WINGER_CUE), kick)
 
-    def _shoot(self, percept: Percept) -> tuple[Action, ...]:
+    def _first(self, percept: Percept, entry: Vector | None) -> Vector | None:
+        """Where a camera-guided receiver's first-time kick meets the ball; None without camera.
+
+        At `entry` when it is given, else where the player reckons the ball now.
+        """
+        ball = percept.ball
+        if self.tracker.camera is None or (entry is None and ball is None):
+            return None
+        if entry is not None or ball is None:
+            return entry
+        return ball.distance_m * math.cos(ball.angle_rad), ball.distance_m * math.sin(
+            ball.angle_rad
+        )
+
+    def _shoot(self, percept: Percept, entry: Vector | None = None) -> tuple[Action, ...]:
         """Shoot at the goal in view; else stop the ball and turn to where the goal was seen."""
         goal = goal_bearing(percept, self.attack_right)
         if goal is None:
@@ -940,7 +1264,10 @@ class SetPlayReceiverMind:
             turn = SEARCH_TURN_RAD if remembered is None else remembered
             return self._stop_then(percept, (Turn(turn),))
         direction = shot_direction(percept, goal, self.goal_half_width_m)
-        kick, kicked = self.tracker.aim(percept, self.sense.speed(self.powers.shot), direction)
+        speed = self.sense.speed(self.powers.shot)
+        kick, kicked = self.tracker.aim(
+            percept, speed, direction, first_time=self._first(percept, entry)
+        )
         if kicked:
             self.kicked_tick = percept.tick
         return () if kick is None else (kick,)

@@ -63,6 +63,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Protocol
 
 from field_models.arena import BallLaw
 from field_models.protocol import Action, Dash, Kick, Percept, SeenPlayer, Turn, wrap_angle
@@ -114,6 +115,24 @@ MEET_SPEED_MPS = 0.2
 AHEAD_UNITS = -5.0
 """A teammate is a pass candidate when at least this far ahead of the passer (negative: a
 little behind is fine)."""
+
+
+class BallPolicy(Protocol):
+    """A learned choice of where to send the ball (layer 3, :mod:`robotsoccer.skills.layer3`).
+
+    The mind asks it where the layered team would ask layer 2's tree (step 3's *pass*), and
+    tells it every percept's sighting of the ball, for its rewards.
+    """
+
+    def decide(
+        self, number: int, percept: Percept, pose: Pose | None, ball_xy: tuple[float, float] | None
+    ) -> tuple[str, tuple[Action, ...]] | None:
+        """(intent, actions) of its kick, or None: the layered team's rule decides."""
+        ...
+
+    def observe(self, number: int, tick: int, ball_xy: tuple[float, float] | None) -> None:
+        """Player `number` saw the ball at `ball_xy` (field frame [m]), or did not (None)."""
+        ...
 
 
 @dataclass(frozen=True, slots=True)
@@ -229,6 +248,8 @@ class TeamMind:
         lead: Layer 1's lead rule (a lead net); used instead of `interception` when given.
         evaluator: Layer 2's pass evaluator; None: pass to the closest teammate.
         pass_threshold: The tree's least success confidence for a pass.
+        ball_policy: Layer 3: asked instead of the pass rule (once per spell on the ball);
+            None: the layered (or baseline) rule.
 
     Attributes:
         intent: What its last decision was for (``shoot``, ``pass 7``, ``dribble``,
@@ -246,6 +267,7 @@ class TeamMind:
         lead: LeadPolicy | None = None,
         evaluator: PassEvaluator | None = None,
         pass_threshold: float = 0.5,
+        ball_policy: BallPolicy | None = None,
     ) -> None:
         self.number = number
         self.setup = setup
@@ -254,6 +276,8 @@ class TeamMind:
         self._track = BallTrack(velocity_window(setup.sensor_period_s))
         self.evaluator = evaluator
         self.pass_threshold = pass_threshold
+        self.ball_policy = ball_policy
+        self._layer3_kick: tuple[str, tuple[Action, ...]] | None = None  # this spell's choice
         self.localiser = Localiser(setup.landmarks)
         self.is_goalie = number == setup.goalie
         self.intent = "search"
@@ -288,6 +312,9 @@ class TeamMind:
             if not self._shot_at_goalie(pose):
                 return ()
         actions = self._decide(percept)
+        if self.ball_policy is not None:
+            seen = percept.ball is not None and self.localiser.pose is not None
+            self.ball_policy.observe(self.number, percept.tick, self._ball_xy if seen else None)
         if self.setup.steady_turns:
             actions = self._steady(percept.tick, actions)
         for action in actions:
@@ -399,6 +426,9 @@ class TeamMind:
             return (Kick(setup.powers.shot, goal[1]),)
         direction = 0.0 if goal is None else goal[1]
         if self.is_goalie or opponent_in_path(percept, direction, setup.blocked_m):
+            layer3 = self._layer3(percept, pose)
+            if layer3 is not None:
+                return layer3
             target = self._choose_receiver(percept, pose)
             if target is not None:
                 number, angle = target
@@ -412,6 +442,20 @@ class TeamMind:
             return (Turn(SEARCH_TURN_RAD),)  # hold the ball, look for the goal
         self.intent = "dribble"
         return (Kick(setup.powers.dribble, direction),)
+
+    def _layer3(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...] | None:
+        """The ball policy's kick, asked once per spell on the ball (None: no policy/pose)."""
+        if self.ball_policy is None:
+            return None
+        if self._spell_kicked != "layer3":
+            self._layer3_kick = self.ball_policy.decide(self.number, percept, pose, self._ball_xy)
+            if self._layer3_kick is None:
+                return None
+            self.passes += 1
+            self._spell_kicked = "layer3"
+        assert self._layer3_kick is not None
+        self.intent, actions = self._layer3_kick
+        return actions
 
     def _goal_direction(self, percept: Percept, pose: Pose | None) -> tuple[float, float] | None:
         """(distance [m], angle [rad]) of the opponents' goal: seen, else from the pose."""

@@ -22,7 +22,8 @@ from field_models.presets import PresetError, bounds_of, range_problem
 from field_models.protocol import Dash, Kick, Say, Turn
 from field_models.robot_physics.config import RobotPhysicsPreset, load_preset
 from field_models.soccer_server.params import load_server_preset
-from field_models.soccer_server.server_conf import MAPPED, SERVER_PARAMS
+from field_models.soccer_server.server_conf import MAPPED
+from field_models.soccer_server.server_param_table import SERVER_PARAMS
 
 QUICK = settings(
     max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]

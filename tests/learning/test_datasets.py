@@ -277,6 +277,9 @@ def test_the_lead_decisions_schema_and_dataset_round_trip(tmp_path) -> None:
     data = InterceptionDataset(rows, np.array([0.3, 0.2]), provenance, "lead")
     back = InterceptionDataset.load(data.save(tmp_path / "lead.npz"))
     assert back.decision == "lead" and np.array_equal(back.x, rows)
-    assert InterceptionDataset.load(
-        InterceptionDataset(rows, np.array([0.1, 0.2]), provenance).save(tmp_path / "turn.npz")
-    ).decision == "turn"
+    assert (
+        InterceptionDataset.load(
+            InterceptionDataset(rows, np.array([0.1, 0.2]), provenance).save(tmp_path / "turn.npz")
+        ).decision
+        == "turn"
+    )

@@ -12,23 +12,25 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-from learning.pass_features import (
+from learning.pass_codec import (
     ANGLE_STEP_DEG,
+    DISTANCE_STEP,
+    MAX_DISTANCE,
+    decode_view,
+    encode_view,
+    view_message_length,
+)
+from learning.pass_features import (
     ATTRIBUTE_NAMES,
     COUNT_REGIONS,
-    DISTANCE_STEP,
     HALF,
-    MAX_DISTANCE,
     PASS_SCHEMA,
     PASSER_NAMES,
     RECEIVER_NAMES,
-    decode_view,
-    encode_view,
     pass_attributes,
     passer_attributes,
     receiver_attributes,
     unknown_half,
-    view_message_length,
 )
 
 FIGURE_14_NAMES = (

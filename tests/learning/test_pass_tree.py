@@ -15,17 +15,11 @@ import numpy.typing as npt
 import pytest
 from sklearn.tree import DecisionTreeClassifier
 
+from learning.c45 import pessimistic_errors, upper_error_rate
 from learning.features import ModelFileError
-from learning.pass_tree import (
-    LABELS,
-    TREE_FORMAT,
-    PassTree,
-    fit_pass_tree,
-    load_pass_tree,
-    pessimistic_errors,
-    save_pass_tree,
-    upper_error_rate,
-)
+from learning.pass_tree import LABELS, PassTree
+from learning.pass_tree_file import TREE_FORMAT, load_pass_tree, save_pass_tree
+from learning.pass_tree_grow import fit_pass_tree
 
 SCHEMA = "pass-attributes/test"
 N_FEATURES = 12
@@ -323,7 +317,7 @@ def test_inference_needs_no_sklearn_nor_the_simulators(tree: PassTree, tmp_path:
     path = save_pass_tree(tree, tmp_path / "tree.json", {})
     code = (
         "import sys, numpy as np\n"
-        "from learning.pass_tree import load_pass_tree\n"
+        "from learning.pass_tree_file import load_pass_tree\n"
         f"tree, _ = load_pass_tree({str(path)!r})\n"
         f"tree.predict_proba(np.zeros({N_FEATURES}))\n"
         "banned = ('sklearn', 'robotsoccer', 'field_models', 'torch', 'pymunk', 'rerun')\n"

@@ -21,7 +21,7 @@ from robotsoccer.envs import InterceptVectorEnv, pass_parallel_env
 from robotsoccer.envs.checks import checked_seed, checked_turns
 from robotsoccer.envs.intercept import InterceptEnv
 from robotsoccer.options import MAX_COUNT, MAX_SEED, MAX_SIMULATED_S
-from robotsoccer.replay.rcg import read_rcg
+from robotsoccer.replay.rcg_read import read_rcg
 
 QUICK = settings(
     max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from robotsoccer.cli import main
-from robotsoccer.replay.rcg import read_rcg
+from robotsoccer.replay.rcg_read import read_rcg
 
 
 def test_serve_runs_for_a_while_and_records_the_game(tmp_path: Path) -> None:

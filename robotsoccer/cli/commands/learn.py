@@ -28,6 +28,8 @@ def cmd_learn(args: argparse.Namespace) -> int:
         return cmd_learn_pass(args)
     if args.target == "lead":
         return cmd_learn_lead(args)
+    if args.target == "team":
+        return cmd_learn_team(args)
     preset = args.field_preset or default_preset(args.field)
     tag = f"learn-intercept-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
@@ -79,6 +81,58 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
     (out / "config.json").write_text(
         json.dumps({"plan": plan.to_dict(), "seed": args.seed, "net": str(net)}, indent=2) + "\n"
     )
+    print()
+    print(report.read_text())
+    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
+    return 0
+
+
+def cmd_learn_team(args: argparse.Namespace) -> int:
+    """``learn team``: layer 3 (TPOT-RL) trained against the baseline, then the two series."""
+    from robotsoccer.cli.commands.play import find_layers
+    from robotsoccer.experiments.team_study import match_base, plan_for, run_team_study
+
+    preset = args.field_preset or default_preset(args.field)
+    net, tree = find_layers(args)
+    plan = plan_for(args.quick)
+    base = match_base(args.field, args.field_preset, args.seed, net, tree)
+    check_spec(base.with_options(left="layered", right="baseline"))
+    if args.table is not None:
+        from learning.tpot import load_table
+
+        load_table(args.table)  # a corrupt or foreign table fails here, in one line
+    tag = f"learn-team-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
+    out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
+    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
+    workers = args.workers or default_workers()
+    (out / "config.json").write_text(
+        json.dumps(
+            {
+                "command": "robotsoccer learn team",
+                "plan": plan.to_dict(),
+                "seed": args.seed,
+                "field": args.field,
+                "preset": preset,
+                "net": str(net),
+                "tree": str(tree),
+                "table": None if args.table is None else str(args.table),
+                "workers": workers,
+            },
+            indent=2,
+        )
+        + "\n"
+    )
+    start = time.perf_counter()
+    try:
+        report = run_team_study(
+            base, plan, out, workers=workers, log=clock_log(), resume=args.resume,
+            progress=sys.stderr.isatty(), table=args.table,
+        )  # fmt: skip
+    except KeyboardInterrupt:
+        return fail(
+            EXIT_INTERRUPTED,
+            f"interrupted; finished games are kept under {out} (--resume finishes the run)",
+        )
     print()
     print(report.read_text())
     print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")

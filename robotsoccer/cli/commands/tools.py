@@ -54,7 +54,7 @@ def _player(text: str) -> PlayerRef:
 
 def cmd_replay(args: argparse.Namespace) -> int:
     """Open (or, headless, verify and explain how to open) a recording or a game log."""
-    from robotsoccer.replay.recording import replay
+    from robotsoccer.replay.rrd_files import replay
 
     if args.file.suffix == ".rcg":
         from robotsoccer.replay.game_log import rrd_from_rcg

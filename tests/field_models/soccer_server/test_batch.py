@@ -10,7 +10,8 @@ import pytest
 from field_models.protocol import LEFT, RIGHT, PlayerRef
 from field_models.seeding import Stream, StreamBatch, TrialRngs
 from field_models.soccer_server.batch import BatchSoccerServer
-from field_models.soccer_server.dynamics import PLAY_MODES, SoccerServerModel
+from field_models.soccer_server.cycle_rules import PLAY_MODES
+from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.params import load_server_preset
 
 PLAYERS = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1), PlayerRef(RIGHT, 2))

@@ -11,13 +11,13 @@ import numpy as np
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, Dash, Kick, PlayerRef, Say, Turn
-from field_models.soccer_server.dynamics import (
+from field_models.soccer_server.cycle_rules import (
     PLAY_ON,
-    SoccerServerModel,
     dash_direction,
     dash_rate,
     kick_effectiveness,
 )
+from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.params import ServerPreset, load_server_preset
 
 ME = PlayerRef(LEFT, 1)

@@ -10,6 +10,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from field_models.protocol import PlayerRef
+from field_models.soccer_server.hearing import HearInfo
 from field_models.soccer_server.messages import (
     MessageParseError,
     parse_hear,
@@ -19,12 +20,7 @@ from field_models.soccer_server.messages import (
     render_hear,
     render_see,
 )
-from field_models.soccer_server.sensing import (
-    HearInfo,
-    SeeInfo,
-    SeenObject,
-    observe,
-)
+from field_models.soccer_server.sensing import SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 
 # The paper's Figure 4 (Stone & Veloso 1996), as the client received it.

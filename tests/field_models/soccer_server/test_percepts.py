@@ -11,13 +11,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from field_models.protocol import Heard, Percept, PlayerRef, SeenBall, SeenLandmark, SeenPlayer
+from field_models.soccer_server.hearing import HearInfo
 from field_models.soccer_server.messages import parse_hear, parse_see, render_hear, render_see
 from field_models.soccer_server.percepts import (
     heard_from_hear,
     percept_from_see,
     percept_from_state,
 )
-from field_models.soccer_server.sensing import HearInfo, SeeInfo, SeenObject, observe
+from field_models.soccer_server.sensing import SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 
 PLAYERS = (PlayerRef("left", 1), PlayerRef("left", 2), PlayerRef("right", 1))

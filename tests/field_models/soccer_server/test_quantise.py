@@ -13,12 +13,8 @@ from hypothesis import strategies as st
 from field_models.presets import PresetError, load_record
 from field_models.protocol import PlayerRef
 from field_models.soccer_server.params import load_server_preset
-from field_models.soccer_server.sensing import (
-    far_probability,
-    observe,
-    quantize,
-    quantize_distance,
-)
+from field_models.soccer_server.see_numbers import far_probability, quantize, quantize_distance
+from field_models.soccer_server.sensing import observe
 from field_models.soccer_server.sensing_params import (
     SENSING_19,
     SENSING_1996,

@@ -11,16 +11,13 @@ import pytest
 
 from field_models.presets import PresetError
 from field_models.soccer_server.params import ServerPreset, load_server_preset
-from field_models.soccer_server.server_conf import (
+from field_models.soccer_server.server_conf import MAPPED, load_preset, load_server_conf
+from field_models.soccer_server.server_conf_text import MESSAGE_SOURCE, parse_server_conf
+from field_models.soccer_server.server_param_table import (
     BOOL_PARAMS,
     INT_PARAMS,
-    MAPPED,
-    MESSAGE_SOURCE,
     SERVER_PARAMS,
     STR_PARAMS,
-    load_preset,
-    load_server_conf,
-    parse_server_conf,
 )
 
 DEFAULTS = Path(__file__).parent / "data" / "rcssserver_19_defaults.conf"

@@ -11,7 +11,8 @@ from field_models.protocol import LEFT, RIGHT, PlayerRef
 from field_models.rcss_params import SERVER_PARAMS
 from field_models.soccer_server.messages import parse_hear, parse_see
 from field_models.soccer_server.params import load_server_preset
-from field_models.soccer_server.serving import Client, ServedGame
+from field_models.soccer_server.serving import ServedGame
+from field_models.soccer_server.serving_state import Client
 
 
 def game(synch: bool = False, **kw) -> ServedGame:

@@ -8,19 +8,17 @@ import numpy as np
 import pytest
 
 from field_models.protocol import PlayerRef
-from field_models.soccer_server.landmarks import FLAGS_1996, FLAGS_FULL, landmarks_for
-from field_models.soccer_server.messages import render_see
-from field_models.soccer_server.sensing import (
+from field_models.soccer_server.hearing import (
     HearInfo,
     HearingBudget,
-    SeeInfo,
-    SeenObject,
-    SeeTimer,
     deliver_says,
     hearers,
-    observe,
     say_allowed,
 )
+from field_models.soccer_server.landmarks import FLAGS_1996, FLAGS_FULL, landmarks_for
+from field_models.soccer_server.messages import render_see
+from field_models.soccer_server.see_timing import SeeTimer
+from field_models.soccer_server.sensing import SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 
 ME = PlayerRef("left", 1)

@@ -10,7 +10,8 @@ import pytest
 
 from field_models.arena import BallLaw
 from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
-from learning.pass_tree import fit_pass_tree, save_pass_tree
+from learning.pass_tree_file import save_pass_tree
+from learning.pass_tree_grow import fit_pass_tree
 from robotsoccer.drills import make_drill
 from robotsoccer.drills.passing import DEFENDERS, ELSEWHERE, PASSER, RECEIVERS, PassDrill
 from robotsoccer.runs.pool import run_trials

@@ -20,10 +20,12 @@ from field_models.registry import field_facts
 from robotsoccer.drills import make_drill
 from robotsoccer.drills.setplay import (
     STAGES,
+    CoachKicks,
     ball_sense,
     coach_kicks,
     kick_powers,
     kick_reach,
+    pass_speed,
 )
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.runner import TrialSpec, run_trial
@@ -36,12 +38,14 @@ from robotsoccer.skills.setplay import (
     chase,
     dribble,
     opponent_in_path,
+    reach_entry,
     shoot,
 )
 
 ME = PlayerRef("left", 1)
 SERVER = ("soccer_server", "soccer_server_1996")
 ROBOTS = ("robot_physics", "small_size_1997")
+ARC = ("robot_physics", "small_size_1997_arc")
 # The server's kick: 0.16 m/s per unit of power; a ball slows by 4% a cycle of 0.1 s.
 SENSE = BallSense(BallLaw("geometric", 0.1, 0.96), 0.16, 100.0, 0.885, 1.735, 0.25)
 
@@ -182,3 +186,140 @@ def test_results_do_not_depend_on_the_number_of_workers() -> None:
     spec = TrialSpec(drill="setplay", field_model=SERVER[0], preset=SERVER[1], seed=1)
     alone = run_trials(spec, 4, workers=1, progress=False)
     assert run_trials(spec, 4, workers=2, chunk_size=1, progress=False) == alone
+
+
+# ----------------------------------------------------------------------------- the robots
+
+GOALS = (("g l", -1.37, 0.0), ("g r", 1.37, 0.0))
+# A 30 Hz camera 50 ms late on a 240 Hz tick, fitting the ball over 4 sightings.
+CAMERA = BallSense(
+    BallLaw("constant", 1 / 240, 1.0, 0.0), 0.0205, 100.0, 0.0589, 0.081, 1 / 30,
+    turn_settle_ticks=9, landmarks=GOALS, track_window=4,
+)  # fmt: skip
+
+
+def seen_from(
+    me: tuple[float, float, float], ball: tuple[float, float], tick: int, lag: int = 12
+) -> Percept:
+    """What a robot at pose `me` (x, y, heading) sees of `ball` and the goals (no noise)."""
+
+    def polar(x: float, y: float) -> tuple[float, float]:
+        dx, dy = x - me[0], y - me[1]
+        return math.hypot(dx, dy), math.atan2(dy, dx) - me[2]
+
+    marks = tuple(SeenLandmark(name, *polar(x, y)) for name, x, y in GOALS)
+    return Percept(ME, tick, tick - lag, SeenBall(*polar(*ball)), (), (), marks)
+
+
+def test_the_camera_fit_gives_the_balls_velocity_in_the_turned_body_frame() -> None:
+    # A robot at (0.2, 0.1) facing 90° watches a ball rolling at (1, -0.5) m/s; its body
+    # frame is the field's turned by -90°, so the ball moves at (-0.5, -1) there.
+    tracker = BallTracker(CAMERA)
+    me = (0.2, 0.1, math.pi / 2)
+    for k in range(5):
+        tick = 20 + 8 * k
+        t = (tick - 12) / 240
+        raw = seen_from(me, (-0.3 + 1.0 * t, 0.4 - 0.5 * t), tick)
+        tracker.observe(raw)
+        velocity = tracker.velocity(raw)
+    assert tracker.fitted(raw) is not None
+    assert velocity == pytest.approx((-0.5, -1.0), abs=1e-6)
+    # Its own kick makes it forget the fit until a full window after the kick can show.
+    tracker.note([Kick(10.0, 0.0)], tick)
+    later = seen_from(me, (0.0, 0.0), tick + 8)
+    tracker.observe(later)
+    assert tracker.fitted(later) is None
+
+
+def test_the_ball_comes_into_reach_at_the_reach_circle_not_at_the_body() -> None:
+    tracker = BallTracker(CAMERA)
+    tracker.launched(percept((0.2, 0.0), tick=0), 1.2, 0)  # 1.2 m/s straight at the player
+    # Reach 0.081 m: from 0.12 m the ball enters it in 32.5 ms, within a 33.3 ms period.
+    entry = reach_entry(percept((0.12, 0.0), tick=0), tracker, 1.0)
+    assert entry is not None and entry == pytest.approx((0.081, 0.0), abs=1e-3)
+    assert reach_entry(percept((0.13, 0.0), tick=0), tracker, 1.0) is None  # 40.8 ms away
+    assert reach_entry(percept((0.12, 1.2), tick=0), tracker, 1.0) is None  # passes wide
+
+
+def test_a_first_time_kick_is_bent_round_the_body_not_tapped() -> None:
+    tracker = BallTracker(CAMERA)
+    tracker.launched(percept((0.2, 0.0), tick=20), 1.2, 20)
+    ball = percept((0.081, 0.3), tick=20)
+    # Straight back through the body: a ball at rest would be tapped aside first.
+    tap, real = tracker.aim(ball, 1.2, math.pi)
+    assert tap is not None
+    assert not real
+    at = (0.081 * math.cos(0.3), 0.081 * math.sin(0.3))
+    kick, real = tracker.aim(ball, 1.2, math.pi, first_time=at)
+    assert real and kick is not None
+    tracker.note([kick], 20)
+    vx, vy = tracker.velocity(percept((0.081, 0.3), tick=20))
+    out = math.atan2(vy, vx)
+    assert tracker._blocking_side(0.081, 0.3, out) is None  # it clears the body
+    assert 0.0 < abs(math.remainder(out - math.pi, 2 * math.pi)) <= math.radians(45.0) + 1e-6
+
+
+class _Table:
+    """Just enough of an arena for the coach's kicks: one player and the ball."""
+
+    def __init__(self, player_x: float) -> None:
+        self.tick = 0
+        self.ball = (0.0, 0.0, 0.0, -1.0, 0.0)  # at the origin, rolling at 1 m/s toward -x
+        self.player_x = player_x
+
+    def ball_state(self) -> tuple[float, float, float, float, float]:
+        return self.ball
+
+    def player_state(self, ref: PlayerRef) -> object:
+        class State:
+            x, y, heading = self.player_x, 0.0, math.pi
+
+        return State()
+
+    def place_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0) -> None:
+        self.ball = (x, y, 0.0, vx, vy)
+
+
+def test_a_coach_kick_stays_armed_for_the_ball_to_come_then_lapses() -> None:
+    kicks = CoachKicks(0.02, 4.0, armed_ticks=7)
+    table = _Table(player_x=-0.2)  # 0.2 m away: out of a 0.08 m reach
+    kicks.arm(ME, Kick(50.0, 0.0), 0)
+    kicks.apply(table, 0.08)  # type: ignore[arg-type]
+    assert kicks.fired == 0 and ME in kicks.pending
+    table.player_x, table.tick = -0.07, 5  # the ball came into reach within the period
+    kicks.apply(table, 0.08)  # type: ignore[arg-type]
+    # The kick (1 m/s along its heading, pi: toward -x) adds to the ball's 1 m/s that way.
+    assert kicks.fired == 1 and table.ball[3] == pytest.approx(-2.0) and not kicks.pending
+    kicks.arm(ME, Kick(50.0, 0.0), 10)
+    table.player_x, table.tick = -0.5, 17  # never came: dropped at the period's end
+    kicks.apply(table, 0.08)  # type: ignore[arg-type]
+    assert kicks.fired == 1 and not kicks.pending
+
+
+def test_robot_passes_go_at_the_robots_top_speed_and_the_server_keeps_layer_1s_launch() -> None:
+    robots, server = field_facts(*ARC), field_facts(*SERVER)
+    drill = make_drill("setplay", {})
+    for facts in (robots, server):
+        plan = drill.plan(facts)  # type: ignore[attr-defined]
+        sense = ball_sense(facts, plan)
+        speed = sense.speed(kick_powers(facts, plan).passing)
+        expected = pass_speed(facts) if coach_kicks(facts, plan) else plan.launch_speed_mps
+        assert speed == pytest.approx(expected)
+        assert (sense.track_window > 0) == (facts is robots)  # the camera fit: robots only
+    assert pass_speed(robots) == pytest.approx(robots.player_top_speed_mps)
+    plan = drill.plan(robots)  # type: ignore[attr-defined]
+    with pytest.raises(ValueError, match="pass_speed_mps must be in"):
+        kick_powers(robots, plan, 9.0)
+
+
+def test_the_defenders_option_is_checked() -> None:
+    with pytest.raises(ValueError, match="behaviour"):
+        make_drill("setplay", {"defenders": "fast"})
+    drill = make_drill("setplay", {"defenders": "straight"})
+    assert drill.defenders == "straight"  # type: ignore[attr-defined]
+
+
+def test_robot_plays_do_not_depend_on_the_number_of_workers() -> None:
+    spec = TrialSpec(drill="setplay", field_model=ARC[0], preset=ARC[1], seed=2)
+    alone = run_trials(spec, 3, workers=1, progress=False)
+    assert run_trials(spec, 3, workers=2, chunk_size=1, progress=False) == alone

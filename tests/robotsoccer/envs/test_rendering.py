@@ -26,8 +26,12 @@ def test_the_painter_puts_the_ball_where_it_is() -> None:
     facts = field_facts("robot_physics", "vss")
     players = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1))
     painter = FieldPainter(facts.pitch, players, facts.player_shape, width_px=300)
-    truth = Truth(0, 0.0, BodyState(0.5, 0.3, 0.0),
-                  {players[0]: BodyState(-0.3, 0.0, 0.0), players[1]: BodyState(0.3, 0.0, 3.1)})
+    truth = Truth(
+        0,
+        0.0,
+        BodyState(0.5, 0.3, 0.0),
+        {players[0]: BodyState(-0.3, 0.0, 0.0), players[1]: BodyState(0.3, 0.0, 3.1)},
+    )
     frame = painter.paint(truth)
     assert frame.shape == painter.shape_hw3 and frame.shape[1] == 300 and frame.dtype == np.uint8
     row, col = ball_centre(frame)

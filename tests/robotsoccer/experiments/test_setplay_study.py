@@ -94,9 +94,12 @@ def test_the_layered_minds_need_each_fields_tree_and_net(tmp_path: Path) -> None
     (folder / "pass_tree.json").write_text("{}")
     (folder / "net_750.npz").write_bytes(b"")
     names = [c.name for c in play_conditions(FIELDS[0], tmp_path, 0)]
-    assert names == ["layered", "baseline"]
+    assert names == ["layered", "layered_fixed", "baseline"]
     specs = {c.name: dict(c.spec.drill_options) for c in play_conditions(FIELDS[0], tmp_path, 7)}
     assert specs["layered"]["chooser"] == "tree" and specs["layered"]["interceptor"] == "net"
+    assert "defenders" not in specs["layered"]  # the paper's: as the attackers intercept
+    # The same layered attackers against the baseline's straight defenders.
+    assert specs["layered_fixed"] == {**specs["layered"], "defenders": "straight"}
     assert specs["baseline"] == {"chooser": "closest", "interceptor": "straight"}
     with pytest.raises(ValueError, match="plays"):
         run_setplay_study(tmp_path / "x", fields=FIELDS, models=None, plays=0)

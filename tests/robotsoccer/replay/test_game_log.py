@@ -10,8 +10,8 @@ import pytest
 
 from field_models.protocol import LEFT, RIGHT, Action, PlayerRef
 from robotsoccer.replay.game_log import rrd_from_rcg
-from robotsoccer.replay.rcg import read_rcg
-from robotsoccer.replay.recording import read_entity_positions, verify_recording
+from robotsoccer.replay.rcg_read import read_rcg
+from robotsoccer.replay.rrd_files import read_entity_positions, verify_recording
 from robotsoccer.runs.runner import TrialSpec, run_trial
 from tests.robotsoccer.replay.test_match_recording import blueprint_values, read_chunks
 from tests.robotsoccer.replay.test_rcg import show_players

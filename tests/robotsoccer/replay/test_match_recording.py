@@ -25,13 +25,10 @@ from field_models.protocol import (
     Truth,
 )
 from robotsoccer.replay.frames import GameFrame
+from robotsoccer.replay.lettering import text_strokes
 from robotsoccer.replay.match_recording import MatchRecorder
-from robotsoccer.replay.recording import (
-    read_entity_positions,
-    team_colour,
-    text_strokes,
-    verify_recording,
-)
+from robotsoccer.replay.palette import team_colour
+from robotsoccer.replay.rrd_files import read_entity_positions, verify_recording
 
 PITCH = Pitch(
     length_m=105.0,

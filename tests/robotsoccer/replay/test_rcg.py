@@ -11,7 +11,9 @@ import pytest
 
 from field_models.protocol import LEFT, RIGHT, BodyState, PlayerRef, Truth
 from robotsoccer.replay.frames import GameFrame
-from robotsoccer.replay.rcg import AFTER_GOAL_WAIT, RcgWriter, is_rcg, read_rcg
+from robotsoccer.replay.rcg import AFTER_GOAL_WAIT
+from robotsoccer.replay.rcg_read import is_rcg, read_rcg
+from robotsoccer.replay.rcg_write import RcgWriter
 
 DT = 0.1
 L1 = PlayerRef(LEFT, 1)
@@ -375,7 +377,7 @@ def test_goalies_must_play(tmp_path: Path) -> None:
 
 
 def test_log_team_names_keep_the_side() -> None:
-    from robotsoccer.replay.rcg import log_team_name
+    from robotsoccer.replay.rcg_write import log_team_name
 
     assert log_team_name("baseline (left)") == "baseline_left"
     assert log_team_name("layered") == "layered"

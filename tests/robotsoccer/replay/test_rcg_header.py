@@ -26,7 +26,7 @@ import re
 from pathlib import Path
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
-from robotsoccer.replay.rcg import RcgWriter
+from robotsoccer.replay.rcg_write import RcgWriter
 
 REAL = Path(__file__).parent / "data/rcssserver_19_0_0_header.rcg"
 CONF = Path(__file__).parents[2] / "field_models/soccer_server/data/rcssserver_19_defaults.conf"

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from robotsoccer.replay.rcg import read_rcg
+from robotsoccer.replay.rcg_read import read_rcg
 
 HEAD = "ULG5\n(server_param (goal_width 14.02)(simulator_step 100))\n(playmode 1 play_on)\n"
 SHOW = "(show 1 ((b) {b} 0 0 0) ((l 1) 0 0x1 {x} 0 0 0 0 0 (v h 90) (s 1 1 1) (c 0)))\n"

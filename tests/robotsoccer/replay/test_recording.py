@@ -23,22 +23,19 @@ from field_models.protocol import (
     SeenPlayer,
     Truth,
 )
-from robotsoccer.replay import recording
-from robotsoccer.replay.recording import (
+from robotsoccer.replay import rrd_files
+from robotsoccer.replay.geometry import (
     MIN_BALL_FRACTION,
     MIN_PLAYER_FRACTION,
-    TrialRecorder,
     draw_sizes,
     egocentric_to_field,
     outline_template,
     pitch_markings,
     place_outlines,
-    read_entity_positions,
-    recording_name,
-    replay,
-    text_strokes,
-    verify_recording,
 )
+from robotsoccer.replay.lettering import text_strokes
+from robotsoccer.replay.recording import TrialRecorder, recording_name
+from robotsoccer.replay.rrd_files import read_entity_positions, replay, verify_recording
 from robotsoccer.runs.runner import TrialSpec, run_trial
 
 PITCH = Pitch(
@@ -230,7 +227,7 @@ def test_truncated_file_fails_verification(run_file: Path, tmp_path: Path) -> No
 def test_reader_fallback_without_cli(
     run_file: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    monkeypatch.setattr(recording, "rerun_executable", lambda: tmp_path / "no-rerun")
+    monkeypatch.setattr(rrd_files, "rerun_executable", lambda: tmp_path / "no-rerun")
     ok, message = verify_recording(run_file)
     assert ok, message
     bad = tmp_path / "bad.rrd"
@@ -292,7 +289,7 @@ def test_replay_headless(
     out = capsys.readouterr().out
     assert "no display" in out and "verified" in out
     # Commands that work without an active venv, and a viewer served to this machine only.
-    exe = str(recording.rerun_executable())
+    exe = str(rrd_files.rerun_executable())
     assert f"{exe} --web-viewer --bind 127.0.0.1 {run_file}" in out
     assert f"{exe} {run_file}" in out
 
@@ -315,9 +312,9 @@ def test_replay_with_display_spawns_viewer(run_file: Path, monkeypatch: pytest.M
             calls.append(args)
 
     monkeypatch.setenv("DISPLAY", ":0")
-    monkeypatch.setattr(recording.subprocess, "Popen", FakePopen)
+    monkeypatch.setattr(rrd_files.subprocess, "Popen", FakePopen)
     assert replay(run_file) == 0
-    assert calls == [[str(recording.rerun_executable()), str(run_file)]]
+    assert calls == [[str(rrd_files.rerun_executable()), str(run_file)]]
 
 
 # ----------------------------------------------------------------------------- what is drawn

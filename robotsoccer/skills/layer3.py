@@ -1,0 +1,272 @@
+"""Layer 3 on the field: TPOT-RL's ball destinations, their features from layer 2, the rewards.
+
+A :class:`TpotBallPolicy` is the optional ``ball_policy`` of a team's
+:class:`~robotsoccer.skills.team.TeamMind`: one object per team, one table of Q-values with a
+row per formation position (:mod:`learning.tpot`). The mind asks it where the layered team
+would ask layer 2's tree (on the ball, an opponent in the path, or the goalie); everything else
+is the layered team's play.
+
+**Destinations** (:data:`DESTINATIONS`): 8 fixed points of the field, in the team's attack
+frame, as shares of the half-length and half-width. TPOT-RL's destinations are places, not
+teammates (Stone & Veloso 1999, Figure 1a): the opponents' goal, its two corners and two flank
+points ahead, the centre of the opponents' half, and the two touchlines at midfield. All lie
+level or ahead, as a pass forward or square is what a blocked player has; the flank points
+sit inside the touchlines so a kick toward them does not aim the ball out.
+
+**Features e(s, a)**: for destination ``a``, the teammates the player sees within
+:data:`SECTOR_RAD` of its direction and within the layered team's pass distances are the
+passes toward it. The tree's success confidence of the best of them (the layered team's
+attributes: the passer's half, the receiver's unknown) gives SUCCESS when at least the layered
+team's pass threshold, FAILURE below it; no such teammate gives MISS (the kick reaches no one,
+§6's third label).
+
+**The kick**: toward the teammate judged when there is one (the pass the tree rated), else
+toward the destination point, at the pass power.
+
+**Rewards** (:func:`learning.tpot.reward`): after each action the player samples the ball's
+x in the attack frame from its own sightings (its pose plus the ball's relative position).
+The reward is fixed by a goal (the referee's call, which rcssserver sends to every client as a
+``hear`` message; here the match drill relays it: :meth:`TpotBallPolicy.goal`), by
+:data:`learning.tpot.HORIZON_S` passing, by the player's next layer-3 action, or by the end of
+the game (:meth:`TpotBallPolicy.finish`). While learning, each fixed reward becomes an
+:class:`~learning.tpot.Experience`; the table itself changes only between games (the training
+runner applies the games' experiences in a fixed order: results do not depend on how many
+workers played them).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from field_models.protocol import Action, Kick, Percept, SeenPlayer, wrap_angle
+from learning.pass_features import pass_attributes, passer_attributes, unknown_half
+from learning.tpot import (
+    FAILURE,
+    HORIZON_S,
+    MISS,
+    N_ACTIONS,
+    SUCCESS,
+    Experience,
+    TpotTable,
+    UniformSource,
+    choose,
+    reward,
+)
+from robotsoccer.skills.localise import Pose
+from robotsoccer.skills.passing import PassEvaluator, view_arrays
+
+DESTINATIONS: tuple[tuple[str, float, float], ...] = (
+    ("goal", 1.0, 0.0),
+    ("corner left", 0.85, 0.75),
+    ("corner right", 0.85, -0.75),
+    ("flank left", 0.45, 0.8),
+    ("flank right", 0.45, -0.8),
+    ("centre ahead", 0.5, 0.0),
+    ("midfield left", 0.0, 0.8),
+    ("midfield right", 0.0, -0.8),
+)
+"""(name, x share of the half-length, y share of the half-width), attack frame (+x ahead, +y
+to the left when attacking +x); module docstring."""
+SECTOR_RAD = math.radians(20.0)
+"""A teammate within this of a destination's direction is a pass toward it."""
+MIN_PASS_UNITS = 6.0
+"""Teammates nearer than this are not passes (the layered team's rule, ``team.py``)."""
+
+assert len(DESTINATIONS) == N_ACTIONS
+
+
+def destination_xy(
+    action: int, attack_right: bool, half_length_m: float, half_width_m: float
+) -> tuple[float, float]:
+    """Destination `action` in the field frame [m] for a team attacking +x or -x."""
+    _, sx, sy = DESTINATIONS[action]
+    sign = 1.0 if attack_right else -1.0
+    return (sign * sx * half_length_m, sign * sy * half_width_m)
+
+
+@dataclass(frozen=True, slots=True)
+class Options:
+    """What one destination offers: its feature and where the kick goes.
+
+    Attributes:
+        features: e(s, a) per destination.
+        directions: Kick direction per destination, relative to the body [rad].
+    """
+
+    features: tuple[int, ...]
+    directions: tuple[float, ...]
+
+
+@dataclass(slots=True)
+class _Pending:
+    """An action whose reward is not fixed yet."""
+
+    number: int
+    feature: int
+    action: int
+    tick: int
+    x0: float
+    samples: list[float] = field(default_factory=list)
+
+
+class TpotBallPolicy:
+    """One team's layer 3 (module docstring).
+
+    Args:
+        table: The Q-values (a row per uniform number).
+        attack_right: The team attacks +x.
+        half_length_m: Half the pitch's length [m].
+        half_width_m: Half its width [m].
+        unit_m: One drill unit [m].
+        pass_range_m: The longest pass [m].
+        pass_power: The kick's power.
+        dt_s: One tick [s].
+        evaluator: Layer 2's tree.
+        threshold: Its least success confidence for SUCCESS.
+        rng: The exploration's stream.
+        epsilon: Exploration rate (0: greedy, in play).
+        learn: Record experiences (training games).
+
+    Attributes:
+        experiences: The fixed rewards, in the order fixed (when learning).
+        choices: Actions taken per destination index.
+    """
+
+    def __init__(
+        self,
+        table: TpotTable,
+        *,
+        attack_right: bool,
+        half_length_m: float,
+        half_width_m: float,
+        unit_m: float,
+        pass_range_m: float,
+        pass_power: float,
+        dt_s: float,
+        evaluator: PassEvaluator,
+        threshold: float,
+        rng: UniformSource,
+        epsilon: float = 0.0,
+        learn: bool = False,
+    ) -> None:
+        self.table = table
+        self.attack_right = attack_right
+        self.half_length_m = half_length_m
+        self.half_width_m = half_width_m
+        self.unit_m = unit_m
+        self.pass_range_m = pass_range_m
+        self.pass_power = pass_power
+        self.dt_s = dt_s
+        self.evaluator = evaluator
+        self.threshold = threshold
+        self.rng = rng
+        self.epsilon = epsilon
+        self.learn = learn
+        self.experiences: list[Experience] = []
+        self.choices = [0] * N_ACTIONS
+        self._pending: dict[int, _Pending] = {}
+
+    # ------------------------------------------------------------------ deciding
+
+    def options(self, percept: Percept, pose: Pose) -> Options:
+        """e(s, a) and the kick direction of every destination (module docstring)."""
+        own = percept.player.team
+        mates = [
+            (i, s)
+            for i, s in enumerate(percept.players)
+            if s.team == own and MIN_PASS_UNITS * self.unit_m <= s.distance_m <= self.pass_range_m
+        ]
+        scores = {i: self._confidence(percept, i, s) for i, s in mates}
+        features: list[int] = []
+        directions: list[float] = []
+        for action in range(N_ACTIONS):
+            dx, dy = destination_xy(
+                action, self.attack_right, self.half_length_m, self.half_width_m
+            )
+            bearing = wrap_angle(math.atan2(dy - pose.y, dx - pose.x) - pose.heading)
+            near = [
+                (scores[i], s)
+                for i, s in mates
+                if abs(wrap_angle(s.angle_rad - bearing)) <= SECTOR_RAD
+            ]
+            if not near:
+                features.append(MISS)
+                directions.append(bearing)
+                continue
+            confidence, seen = max(near, key=lambda c: c[0])
+            features.append(SUCCESS if confidence >= self.threshold else FAILURE)
+            directions.append(seen.angle_rad)
+        return Options(tuple(features), tuple(directions))
+
+    def _confidence(self, percept: Percept, index: int, seen: SeenPlayer) -> float:
+        """The tree's success confidence of a pass to `seen` (the layered team's attributes)."""
+        own = percept.player.team
+        others = [s for i, s in enumerate(percept.players) if i != index]
+        dist, ang, team = view_arrays(others, own, self.unit_m)
+        mine = passer_attributes(
+            seen.distance_m / self.unit_m, math.degrees(seen.angle_rad), dist, ang, team
+        )
+        return self.evaluator.success_confidence(pass_attributes(mine, unknown_half()))
+
+    def decide(
+        self, number: int, percept: Percept, pose: Pose | None, ball_xy: tuple[float, float] | None
+    ) -> tuple[str, tuple[Action, ...]] | None:
+        """(intent, actions) of the kick toward the chosen destination; None without a pose."""
+        if pose is None or ball_xy is None:
+            return None
+        options = self.options(percept, pose)
+        action = choose(self.table, number, options.features, self.rng, self.epsilon)
+        self.choices[action] += 1
+        if self.learn:
+            self._fix(number, percept.tick)
+            self._pending[number] = _Pending(
+                number, options.features[action], action, percept.tick, self._along(ball_xy)
+            )
+        name = DESTINATIONS[action][0]
+        return (f"tpot {name}", (Kick(self.pass_power, options.directions[action]),))
+
+    # ------------------------------------------------------------------ rewards
+
+    def observe(self, number: int, tick: int, ball_xy: tuple[float, float] | None) -> None:
+        """A sighting of the ball by player `number` (None: not seen): a reward sample."""
+        pending = self._pending.get(number)
+        if pending is None:
+            return
+        if (tick - pending.tick) * self.dt_s >= HORIZON_S:
+            self._fix(number, tick)
+            return
+        if ball_xy is not None:
+            pending.samples.append(self._along(ball_xy))
+
+    def goal(self, scored: bool, tick: int) -> None:
+        """The referee's call: this team scored (True) or conceded; fixes every pending reward."""
+        for number in sorted(self._pending):
+            pending = self._pending.pop(number)
+            after = (tick - pending.tick) * self.dt_s
+            self._record(pending, 1 if scored else -1, after)
+
+    def finish(self, tick: int) -> None:
+        """The game is over: fix every pending reward from what was seen."""
+        for number in sorted(self._pending):
+            self._fix(number, tick)
+
+    def _fix(self, number: int, tick: int) -> None:
+        pending = self._pending.pop(number, None)
+        if pending is not None:
+            self._record(pending, 0, (tick - pending.tick) * self.dt_s)
+
+    def _record(self, pending: _Pending, goal: int, after_s: float) -> None:
+        r = reward(
+            pending.x0,
+            pending.samples,
+            goal=goal if after_s <= HORIZON_S else 0,
+            goal_after_s=after_s,
+            own_goal_x=-self.half_length_m,
+            opponent_goal_x=self.half_length_m,
+        )
+        self.experiences.append(Experience(pending.number, pending.feature, pending.action, r))
+
+    def _along(self, xy: tuple[float, float]) -> float:
+        """A field-frame point's x in the attack frame [m]."""
+        return xy[0] if self.attack_right else -xy[0]

@@ -1,0 +1,73 @@
+"""Layer 3's study: the layer3 team in a match, training determinism, the report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from learning.tpot import TpotTable, load_table, save_table
+from robotsoccer.drills.match import MatchDrill, layer3_experiences
+from robotsoccer.experiments.team_study import TeamPlan, match_base, run_team_study, train
+from robotsoccer.runs.runner import TrialSpec, run_trial
+from tests.robotsoccer.drills.test_passing import _tree_file
+from tests.robotsoccer.skills.test_intercept import net_file
+
+TINY = TeamPlan("tiny", 4, 2, 8.0, 0.5, 0.1, 2, 5.0, 2)
+"""Two rounds of two short games; two-game series."""
+
+
+def files(tmp_path: Path) -> tuple[Path, Path]:
+    net = net_file(tmp_path / "net.npz", preset="soccer_server_1996")
+    return net, _tree_file(tmp_path, "soccer_server")
+
+
+def test_a_layer3_team_needs_a_table_of_its_size_and_reports_rewards_only_when_learning(
+    tmp_path: Path,
+) -> None:
+    net, tree = files(tmp_path)
+    with pytest.raises(ValueError, match="needs its table"):
+        MatchDrill(left="layer3", net=str(net), tree=str(tree))
+    with pytest.raises(ValueError, match="explore must be a number"):
+        MatchDrill(left="layer3", net=str(net), tree=str(tree), tpot="t", explore="lots")
+    small = save_table(TpotTable.empty(5), tmp_path / "five.npz")
+    spec = TrialSpec(drill="match", field_model="soccer_server", seed=2).with_options(
+        left="layer3", right="baseline", net=str(net), tree=str(tree), half_time_s=20.0
+    )
+    with pytest.raises(ValueError, match="5 positions, not 11"):
+        run_trial(spec.with_options(tpot=str(small)), 0)
+    table = save_table(TpotTable.empty(11), tmp_path / "eleven.npz")
+    playing = run_trial(spec.with_options(tpot=str(table)), 0)
+    assert playing.data == ()
+    learning = run_trial(spec.with_options(tpot=str(table), learn=True, explore=0.5), 0)
+    experiences = layer3_experiences(learning.data)
+    assert experiences, "a 40 s game gives the layer-3 team at least one decision"
+    assert all(team == "left" and 1 <= e.number <= 11 for team, e in experiences)
+    assert all(-1.0 <= e.reward <= 1.0 for _, e in experiences)
+
+
+def test_training_gives_the_same_tables_whatever_the_worker_count(tmp_path: Path) -> None:
+    net, tree = files(tmp_path)
+    base = match_base("soccer_server", None, 5, net, tree)
+    one = train(base, TINY, tmp_path / "one", workers=1, log=lambda _: None)
+    two = train(base, TINY, tmp_path / "two", workers=2, log=lambda _: None)
+    assert one.table.n.sum() > 0, "the tiny plan must learn something to compare"
+    assert np.array_equal(one.table.q, two.table.q) and np.array_equal(one.table.n, two.table.n)
+    assert [g.goals_for for g in one.games] == [g.goals_for for g in two.games]
+    saved = load_table(one.path)
+    assert saved.digest() == one.table.digest()
+    assert saved.provenance["games"] == 4 and saved.provenance["seed"] == 5
+    assert len(saved.provenance["tree_digest"]) == 16
+
+
+def test_the_study_writes_curves_table_and_both_series(tmp_path: Path) -> None:
+    net, tree = files(tmp_path)
+    base = match_base("soccer_server", None, 1, net, tree)
+    plan = TeamPlan("tiny", 2, 2, 5.0, 0.5, 0.1, 2, 5.0, 1)
+    report = run_team_study(base, plan, tmp_path / "study", workers=1, log=lambda _: None)
+    text = report.read_text()
+    assert "| training games | epsilon |" in text
+    assert "Layer 3 against the layered team (2 games" in text
+    assert "Layer 3 against the baseline team (2 games" in text
+    assert (tmp_path / "study" / "series-vs-layered" / "layered_left" / "results.csv").exists()

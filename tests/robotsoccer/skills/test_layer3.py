@@ -1,0 +1,149 @@
+"""Layer 3 on the field: destinations, their features from the tree, the kick, the rewards."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from field_models.protocol import LEFT, RIGHT, Kick, Percept, PlayerRef, SeenBall, SeenPlayer
+from learning.tpot import FAILURE, MISS, N_ACTIONS, SUCCESS, TpotTable
+from robotsoccer.skills.layer3 import DESTINATIONS, TpotBallPolicy, destination_xy
+from robotsoccer.skills.localise import Pose
+
+HALF_L, HALF_W = 52.5, 34.0
+
+
+class Fixed:
+    """An evaluator whose confidence is fixed."""
+
+    def __init__(self, confidence: float) -> None:
+        self.confidence = confidence
+
+    def success_confidence(self, x: np.ndarray) -> float:
+        assert x.shape == (174,)
+        return self.confidence
+
+
+def policy(confidence: float, *, attack_right: bool = True, learn: bool = False) -> TpotBallPolicy:
+    return TpotBallPolicy(
+        TpotTable.empty(11),
+        attack_right=attack_right,
+        half_length_m=HALF_L,
+        half_width_m=HALF_W,
+        unit_m=1.0,
+        pass_range_m=30.0,
+        pass_power=80.0,
+        dt_s=0.1,
+        evaluator=Fixed(confidence),
+        threshold=0.5,
+        rng=np.random.default_rng(0),
+        learn=learn,
+    )
+
+
+def percept(*players: SeenPlayer, team: str = LEFT, tick: int = 10) -> Percept:
+    return Percept(PlayerRef(team, 7), tick, tick, SeenBall(0.5, 0.0), players)
+
+
+def test_destinations_are_eight_and_mirror_for_the_team_attacking_left() -> None:
+    assert len(DESTINATIONS) == N_ACTIONS
+    for a in range(N_ACTIONS):
+        x, y = destination_xy(a, True, HALF_L, HALF_W)
+        assert (-x, -y) == destination_xy(a, False, HALF_L, HALF_W)
+        assert 0.0 <= x <= HALF_L and abs(y) < HALF_W  # level or ahead, inside the touchlines
+    assert destination_xy(0, True, HALF_L, HALF_W) == (HALF_L, 0.0)
+
+
+@pytest.mark.parametrize(("confidence", "verdict"), [(0.9, SUCCESS), (0.2, FAILURE)])
+def test_a_teammate_toward_a_destination_gets_the_tree_s_verdict_the_rest_miss(
+    confidence: float, verdict: int
+) -> None:
+    # At the centre spot facing +x: the goal (destination 0) dead ahead; a teammate 10 m away,
+    # 5 degrees to the left, is a pass toward it; one 3 m away is too near to count.
+    mate = SeenPlayer(10.0, math.radians(5.0), LEFT, 9)
+    near = SeenPlayer(3.0, 0.0, LEFT, 8)
+    foe = SeenPlayer(8.0, 0.0, RIGHT, 4)
+    options = policy(confidence).options(percept(mate, near, foe), Pose(0.0, 0.0, 0.0))
+    assert options.features[0] == verdict
+    assert options.directions[0] == pytest.approx(math.radians(5.0))  # kick to the mate
+    assert options.features[5] == verdict  # centre ahead: the same direction from the spot
+    for a in (1, 2, 3, 4, 6, 7):
+        assert options.features[a] == MISS
+    # a destination with no one toward it is kicked at the point itself
+    x, y = destination_xy(6, True, HALF_L, HALF_W)
+    assert options.directions[6] == pytest.approx(math.atan2(y, x))
+
+
+def test_the_choice_is_a_pass_kick_and_its_reward_comes_from_the_ball_s_advance() -> None:
+    mate = SeenPlayer(10.0, 0.0, LEFT, 9)
+    p = policy(0.9, learn=True)
+    p.table.q[6, SUCCESS, 5] = 0.3  # player 7 has learned that "centre ahead" pays
+    decided = p.decide(7, percept(mate), Pose(0.0, 0.0, 0.0), (0.0, 0.0))
+    assert decided is not None
+    intent, actions = decided
+    assert intent == "tpot centre ahead"
+    assert actions == (Kick(80.0, 0.0),)
+    p.observe(7, 11, (26.25, 0.0))  # the ball seen half way to the opponents' goal
+    p.observe(7, 12, None)  # not seen: no sample
+    p.finish(20)
+    (e,) = p.experiences
+    assert (e.number, e.feature, e.action) == (7, SUCCESS, 5)
+    assert e.reward == pytest.approx(26.25 / 52.5)  # the mean sample: half way to the goal
+    assert p.choices[5] == 1
+
+
+def test_a_goal_fixes_every_pending_reward_and_the_horizon_fixes_one() -> None:
+    p = policy(0.9, attack_right=False, learn=True)
+    p.decide(7, percept(tick=0), Pose(10.0, 0.0, math.pi), (10.0, 0.0))
+    p.decide(3, percept(tick=0), Pose(20.0, 0.0, math.pi), (20.0, 0.0))
+    p.goal(False, 100)  # conceded 10 s later (dt 0.1 s)
+    assert [e.reward for e in p.experiences] == pytest.approx([-0.75, -0.75])
+    p.decide(7, percept(tick=200), Pose(0.0, 0.0, math.pi), (0.0, 0.0))
+    p.observe(7, 210, (-52.5, 0.0))  # attacking -x: the ball at the opponents' goal line
+    p.observe(7, 200 + 300, (52.5, 0.0))  # 30 s later: the horizon fixed it before this sample
+    assert p.experiences[-1].reward == pytest.approx(1.0)
+    p.finish(600)
+    assert len(p.experiences) == 3
+
+
+def test_without_a_pose_the_policy_leaves_the_decision_to_the_layered_rule() -> None:
+    assert policy(0.9).decide(7, percept(), None, (0.0, 0.0)) is None
+
+
+class Recording:
+    """A ball policy that records what the mind asks and tells it."""
+
+    def __init__(self) -> None:
+        self.asked = 0
+        self.seen: list[tuple[int, int, tuple[float, float] | None]] = []
+
+    def decide(
+        self, number: int, percept: Percept, pose: Pose | None, ball_xy: tuple[float, float] | None
+    ) -> tuple[str, tuple[Kick, ...]]:
+        self.asked += 1
+        return ("tpot test", (Kick(42.0, 0.25),))
+
+    def observe(self, number: int, tick: int, ball_xy: tuple[float, float] | None) -> None:
+        self.seen.append((number, tick, ball_xy))
+
+
+def test_the_mind_asks_its_ball_policy_only_where_it_would_pass_and_once_a_spell() -> None:
+    from robotsoccer.skills.team import TeamMind
+    from tests.robotsoccer.skills.test_team import percept as team_percept
+    from tests.robotsoccer.skills.test_team import setup
+
+    ball = SeenBall(0.5, 0.0)
+    free = Recording()
+    mind = TeamMind(7, setup(), ball_policy=free)
+    mind.act(team_percept(-20.0, 0.0, 0.0, ball=ball))  # nobody in the path: it dribbles
+    assert mind.intent == "dribble" and free.asked == 0
+    assert free.seen == [(7, 10, pytest.approx((-19.5, 0.0)))]
+    blocked = Recording()
+    mind = TeamMind(7, setup(), ball_policy=blocked)
+    foe = SeenPlayer(5.0, 0.0, RIGHT, 3)
+    for tick in (10, 11):  # the ball still in reach at the next percept: the same kick
+        (kick,) = mind.act(team_percept(-20.0, 0.0, 0.0, ball=ball, players=(foe,), tick=tick))
+        assert kick == Kick(42.0, 0.25) and mind.intent == "tpot test"
+    assert blocked.asked == 1 and mind.passes == 1
