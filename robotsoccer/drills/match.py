@@ -4,7 +4,10 @@
 with layer 1's net, passes chosen by layer 2's tree; ``baseline`` — no learned layer: it runs
 straight at the ball and passes to the closest teammate. Both localise from landmarks, send
 their nearest player to the ball, dribble, shoot and keep a formation; they differ only in the
-two learned decisions, so a series measures what the layers are worth in play. ``layer3`` — the
+two learned decisions, so a series measures what the layers are worth in play. Where the
+players push the ball (no aimable kick: the robots) both teams play it from behind and meet a
+ball rolling at their end as layer 1's goal-mouth drill does, the layered team with its lead
+net, the baseline straight (:mod:`robotsoccer.skills.team`, "Pushing"). ``layer3`` — the
 layered team whose ball holder, where the layered team would ask the tree, asks TPOT-RL's
 table instead (:mod:`robotsoccer.skills.layer3`, option ``tpot``: the table file; ``explore``:
 its exploration rate; ``learn``: record its rewards as the trial's data, for training).
@@ -45,6 +48,7 @@ from robotsoccer.skills.intercept import (
     transfer_distance_factor,
 )
 from robotsoccer.skills.layer3 import TpotBallPolicy
+from robotsoccer.skills.lead import VELOCITY_SPAN_S
 from robotsoccer.skills.passing import Chooser, PassEvaluator
 from robotsoccer.skills.setplay import KickPowers
 from robotsoccer.skills.team import TeamMind, TeamSetup
@@ -89,6 +93,8 @@ PASS_RANGE_UNITS = 30.0
 GOALIE_ZONE_UNITS = 16.5
 """The goalie goes for a ball this close to its goal (the penalty area's depth) [units]."""
 HOME_TOLERANCE_UNITS = 2.0
+GOALIE_DEPTH_UNITS = 2.0
+"""The goalie's stance in front of its goal line on a field with an aimable kick [units]."""
 DRIBBLE_UNITS = 4.0
 DRIBBLE_TIME_S = 2.0
 """A dribble kick sends the ball this far in this time (on a field with an aimable kick)."""
@@ -329,6 +335,7 @@ class MatchDrill(LayeredDrill):
         powers = kick_powers(facts, plan.kick_power)
         carry = CARRY_SHARE * _carry_m(facts, powers.shot)
         pass_carry = CARRY_SHARE * _carry_m(facts, powers.passing)
+        push = facts.kick is None or not facts.kick.aimable
         return TeamSetup(
             attack_right=team == LEFT,
             home={k: (sign * x * unit, sign * y * unit) for k, (x, y) in FORMATIONS[n].items()},
@@ -351,6 +358,22 @@ class MatchDrill(LayeredDrill):
             sensor_period_s=facts.sensor_period_s,
             ball_law=facts.ball,
             steady_turns=self.steady_turns,
+            push_kick=push,
+            # The nearest a shot of layer 1's goal-mouth drill is at its trigger: the nearest
+            # start, less the flight at the players' top speed (its fastest shot) during the
+            # velocity fit (robotsoccer.experiments.lead_study).
+            lead_from_m=plan.min_distance_m - VELOCITY_SPAN_S * facts.player_top_speed_mps,
+            lead_trigger_m=plan.max_distance_m,
+            # A pushing goalie stands where layer 1's goal-mouth drill put its defender (it
+            # meets shots as it learned there); elsewhere two units out, as before.
+            goalie_depth_m=(
+                facts.pitch.half_length_m - plan.defender_x_m if push else GOALIE_DEPTH_UNITS * unit
+            ),
+            # The walled table is seen by an overhead camera (specs/robot_physics.md §2).
+            sees_all_round=facts.walled,
+            player_radius_m=facts.pitch.player_radius_m,
+            goal_width_m=facts.pitch.goal_width_m,
+            turn_tolerance_rad=plan.turn_tolerance_rad,
         )
 
     # ------------------------------------------------------------------ the coach

@@ -28,6 +28,32 @@ percept arrives:
 5. **Otherwise** it goes to its formation home, shifted toward the ball
    (:data:`BALL_SHIFT_X`, :data:`BALL_SHIFT_Y`), and faces the ball there.
 
+**Pushing** (:attr:`TeamSetup.push_kick`: the 1997 small-size robots had no kicker and moved
+the ball with their bodies, `specs/robot_physics.md`). A push sends the ball where the body
+goes, so a chaser that runs straight at the ball from the wrong side pushes it toward its own
+goal: on `small_size_1997_arc` about half of all goals were such own goals (README, "Matches
+(measured)"). The chaser of a pushing team therefore:
+
+* **meets** a ball that rolls at it toward its own end (faster than :data:`MEET_SPEED_MPS`) as
+  layer 1's goal-mouth drill does (:class:`~robotsoccer.skills.lead.LeadDefenderMind`): the lead
+  τ chosen at the first percept of the meeting, then at every percept a turn toward the ball's
+  position τ ahead and a dash (one arc on the robots), no turn hold; meeting head-on sends the
+  ball back the way it came. The layered team's τ is its lead net's, asked only where the net
+  learned (a ball that rolls free of other players, from :attr:`TeamSetup.lead_from_m` out);
+  elsewhere, and always for the baseline, τ = 0: straight pursuit, the drill's own baseline;
+* otherwise plays the ball **from behind**: it goes to a point behind the ball on the ball's
+  line to the opponents' goal (round the ball, on its own side, when it stands goal-side of
+  it) and, once behind it within :data:`PUSH_LINE_SHARE`, runs through it; on the ball it
+  shoots, passes or dribbles as above.
+
+Its goalie stands where the drill's defender stood (:attr:`TeamSetup.goalie_depth_m`), meets a
+shot on target from the drill's trigger distance out (cutting short the hold of a turn it is
+in: the drill's defender reacts at the first frame that shows the shot), and plays a ball in
+its zone only from the goal side. With an overhead camera (:attr:`TeamSetup.sees_all_round`)
+a ball missing from a frame is a missed detection: no one turns to search for it, and the
+ball's track keeps every frame's sighting, also in a turn hold. Everything here is the same
+for both teams except τ; on a field with an aimable kick none of it applies.
+
 What a team may not do is read truth: the coach places players for kick-offs (as clients'
 ``move`` commands would) and the referee restarts play.
 """
@@ -44,6 +70,7 @@ from field_models.protocol import Action, Dash, Kick, Percept, SeenPlayer, Turn,
 from learning.pass_features import pass_attributes, passer_attributes, unknown_half
 from robotsoccer.skills.intercept import TurnPolicy
 from robotsoccer.skills.lead import (
+    LEAD_CLIP_S,
     BallTrack,
     LeadPolicy,
     ahead_of,
@@ -80,6 +107,11 @@ MIN_PASS_UNITS = 6.0
 """Teammates nearer than this are not passed to (the ball would barely leave)."""
 GOALIE_RANGE_UNITS = 5.0
 """The goalie keeps within this of the goal's centre line [units], half the ball's y."""
+PUSH_LINE_SHARE = 0.5
+"""A pushing player runs through the ball when it stands behind it within this share of its
+distance behind, off the ball's line to the goal (about 27°: the push goes goalward)."""
+MEET_SPEED_MPS = 0.2
+"""A pushing team meets a ball head-on only when it rolls faster than this [m/s]."""
 AHEAD_UNITS = -5.0
 """A teammate is a pass candidate when at least this far ahead of the passer (negative: a
 little behind is fine)."""
@@ -137,6 +169,23 @@ class TeamSetup:
             chaser and saw the ball within :data:`MEMORY_TICKS` goes on home instead of turning
             back to look; a player home stays so until twice the home tolerance away.
             False: the paper's client (turns forgotten until seen).
+        push_kick: The players move the ball by pushing it with their bodies (no aimable kick:
+            the 1997 small-size robots, `specs/robot_physics.md`): a push sends the ball where
+            the body goes, so the minds play it from behind (module docstring, "Pushing").
+        lead_from_m: A lead net is asked only of a ball this far or farther when a meeting
+            starts: the nearest a shot of its drill is at the trigger (nearer, it would answer
+            outside what it learned, and the player meets the ball straight, τ = 0) [m].
+        lead_trigger_m: A pushing team's goalie meets a shot on target from this near [m]:
+            layer 1's drill's trigger distance (its farthest shot).
+        goalie_depth_m: How far in front of its goal line the goalie stands [m].
+        sees_all_round: The sensor sees the whole field whatever a player's heading (the
+            robots' overhead camera): a ball seen within :data:`MEMORY_TICKS` and missing now
+            was missed by the camera, and the player keeps its last command instead of turning
+            to search. False: a view cone (the Soccer Server).
+        player_radius_m: A player's half size [m] (how far behind the ball it stands).
+        goal_width_m: The goal's width [m] (a pushing team's goalie meets shots on target).
+        turn_tolerance_rad: Meeting a ball, turns smaller than this are left out (layer 1's
+            drill: three sigmas of the sensor's heading noise) [rad].
     """
 
     attack_right: bool
@@ -160,6 +209,14 @@ class TeamSetup:
     sensor_period_s: float = 0.1
     ball_law: BallLaw | None = None
     steady_turns: bool = False
+    push_kick: bool = False
+    lead_from_m: float = 0.0
+    lead_trigger_m: float = 0.0
+    goalie_depth_m: float = 0.0
+    sees_all_round: bool = False
+    player_radius_m: float = 0.0
+    goal_width_m: float = 0.0
+    turn_tolerance_rad: float = 0.0
 
     def turn_ticks(self, angle_rad: float) -> int:
         """Ticks until a percept shows a turn by `angle_rad` done: latency plus the spin.
@@ -235,6 +292,9 @@ class TeamMind:
         self._last_turn = (-REVERSE_HOLD_TICKS - 1, 0.0)  # (tick, angle) with steady turns
         self._seen_tick = -MEMORY_TICKS - 1  # the last tick it saw the ball
         self._at_home = False  # with steady turns: arrived home and not yet pushed off it
+        self._lead_s: float | None = None  # the lead held while meeting a ball (pushing teams)
+        self._held_lead: float | None = None  # ... as the last decision left it
+        self._sighted_tick = -1  # the frame of the ball's last sighting on its track
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """One decision (module docstring), its turns remembered until percepts show them."""
@@ -242,7 +302,15 @@ class TeamMind:
             # The last turn is not over in what this percept shows (the robots' camera latency
             # and spin-up): deciding again would turn twice and swing about. The body goes on
             # with the last decision (an empty one keeps it, on the robots' host).
-            return ()
+            if not self.setup.sees_all_round:
+                return ()
+            # The overhead camera gives every frame's pose and ball: the ball's track keeps
+            # every sighting, so the velocity fit spans consecutive frames (as in layer 1's
+            # drill, which decides at each), and a shot at its goal cuts the goalie's hold
+            # short: layer 1's defender reacts at the first frame that shows it.
+            pose = self._sight(percept)
+            if not self._shot_at_goalie(pose):
+                return ()
         actions = self._decide(percept)
         if self.ball_policy is not None:
             seen = percept.ball is not None and self.localiser.pose is not None
@@ -250,7 +318,8 @@ class TeamMind:
         if self.setup.steady_turns:
             actions = self._steady(percept.tick, actions)
         for action in actions:
-            if isinstance(action, Turn):
+            if isinstance(action, Turn) and self._lead_s is None:
+                # (a player meeting a ball re-aims at every percept, as layer 1's drill does)
                 self._hold_until = percept.tick + self.setup.turn_ticks(action.angle_rad)
                 break
         return actions
@@ -270,11 +339,31 @@ class TeamMind:
         return actions
 
     def _decide(self, percept: Percept) -> tuple[Action, ...]:
-        pose = self.localiser.update(percept)
+        # A lead is held only through an unbroken spell of meeting the ball (_meet sets it).
+        self._held_lead, self._lead_s = self._lead_s, None
+        pose = self._sight(percept)
         ball = percept.ball
         if ball is None:
             self._previous_bd = None
             return self._no_ball(percept, pose)
+        self.chasing = self._is_chaser(percept)
+        if not self.chasing:
+            self._spell_kicked = ""
+            self._previous_bd = ball.distance_m
+            return self._go_home(percept, pose)
+        if self.setup.push_kick and pose is not None and self._ball_xy is not None:
+            return self._push_play(percept, pose, self._ball_xy)
+        if ball.distance_m <= self.setup.reach_m:
+            return self._on_ball(percept, pose)
+        self._spell_kicked = ""
+        return self._chase(percept)
+
+    def _sight(self, percept: Percept) -> Pose | None:
+        """Localise, and put the ball seen in the field frame and on its track."""
+        pose = self.localiser.update(percept)
+        ball = percept.ball
+        if ball is None:
+            return pose
         self._seen_tick = percept.tick
         if pose is not None:
             heading = pose.heading + ball.angle_rad
@@ -282,17 +371,11 @@ class TeamMind:
                 pose.x + ball.distance_m * math.cos(heading),
                 pose.y + ball.distance_m * math.sin(heading),
             )
-            if self.lead is not None:
+            fresh = percept.observed_tick != self._sighted_tick  # once per frame
+            if fresh and (self.lead is not None or self.setup.push_kick):
                 self._track.add(percept.observed_tick * self.setup.dt_s, *self._ball_xy)
-        self.chasing = self._is_chaser(percept)
-        if not self.chasing:
-            self._spell_kicked = ""
-            self._previous_bd = ball.distance_m
-            return self._go_home(percept, pose)
-        if ball.distance_m <= self.setup.reach_m:
-            return self._on_ball(percept, pose)
-        self._spell_kicked = ""
-        return self._chase(percept)
+            self._sighted_tick = percept.observed_tick
+        return pose
 
     # ------------------------------------------------------------------ who chases
 
@@ -305,7 +388,17 @@ class TeamMind:
                 return ball.distance_m <= setup.reach_m
             gx, gy = setup.own_goal_xy
             bx, by = self._ball_xy
-            return math.hypot(bx - gx, by - gy) <= setup.goalie_zone_m
+            near = math.hypot(bx - gx, by - gy)
+            if setup.push_kick and ball.distance_m <= setup.lead_trigger_m:
+                pose = self.localiser.pose
+                if self._shot_at_goalie(pose):
+                    return True  # a shot at its goal: the goalie meets it (layer 1's drill)
+                if near > setup.goalie_zone_m or pose is None:
+                    return False
+                # In its zone it plays a ball only from the goal side (a push goes out of the
+                # goal); going round a ball there turns it into its own goal (measured).
+                return (pose.x - bx) * gx > 0.0
+            return near <= setup.goalie_zone_m
         bx = ball.distance_m * math.cos(ball.angle_rad)
         by = ball.distance_m * math.sin(ball.angle_rad)
         margin = CHASE_MARGIN_UNITS * setup.unit_m
@@ -417,6 +510,152 @@ class TeamMind:
             ahead = -ahead
         return ahead >= AHEAD_UNITS * setup.unit_m
 
+    # ------------------------------------------------------------------ pushing
+
+    def _push_play(
+        self, percept: Percept, pose: Pose, ball_xy: tuple[float, float]
+    ) -> tuple[Action, ...]:
+        """The chaser of a pushing team (module docstring, "Pushing").
+
+        A ball that comes at the player on its way toward the player's own end is met head-on
+        (:meth:`_chase`: layer 1 for the layered team, straight for the baseline), which sends
+        it back the way it came. Any other ball is played from behind: the player goes to a
+        point behind it on its line to the opponents' goal (around it when on the wrong side)
+        and pushes it on from there (:meth:`_on_ball`).
+        """
+        ball = percept.ball
+        assert ball is not None
+        if self._meets(pose, ball_xy):
+            if self.interception is not None and self.lead is None:
+                return self._chase(percept)  # the paper's turn-angle net, as in open fields
+            return self._meet(percept, pose, ball_xy)
+        setup = self.setup
+        bx, by = ball_xy
+        gx, gy = setup.goal_xy
+        length = math.hypot(gx - bx, gy - by) or 1.0
+        tx, ty = (gx - bx) / length, (gy - by) / length  # the way the ball should go
+        rx, ry = pose.x - bx, pose.y - by
+        along = rx * tx + ry * ty  # > 0: the player stands goal-side of the ball
+        across = tx * ry - ty * rx  # which side of the ball's line it stands on
+        behind = setup.player_radius_m + setup.reach_m
+        self._previous_bd = ball.distance_m
+        if along < 0.0 and abs(across) <= PUSH_LINE_SHARE * -along:
+            if ball.distance_m <= setup.reach_m:
+                return self._on_ball(percept, pose)
+            self._spell_kicked = ""
+            self.intent = "chase"
+            return self._run_to(ball.angle_rad, ball.distance_m)  # behind it: run through
+        self._spell_kicked = ""
+        if along > -behind and abs(across) < 2.0 * behind:
+            side = 1.0 if across >= 0.0 else -1.0  # go round on the side it stands
+            target = (bx - ty * side * 2.0 * behind, by + tx * side * 2.0 * behind)
+        else:
+            target = (bx - tx * 2.0 * behind, by - ty * 2.0 * behind)
+        target = self._inside(target)
+        self.intent = "approach"
+        angle = wrap_angle(math.atan2(target[1] - pose.y, target[0] - pose.x) - pose.heading)
+        return self._run_to(angle, math.hypot(target[0] - pose.x, target[1] - pose.y))
+
+    def _meet(
+        self, percept: Percept, pose: Pose, ball_xy: tuple[float, float]
+    ) -> tuple[Action, ...]:
+        """Meet a rolling ball as layer 1's lead defender does (`skills.lead`).
+
+        The lead τ is chosen once, at the spell's first percept: the lead net's for a ball that
+        rolls free from :attr:`TeamSetup.lead_from_m` out (the shots it learned on), else 0,
+        the baseline's straight pursuit. Then at every percept: a turn toward the ball's
+        position τ ahead and a dash, one arc on the robots (:class:`~robotsoccer.skills.lead.
+        LeadDefenderMind`).
+        """
+        ball = percept.ball
+        velocity = self._track.velocity()
+        assert ball is not None and velocity is not None
+        bd = ball.distance_m
+        previous = bd if self._previous_bd is None else self._previous_bd
+        self._previous_bd = bd
+        self._lead_s = self._held_lead
+        if self._lead_s is None:
+            lead = 0.0
+            if self.lead is not None and bd >= self.setup.lead_from_m and self._rolls_free(percept):
+                angle = track_angle(ball_xy, velocity, (pose.x, pose.y))
+                lead = min(LEAD_CLIP_S, max(0.0, self.lead(bd, angle, previous)))
+            self._lead_s = lead
+        self._spell_kicked = ""
+        self.intent = "intercept" if self.lead is not None else "meet"
+        aim = self._inside(ahead_of(ball_xy, velocity, self._lead_s, self.setup.ball_law))
+        angle = wrap_angle(math.atan2(aim[1] - pose.y, aim[0] - pose.x) - pose.heading)
+        if abs(angle) < self.setup.turn_tolerance_rad:
+            return (Dash(100.0),)
+        return (Turn(angle), Dash(100.0))
+
+    def _meets(self, pose: Pose, ball_xy: tuple[float, float]) -> bool:
+        """The ball rolls at the player and toward the player's own end (a shot, a clearance)."""
+        velocity = self._track.velocity()
+        if velocity is None or not self._track.full():
+            return False
+        vx, vy = velocity
+        if math.hypot(vx, vy) < MEET_SPEED_MPS:
+            return False
+        toward_own_end = vx * self.setup.own_goal_xy[0] > 0.0
+        closing = vx * (pose.x - ball_xy[0]) + vy * (pose.y - ball_xy[1]) > 0.0
+        return toward_own_end and closing
+
+    def _inside(self, point: tuple[float, float]) -> tuple[float, float]:
+        """`point` moved onto the field where a player's centre can be.
+
+        Not into a goal: a ball met beyond the goal line is a goal already.
+        """
+        setup = self.setup
+        lx = setup.half_length_m - setup.player_radius_m
+        ly = setup.half_width_m - setup.player_radius_m
+        return max(-lx, min(point[0], lx)), max(-ly, min(point[1], ly))
+
+    def _rolls_free(self, percept: Percept) -> bool:
+        """No other player seen within a player's size and reach of the ball.
+
+        The ball then rolls by its own law, as the shots of layer 1's drill do; a ball a player
+        pushes on goes where the player goes, which the lead's prediction does not know.
+        """
+        ball = percept.ball
+        assert ball is not None
+        bx = ball.distance_m * math.cos(ball.angle_rad)
+        by = ball.distance_m * math.sin(ball.angle_rad)
+        near = self.setup.player_radius_m + self.setup.reach_m
+        for seen in percept.players:
+            px = seen.distance_m * math.cos(seen.angle_rad)
+            py = seen.distance_m * math.sin(seen.angle_rad)
+            if math.hypot(px - bx, py - by) <= near:
+                return False
+        return True
+
+    def _shot_at_goalie(self, pose: Pose | None) -> bool:
+        """This player keeps goal, and the ball rolls at it and between its posts."""
+        ball = self._ball_xy
+        if not self.is_goalie or pose is None or ball is None:
+            return False
+        return self._meets(pose, ball) and self._on_target()
+
+    def _on_target(self) -> bool:
+        """The ball's perceived track crosses the player's own goal line between the posts."""
+        velocity, ball = self._track.velocity(), self._ball_xy
+        if velocity is None or ball is None:
+            return False
+        gx = self.setup.own_goal_xy[0]
+        vx, vy = velocity
+        if vx * (gx - ball[0]) <= 0.0:
+            return False
+        crossing = ball[1] + vy * (gx - ball[0]) / vx
+        return abs(crossing) <= 0.5 * self.setup.goal_width_m
+
+    def _run_to(self, angle: float, distance_m: float) -> tuple[Action, ...]:
+        """Turn toward `angle` and run (on arcs where the host drives them)."""
+        angle = wrap_angle(angle)
+        if abs(angle) <= FACING_RAD:
+            return (Dash(100.0),)
+        if distance_m <= NEAR_REACHES * self.setup.reach_m:
+            return (Turn(angle),)  # near: run on only once facing it, or it circles
+        return (Turn(angle), Dash(100.0))
+
     # ------------------------------------------------------------------ chase, home
 
     def _chase(self, percept: Percept) -> tuple[Action, ...]:
@@ -503,7 +742,7 @@ class TeamMind:
             gx = setup.own_goal_xy[0]
             inward = -1.0 if gx > 0 else 1.0
             post = GOALIE_RANGE_UNITS * setup.unit_m
-            return gx + inward * 2.0 * setup.unit_m, max(-post, min(0.5 * by, post))
+            return gx + inward * setup.goalie_depth_m, max(-post, min(0.5 * by, post))
         x = hx + BALL_SHIFT_X * bx
         y = hy + BALL_SHIFT_Y * (by - hy)
         lx, ly = setup.half_length_m - setup.unit_m, setup.half_width_m - setup.unit_m
@@ -512,6 +751,11 @@ class TeamMind:
     def _no_ball(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...]:
         remembered = self._ball_xy
         recent = percept.tick - self._seen_tick <= MEMORY_TICKS
+        if self.setup.sees_all_round:
+            # An overhead camera sees the whole table whatever the heading: a ball missing from
+            # a frame is a missed detection (specs/robot_physics.md), not a ball out of view.
+            # Turning to look for it would turn away from play; the body keeps its command.
+            return ()
         if self.setup.steady_turns and recent and not self.chasing and pose is not None:
             # Steady turns: a player that turned away from the ball to go home trusts where it
             # saw it, and goes on home rather than turning back to look (and away again).

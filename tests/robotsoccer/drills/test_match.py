@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
+from learning.datasets import write_npz
+from learning.features import LEAD_FEATURE_NAMES, LEAD_TARGET_NAME
 from robotsoccer.drills.match import MatchDrill, TeamKind
 from robotsoccer.drills.referee import RESTART_DISTANCE_UNITS
 from robotsoccer.runs.pool import run_trials
@@ -165,3 +169,33 @@ def test_a_server_match_frame_carries_the_command_counts() -> None:
     assert frame.commands is not None and set(frame.commands) == set(arena.players)
     drill, arena = started(baseline("robot_physics"))
     assert drill.game_frame(arena).commands is None  # the robots' arena counts none
+
+
+def lead_net_file(tmp_path: Path) -> Path:
+    """A robot lead net (random weights): a turn-net file whose columns name the lead's."""
+    turn = net_file(tmp_path / "turn.npz", preset="small_size_1997_arc", field="robot_physics")
+    with np.load(turn, allow_pickle=False) as data:
+        arrays = {k: data[k] for k in data.files if k != "metadata"}
+        meta = json.loads(str(data["metadata"]))
+    meta["schema"].update(feature_names=list(LEAD_FEATURE_NAMES), target_name=LEAD_TARGET_NAME)
+    arrays["input_mean"] = np.array([0.5, 0.0, 0.55])  # metres and radians, as on the table
+    arrays["input_scale"] = np.array([0.1, 0.2, 0.1])
+    return write_npz(tmp_path / "lead.npz", arrays, meta)
+
+
+def test_a_robot_match_with_a_lead_team_is_the_same_whatever_the_worker_count(
+    tmp_path: Path,
+) -> None:
+    net = lead_net_file(tmp_path)
+    tree = _tree_file(tmp_path, "robot_physics")
+    spec = TrialSpec(
+        drill="match", field_model="robot_physics", preset="small_size_1997_arc", seed=3
+    ).with_options(net=str(net), tree=str(tree), half_time_s=3.0, transfer=True)
+    one = run_trials(spec, 2, workers=1, progress=False)
+    two = run_trials(spec, 2, workers=2, progress=False)
+    assert [r.csv_row() for r in one] == [r.csv_row() for r in two]
+    drill, _ = started(spec)
+    minds = drill.minds_by_ref
+    lead_team = [m for r, m in minds.items() if r.team == LEFT]
+    assert all(m.lead is not None and m.setup.push_kick for m in lead_team)
+    assert all(m.lead is None for r, m in minds.items() if r.team == RIGHT)

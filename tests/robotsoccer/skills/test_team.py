@@ -136,3 +136,118 @@ def test_after_a_turn_it_waits_for_a_percept_that_shows_it() -> None:
     assert mind.act(percept(0.0, 0.0, 0.0, ball=SeenBall(20.0, 1.0), tick=12, observed=11)) == ()
     later = mind.act(percept(0.0, 0.0, 1.0, ball=SeenBall(20.0, 0.0), tick=30, observed=29))
     assert later == (Dash(100.0),)
+
+
+# ---------------------------------------------------------------------- pushing teams (robots)
+
+
+def pushing(**changes: float) -> TeamSetup:
+    """The plan of a team that pushes the ball, seen by an overhead camera (the robots)."""
+    base = dataclasses.replace(
+        setup(),
+        sensor_period_s=0.1,  # a velocity fit over two sightings
+        push_kick=True,
+        sees_all_round=True,
+        player_radius_m=0.5,
+        goal_width_m=14.0,
+        lead_from_m=5.0,
+        lead_trigger_m=30.0,
+        goalie_depth_m=4.0,
+        turn_tolerance_rad=0.05,
+    )
+    return dataclasses.replace(base, **changes)
+
+
+def ball_at(x: float, y: float, heading: float, bx: float, by: float) -> SeenBall:
+    """The ball at (bx, by) as a player at (x, y) facing `heading` sees it."""
+    return SeenBall(math.hypot(bx - x, by - y), wrap_angle(math.atan2(by - y, bx - x) - heading))
+
+
+def rolling(
+    mind: TeamMind, x: float, y: float, heading: float, track: list[tuple[float, float]]
+) -> tuple:
+    """Show `mind` the ball at each point of `track`, one percept a tick; the last decision."""
+    actions: tuple = ()
+    for i, (bx, by) in enumerate(track):
+        tick = 10 + i
+        actions = mind.act(percept(x, y, heading, ball=ball_at(x, y, heading, bx, by), tick=tick))
+    return actions
+
+
+def test_a_pusher_goal_side_of_the_ball_goes_round_it_not_through_it() -> None:
+    mind = TeamMind(7, pushing())
+    # It stands between the ball and the goal it attacks (+x), facing the ball.
+    (turn, dash) = rolling(mind, 10.0, 0.0, math.pi, [(5.0, 0.0), (5.0, 0.0)])
+    assert mind.intent == "approach" and dash == Dash(100.0)
+    # Round the ball on its own side: to (5, 2 * (radius + reach)), not at the ball (angle 0).
+    assert isinstance(turn, Turn)
+    assert turn.angle_rad == pytest.approx(wrap_angle(math.atan2(3.0, -5.0) - math.pi))
+
+
+def test_a_pusher_behind_the_ball_runs_through_it_and_pushes_it_goalward() -> None:
+    mind = TeamMind(7, pushing())
+    assert rolling(mind, 0.0, 0.0, 0.0, [(5.0, 0.0), (5.0, 0.0)]) == (Dash(100.0),)
+    assert mind.intent == "chase"
+    on_ball = TeamMind(7, pushing())
+    (kick,) = rolling(on_ball, -20.0, 0.0, 0.0, [(-19.5, 0.0), (-19.5, 0.0)])
+    assert on_ball.intent == "dribble" and isinstance(kick, Kick)
+
+
+def test_a_ball_rolling_at_a_player_toward_its_own_end_is_met_straight_or_with_the_lead() -> None:
+    track = [(-10.0, 5.0), (-11.0, 5.0)]  # 10 m/s toward its own goal (-x)
+    straight = TeamMind(7, pushing())
+    (turn, dash) = rolling(straight, -20.0, 0.0, 0.0, track)
+    assert straight.intent == "meet" and dash == Dash(100.0)
+    assert isinstance(turn, Turn) and turn.angle_rad == pytest.approx(math.atan2(5.0, 9.0))
+    led = TeamMind(7, pushing(), lead=lambda bd, angle, previous: 0.5)
+    (turn, _) = rolling(led, -20.0, 0.0, 0.0, track)
+    # The lead aims 0.5 s ahead along the ball's track: at (-16, 5).
+    assert led.intent == "intercept"
+    assert isinstance(turn, Turn) and turn.angle_rad == pytest.approx(math.atan2(5.0, 4.0))
+
+
+def test_the_lead_is_asked_only_of_a_free_ball_from_its_drill_range() -> None:
+    track = [(-10.0, 5.0), (-11.0, 5.0)]
+    mind = TeamMind(7, pushing(), lead=lambda bd, angle, previous: 0.5)
+    for i, (bx, by) in enumerate(track):
+        ball = ball_at(-20.0, 0.0, 0.0, bx, by)
+        near = SeenPlayer(ball.distance_m + 0.5, ball.angle_rad, RIGHT, 4)  # pushing it on
+        actions = mind.act(percept(-20.0, 0.0, 0.0, ball=ball, players=(near,), tick=10 + i))
+    assert mind.intent == "intercept"
+    (turn, _) = actions
+    assert isinstance(turn, Turn) and turn.angle_rad == pytest.approx(math.atan2(5.0, 9.0))
+    close = TeamMind(7, pushing(lead_from_m=20.0), lead=lambda bd, angle, previous: 0.5)
+    (turn, _) = rolling(close, -20.0, 0.0, 0.0, track)
+    assert isinstance(turn, Turn) and turn.angle_rad == pytest.approx(math.atan2(5.0, 9.0))
+
+
+def test_a_ball_rolling_at_a_player_toward_the_other_end_is_played_from_behind() -> None:
+    mind = TeamMind(7, pushing())
+    rolling(mind, 0.0, 0.0, math.pi, [(-10.0, 0.0), (-9.0, 0.0)])  # toward +x, at the player
+    assert mind.intent == "approach"
+
+
+def test_a_goalie_cuts_its_turn_hold_short_for_a_shot_at_its_goal() -> None:
+    goal_x = -52.5 + 4.0
+    track = [(-30.0, 2.0), (-31.0, 2.0), (-32.0, 2.0)]  # on target, rolling at the goalie
+
+    def play(sees_all_round: bool) -> tuple:
+        mind = TeamMind(1, pushing(latency_s=5.0, sees_all_round=sees_all_round))
+        # Far from its spot and facing away: it turns to go there, and holds for the turn.
+        first = mind.act(percept(goal_x + 8.0, 6.0, 0.0, ball=ball_at(goal_x + 8, 6, 0, 0, 20)))
+        assert isinstance(first[0], Turn)
+        return rolling(mind, goal_x, 0.0, 0.0, track), mind
+
+    actions, mind = play(True)
+    assert mind.intent == "meet" and actions and actions[-1] == Dash(100.0)
+    actions, _ = play(False)
+    assert actions == ()  # the paper's client holds on until its turn shows
+
+
+def test_under_an_overhead_camera_a_missed_ball_is_no_reason_to_turn() -> None:
+    seen = TeamMind(7, pushing())
+    seen.act(percept(0.0, 0.0, 0.0, ball=SeenBall(10.0, 0.0), tick=10))
+    assert seen.act(percept(0.0, 0.0, 0.0, tick=11)) == ()
+    cone = TeamMind(7, setup())
+    cone.act(percept(0.0, 0.0, 0.0, ball=SeenBall(10.0, 0.0), tick=10))
+    assert isinstance(cone.act(percept(0.0, 0.0, 0.0, tick=11))[0], Turn)
