@@ -35,6 +35,9 @@ from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_tri
 from robotsoccer.skills.cycle import TurnReversals
 from robotsoccer.stats import wilson_interval
 
+COMPENSATED = "small_size_1997_arc_compensated"
+"""The arc preset whose host compensates turns for the loop's latency (the fix measured)."""
+
 SAMPLE_S = 0.1
 """Heading sample period for the reversal count [s]: the Soccer Server's cycle."""
 
@@ -162,20 +165,21 @@ def main() -> None:
         )
         for preset in ("small_size_1997", "small_size_1997_arc")
     ]
-    runs.append(
-        (
-            "intercept lead net (goal mouth), `small_size_1997_arc`",
-            TrialSpec("intercept", "robot_physics", "small_size_1997_arc", drill_options=lead),
-            args.trials,
+    for preset in ("small_size_1997_arc", COMPENSATED):
+        runs.append(
+            (
+                f"intercept lead net (goal mouth), `{preset}`",
+                TrialSpec("intercept", "robot_physics", preset, drill_options=lead),
+                args.trials,
+            )
         )
-    )
     match: tuple[tuple[str, DrillOption], ...] = (
         ("left", "baseline"),
         ("right", "baseline"),
         ("half_time_s", float(args.half_time)),
     )
     steady = (*match, ("steady_turns", True))
-    for preset in ("small_size_1997", "small_size_1997_arc"):
+    for preset in ("small_size_1997", "small_size_1997_arc", COMPENSATED):
         for how, options in (("", match), (", steady turns", steady)):
             runs.append(
                 (

@@ -464,3 +464,41 @@ def test_wheels_go_out_at_once_held_and_replace_the_pending_actions() -> None:
     assert (c.primitive, c.value, c.rate) == (Primitive.WHEELS, 0.2, -0.1)
     assert c.duration_ticks == 2 * PERIOD and host.pending(A) == ()
     assert "WHEELS +0.20 -0.10 m/s" in host.drain_events()[-1].text
+
+
+def test_turn_compensation_takes_off_what_the_last_turn_turns_after_the_frame() -> None:
+    """Issue 28 item 5: a turn asked again from an old frame is cut by the part under way."""
+    preset = dataclasses.replace(
+        PRESET, robot=dataclasses.replace(PRESET.robot, turn_compensation=True)
+    )
+    host, link = make_host(preset)
+    host.percepts(frame(None, (A, 0.0, 0.0, 0.0), tick=0), 12)
+    host.submit(A, (Turn(1.0),), 0)
+    (first,) = sent(link)
+    rate, ticks = host.turn_plan(1.0)
+    assert first.value == pytest.approx(rate)  # nothing under way yet: sent as asked
+    # A decision at `ticks // 2` from the same frame (tick 0) asks for the same turn: half of it
+    # is done by then (the link here has no latency), so the host turns by the other half.
+    half = ticks // 2
+    host.submit(A, (Turn(1.0),), half)
+    (second,) = sent(link, half)
+    turned = second.value * second.duration_ticks * DT
+    assert turned == pytest.approx(1.0 - 1.0 * half / ticks, abs=1e-9)
+    # A newer frame (tick `half`) sees that turn: only the second turn's part since counts, and
+    # the first was cut at the second's arrival.
+    host.percepts(frame(None, (A, 0.0, 0.0, 0.5), tick=half), half + 12)
+    host.submit(A, (Turn(0.2),), half + 1)
+    (third,) = sent(link, half + 1)
+    done = turned / second.duration_ticks
+    assert third.value * third.duration_ticks * DT == pytest.approx(0.2 - done, abs=1e-9)
+
+
+def test_without_turn_compensation_a_repeated_turn_is_sent_as_asked() -> None:
+    host, link = make_host()
+    host.percepts(frame(None, (A, 0.0, 0.0, 0.0), tick=0), 12)
+    host.submit(A, (Turn(1.0),), 0)
+    (first,) = sent(link)
+    _, ticks = host.turn_plan(1.0)
+    host.submit(A, (Turn(1.0),), ticks // 2)
+    (second,) = sent(link, ticks // 2)
+    assert first.value == second.value and first.duration_ticks == second.duration_ticks
