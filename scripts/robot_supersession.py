@@ -31,12 +31,13 @@ from dataclasses import asdict, dataclass, fields
 from pathlib import Path
 
 from field_models.protocol import Percept
+from robotsoccer.cli.options import LEAD_DRILLS
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.cycle import TurnReversals
 from robotsoccer.stats import wilson_interval
 
-COMPENSATED = "small_size_1997_arc_compensated"
-"""The arc preset whose host compensates turns for the loop's latency (the fix measured)."""
+PRESETS = ("small_size_1997", "small_size_1997_arc")
+"""The robot presets measured: the paper's spin-then-drive primitives and the arc."""
 
 SAMPLE_S = 0.1
 """Heading sample period for the reversal count [s]: the Soccer Server's cycle."""
@@ -107,8 +108,8 @@ def measure(spec: TrialSpec, trials: int) -> tuple[Counts, dict[str, int], float
     return total, labels, time.perf_counter() - start
 
 
-def row(name: str, c: Counts) -> str:
-    """One table row: rates per robot-minute and shares of commands sent with intervals."""
+def row(name: str, c: Counts, labels: dict[str, int]) -> str:
+    """One table row: rates per robot-minute, shares with intervals, a drill's saves."""
 
     def rate(x: int) -> str:
         return f"{x / c.robot_minutes:.2f}" if c.robot_minutes else "-"
@@ -121,14 +122,23 @@ def row(name: str, c: Counts) -> str:
         f"| {name} | {c.robot_minutes:.2f} | {c.sent} | {rate(c.host_dropped)} "
         f"({rate(c.host_dropped_dashes)} dashes) | {rate(c.link_superseded)} | "
         f"{rate(c.cut_turns)} | {share(c.cut_turns)} | {rate(c.cut_short - c.cut_turns)} | "
-        f"{rate(c.stale)} | {rate(c.reversals)} |"
+        f"{rate(c.stale)} | {rate(c.reversals)} | {saves(labels)} |"
     )
+
+
+def saves(labels: dict[str, int]) -> str:
+    """An interception drill's saves, % with n and a 95% Wilson interval; '-' for matches."""
+    if "SAVE" not in labels and "GOAL" not in labels:
+        return "-"
+    n = sum(labels.values())
+    lo, hi = wilson_interval(labels.get("SAVE", 0), n)
+    return f"{100 * labels.get('SAVE', 0) / n:.1f} [{100 * lo:.1f}, {100 * hi:.1f}] (n={n})"
 
 
 HEADER = (
     "| run | robot-min | commands sent | host dropped /robot-min | link superseded /robot-min "
     "| turns cut short /robot-min | turns cut short, % of sent [95%] | holds cut short "
-    "/robot-min | stale /robot-min | reversals /robot-min |\n|" + "---|" * 10
+    "/robot-min | stale /robot-min | reversals /robot-min | saves % [95%] |\n|" + "---|" * 11
 )
 
 
@@ -149,37 +159,31 @@ def main() -> None:
         parser.error("--trials and --games must be >= 1 and --half-time > 0")
     if not Path(args.lead_net).is_file():
         parser.error(f"no lead net at {args.lead_net}")
-    lead: tuple[tuple[str, DrillOption], ...] = (
-        ("behaviour", "net"),
-        ("model", str(args.lead_net)),
-        ("decision", "lead"),
-        ("shot", "goal_mouth"),
-    )
-    runs: list[tuple[str, TrialSpec, int]] = [
-        (
-            f"intercept straight, `{preset}`",
-            TrialSpec(
-                "intercept", "robot_physics", preset, drill_options=(("behaviour", "straight"),)
-            ),
-            args.trials,
-        )
-        for preset in ("small_size_1997", "small_size_1997_arc")
-    ]
-    for preset in ("small_size_1997_arc", COMPENSATED):
-        runs.append(
-            (
-                f"intercept lead net (goal mouth), `{preset}`",
-                TrialSpec("intercept", "robot_physics", preset, drill_options=lead),
-                args.trials,
+    # The lead study's robot drill (shots across the goal mouth; `robotsoccer learn lead`).
+    drill = (*LEAD_DRILLS["robot_physics"][1], ("decision", "lead"))
+    net = (("behaviour", "net"), ("model", str(args.lead_net)))
+    runs: list[tuple[str, TrialSpec, int]] = []
+    for behaviour, options, presets in (
+        ("straight", (("behaviour", "straight"),), PRESETS),
+        ("lead net", net, PRESETS[1:]),  # the net was trained on `_arc`
+    ):
+        for preset in presets:
+            runs.append(
+                (
+                    f"lead drill, {behaviour}, `{preset}`",
+                    TrialSpec(
+                        "intercept", "robot_physics", preset, drill_options=(*drill, *options)
+                    ),
+                    args.trials,
+                )
             )
-        )
     match: tuple[tuple[str, DrillOption], ...] = (
         ("left", "baseline"),
         ("right", "baseline"),
         ("half_time_s", float(args.half_time)),
     )
     steady = (*match, ("steady_turns", True))
-    for preset in ("small_size_1997", "small_size_1997_arc", COMPENSATED):
+    for preset in PRESETS:
         for how, options in (("", match), (", steady turns", steady)):
             runs.append(
                 (
@@ -192,7 +196,7 @@ def main() -> None:
     lines, data = [HEADER], {}
     for name, spec, n in runs:
         counts, labels, wall = measure(spec, n)
-        lines.append(row(name, counts))
+        lines.append(row(name, counts, labels))
         data[name] = {"trials": n, "labels": labels, "wall_s": wall, **asdict(counts)}
         print(lines[-1], f"({n} trials, {wall:.0f} s)", flush=True)
     (args.out / "table.md").write_text("\n".join(lines) + "\n")

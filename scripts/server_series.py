@@ -69,6 +69,9 @@ def main() -> None:
     parser.add_argument("--net", type=Path, required=True)
     parser.add_argument("--tree", type=Path, required=True)
     parser.add_argument("--steady-turns", action="store_true")
+    parser.add_argument(
+        "--transfer", action="store_true", help="net and tree trained on another preset"
+    )
     parser.add_argument("--reversal-games", type=int, default=2, help="per side")
     parser.add_argument("--out", type=Path, required=True)
     args = parser.parse_args()
@@ -82,6 +85,8 @@ def main() -> None:
         options["half_time_s"] = args.half_time
     if args.steady_turns:
         options["steady_turns"] = True
+    if args.transfer:
+        options["transfer"] = True
     base = TrialSpec(
         drill="match",
         field_model="soccer_server",

@@ -82,10 +82,6 @@ class RobotConfig:
     turn_style: str = "spin"
     """How the host runs a turn followed by a dash: ``"spin"`` in place, then drive (the paper's
     primitives, §2); ``"arc"``: drive forward while turning, with a wheel-speed difference."""
-    turn_compensation: bool = False
-    """Whether the host takes from a decision's first turn what the robot's earlier turns will
-    have turned between the frame its pose came from and the new command's arrival (issue 28
-    item 5; `robot_physics.host`). False: the mind's turn is sent as asked (the paper's host)."""
 
     def __post_init__(self) -> None:
         check_ranges(self)

@@ -51,16 +51,6 @@ Dash or Kick) at once. Let v_max be the top wheel speed, T one camera period, ω
 * ``Say(text)``: not sent to the robot; relayed by the host to every other robot's heard buffer,
   with the sender and, when both poses are known, the direction of the sender from the listener.
 
-**Turn compensation** (``robot.turn_compensation``, default off; issue 28 item 5). A mind's
-turn is relative to the heading in the frame it saw, which the camera took a latency ago; its
-command reaches the robot a link latency later. A mind that re-aims at every frame (layer 1's
-lead defender) thus asks again for the part of its last turn still under way, and swings past
-its aim and back. With compensation on, the host keeps each robot's TURN/ARC commands (arrival,
-end, angle; a later drive command cuts a turn at its own arrival) and takes from a decision's
-first turn the rotation they are planned to make between the capture of the frame that gave the
-robot's pose and the new command's arrival (each turning evenly over its duration; lost packets
-are not known to the host). Off, the turn is sent as asked, as the paper's host does.
-
 **Events** (:meth:`CentralHost.drain_events`, when `keep_events`): every primitive sent, on the
 ``"link"`` channel (``left1 TURN +2.10 rad/s for 24 ticks``).
 
@@ -170,13 +160,6 @@ class CentralHost:
         self._min_ticks = link.packet_period_ticks
         self._pending: list[list[Action]] = [[] for _ in refs]
         self._release_at = [NEVER] * len(refs)
-        self.turn_compensation = preset.robot.turn_compensation
-        """Whether a decision's first turn is reduced by what earlier turns will have turned
-        since the frame its pose came from (module docstring, "Turn compensation")."""
-        self._pose_tick = [0] * len(refs)  # capture tick of each robot's last detected pose
-        # Each robot's TURN/ARC rotations sent: (arrival tick, end tick, signed angle [rad]).
-        self._turns: list[list[tuple[int, int, float]]] = [[] for _ in refs]
-        self._correction = 0.0  # what the decision being submitted has already turned
         self.dropped = 0
         """Body actions still pending (not sent) when a new decision replaced them (issue 28
         item 5: the robots' "lost dash"); counted only, nothing depends on it."""
@@ -225,13 +208,11 @@ class CentralHost:
         # identities (dataclass equality is the costliest part of building a percept).
         seen = []
         row = self._row
-        pose_tick = self._pose_tick
         for det in frame.robots:
             ref = det.ref
             i = row(ref)
             if i >= 0:
                 poses[i] = (det.x, det.y, det.heading)
-                pose_tick[i] = frame.capture_tick
             seen.append((i, det.x, det.y, ref.team, ref.number))
         ball = frame.ball
         observed = frame.capture_tick
@@ -310,8 +291,6 @@ class CentralHost:
             self.dropped_dashes += sum(isinstance(a, Dash) for a in old)
         body.reverse()  # popped from the end, in order
         self._pending[i] = body
-        if self.turn_compensation and body:
-            self._correction = self._turned_since(i, self._pose_tick[i], self._arrival(tick))
         if self._arcs and len(body) >= 2:
             duration = self._arc(ref, body[-1], body[-2], tick)
             if duration:
@@ -319,39 +298,6 @@ class CentralHost:
                 self._note_due(i, tick + duration)
                 return
         self._run_chain(i, ref, tick)
-        self._correction = 0.0
-
-    def _arrival(self, tick: int) -> int:
-        """The tick a command sent at `tick` reaches the firmware, if the link queue is free."""
-        period = self.link.packet_period_ticks
-        return -(-tick // period) * period + self.link.latency_ticks
-
-    def _turned_since(self, i: int, since: int, until: int) -> float:
-        """Robot `i`'s planned rotation [rad] in ticks (since, until] by the turns it was sent.
-
-        Each TURN/ARC is taken to turn evenly over its duration from its arrival (the host plans
-        it so, up to the wheel ramp); a later command cuts it at its own arrival.
-        """
-        turns = self._turns[i] = [t for t in self._turns[i] if t[1] > since]
-        total = 0.0
-        for start, end, angle in turns:
-            overlap = min(end, until) - max(start, since)
-            if overlap > 0:
-                total += angle * overlap / (end - start)
-        return total
-
-    def _sent_drive(self, ref: PlayerRef | None, tick: int, turn: float, ticks: int) -> None:
-        """Note a drive command to `ref` sent at `tick` (a turn by `turn` over `ticks`)."""
-        if not self.turn_compensation or ref is None:
-            return
-        i = self._row_of(ref)
-        arrive = self._arrival(tick)
-        # The firmware runs the newest drive command: an earlier turn ends where this one arrives.
-        turns = [(s, min(e, arrive), a * (min(e, arrive) - s) / (e - s))
-                 for s, e, a in self._turns[i] if min(e, arrive) > s]  # fmt: skip
-        if turn:
-            turns.append((arrive, arrive + ticks, turn))
-        self._turns[i] = turns
 
     def release(self, tick: int) -> None:
         """Send the pending body actions that are due at `tick` (the arena calls this per tick)."""
@@ -463,10 +409,9 @@ class CentralHost:
             and second.direction_rad == 0.0
         ):
             return 0
-        angle = wrap_angle(first.angle_rad - self._correction)
+        angle = wrap_angle(first.angle_rad)
         if angle == 0.0:
             return 0
-        self._correction = 0.0
         rate, ticks = self.turn_plan(angle)
         speed = min(100.0, second.power) / 100.0 * self._vmax
         self._send(
@@ -481,8 +426,6 @@ class CentralHost:
 
     def _turn(self, ref: PlayerRef, angle_rad: float, tick: int) -> int:
         """A timed TURN by `angle_rad` (left positive); STOP for zero. Returns its ticks."""
-        if self._correction:
-            angle_rad, self._correction = wrap_angle(angle_rad - self._correction), 0.0
         size = abs(angle_rad)
         if size == 0.0:
             self._send(ref, Primitive.STOP, tick)
@@ -515,16 +458,6 @@ class CentralHost:
         self._seq += 1
         command = _make_command(self._seq, ref, primitive, value, duration_ticks, tick, rate)
         self.link.send(command, tick)
-        if self.turn_compensation and primitive is not Primitive.KICK:
-            ticks = duration_ticks or 0
-            turn = (
-                value
-                if primitive is Primitive.TURN
-                else rate
-                if primitive is Primitive.ARC
-                else 0.0
-            )
-            self._sent_drive(ref, tick, turn * ticks * self._dt_s, ticks)
         if self.keep_events:
             who = "all" if ref is None else str(ref)
             self._events.append(ArenaEvent(tick, "link", f"{who} {describe(command)}", ref))
