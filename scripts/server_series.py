@@ -14,6 +14,7 @@ each side through the trial runner's own loop, per team kind, per player-minute.
 from __future__ import annotations
 
 import argparse
+import csv
 import json
 import time
 from pathlib import Path
@@ -21,7 +22,7 @@ from typing import Any
 
 from field_models.arena import FieldOptions
 from field_models.protocol import Percept
-from robotsoccer.experiments.match import run_series, series_specs, write_report
+from robotsoccer.experiments.match import mean_interval, run_series, series_specs, write_report
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.cycle import TurnReversals
 
@@ -58,6 +59,27 @@ def reversals(spec: TrialSpec, index: int) -> dict[str, Any]:
     }
 
 
+def goal_differences(folder: Path) -> dict[tuple[str, int], float]:
+    """Each game's goal difference (layered - baseline) of a series folder, by side and index."""
+    out = {}
+    for side, sign in (("layered_left", 1.0), ("layered_right", -1.0)):
+        with (folder / side / "results.csv").open() as f:
+            for game in csv.DictReader(f):
+                goals = dict(kv.split("=") for kv in game["measures"].split())
+                difference = float(goals["goals_l"]) - float(goals["goals_r"])
+                out[(side, int(game["index"]))] = sign * difference
+    return out
+
+
+def paired_change(before: Path, after: Path) -> str:
+    """The mean change of the layered team's goal difference, game by game on the same seeds."""
+    old, new = goal_differences(before), goal_differences(after)
+    if old.keys() != new.keys():
+        raise ValueError(f"{before} and {after} did not play the same games")
+    change = mean_interval([new[k] - old[k] for k in sorted(old)])
+    return f"{change.value:+.2f} [{change.low:+.2f}, {change.high:+.2f}] (n={len(old)} games)"
+
+
 def main() -> None:
     """Run the series and the reversal count; write the report, the counts and the wall times."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -74,7 +96,15 @@ def main() -> None:
     )
     parser.add_argument("--reversal-games", type=int, default=2, help="per side")
     parser.add_argument("--out", type=Path, required=True)
+    parser.add_argument(
+        "--before", type=Path, help="a finished series folder: print the paired change and stop"
+    )
     args = parser.parse_args()
+    if args.before is not None:
+        print(
+            f"goal difference, {args.out} - {args.before}: {paired_change(args.before, args.out)}"
+        )
+        return
     if args.games < 2 or args.reversal_games < 0 or args.workers < 1:
         parser.error("--games must be >= 2, --reversal-games >= 0, --workers >= 1")
     for path in (args.net, args.tree):
