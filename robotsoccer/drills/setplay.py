@@ -100,13 +100,16 @@ from robotsoccer.drills.passing import (
     load_evaluator,
 )
 from robotsoccer.options import choice, duration, flag
+from robotsoccer.skills.ball_sense import BallSense
 from robotsoccer.skills.intercept import (
     Behaviour,
     check_behaviour,
 )
 from robotsoccer.skills.lead import velocity_window
 from robotsoccer.skills.passing import Chooser, PasserMind, ReceiverMind
-from robotsoccer.skills.setplay import BallSense, CarrierMind, KickPowers, SetPlayReceiverMind
+from robotsoccer.skills.setplay import KickPowers
+from robotsoccer.skills.setplay_carrier import CarrierMind
+from robotsoccer.skills.setplay_receiver import SetPlayReceiverMind
 
 STARTER = PlayerRef(LEFT, 1)
 FIRST_RECEIVERS = (PlayerRef(LEFT, 2), PlayerRef(LEFT, 3))
