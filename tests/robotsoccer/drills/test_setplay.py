@@ -18,8 +18,8 @@ from field_models.protocol import (
 )
 from field_models.registry import field_facts
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.setplay import (
-    STAGES,
+from robotsoccer.drills.setplay import STAGES
+from robotsoccer.drills.setplay_kicks import (
     CoachKicks,
     ball_sense,
     coach_kicks,
