@@ -105,7 +105,8 @@ from robotsoccer.drills.setplay_judge import SetPlayJudge
 from robotsoccer.drills.setplay_kicks import CoachKickRelay, ball_sense, coach_kicks, kick_powers
 from robotsoccer.options import choice, duration, flag
 from robotsoccer.skills.intercept import Behaviour, check_behaviour
-from robotsoccer.skills.passing import Chooser, PasserMind, ReceiverMind
+from robotsoccer.skills.pass_receivers import ReceiverMind
+from robotsoccer.skills.passing import Chooser, PasserMind
 from robotsoccer.skills.setplay_carrier import CarrierMind
 from robotsoccer.skills.setplay_receiver import SetPlayReceiverMind
 

@@ -22,14 +22,9 @@ from robotsoccer.drills.passing import DEFENDERS, PASSER, RECEIVERS, PassDrill
 from robotsoccer.envs.intercept import MAX_DISTANCE_UNITS
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.intercept import DefenderMind
-from robotsoccer.skills.passing import (
-    PasserMind,
-    PassOption,
-    ReceiverMind,
-    WaitingInterceptorMind,
-    announced_number,
-    parse_report,
-)
+from robotsoccer.skills.pass_messages import announced_number, parse_report
+from robotsoccer.skills.pass_receivers import ReceiverMind, WaitingInterceptorMind
+from robotsoccer.skills.passing import PasserMind, PassOption
 
 PASSER_AGENT = "passer"
 """The passer's agent name (left 1)."""

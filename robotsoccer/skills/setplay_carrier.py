@@ -25,7 +25,8 @@ import math
 from field_models.protocol import Action, Mind, Percept, Say, Turn
 from robotsoccer.skills.ball_sense import BallSense
 from robotsoccer.skills.ball_tracker import BallTracker
-from robotsoccer.skills.passing import PasserMind, announced_number
+from robotsoccer.skills.pass_messages import announced_number
+from robotsoccer.skills.passing import PasserMind
 from robotsoccer.skills.setplay import (
     SEARCH_TURN_RAD,
     STAND,

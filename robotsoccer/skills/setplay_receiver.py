@@ -1,6 +1,6 @@
 """The set play's receivers: meet the pass, then kick it on at once (paper §7, Figure 15).
 
-:class:`SetPlayReceiverMind` is layer 2's :class:`~robotsoccer.skills.passing.ReceiverMind`
+:class:`SetPlayReceiverMind` is layer 2's :class:`~robotsoccer.skills.pass_receivers.ReceiverMind`
 (face the ball, report, intercept with layer 1 once chosen); once the ball is in reach it kicks
 on at once, as the paper's receiver does: a first receiver to the winger (saying the cue),
 toward the winger as seen or else as last heard calling; a last receiver at the goal, as seen or
@@ -26,7 +26,8 @@ import math
 from field_models.protocol import Action, Percept, Say, Turn
 from robotsoccer.skills.ball_sense import BallSense, Vector
 from robotsoccer.skills.ball_tracker import BallTracker
-from robotsoccer.skills.passing import ReceiverMind, announced_number
+from robotsoccer.skills.pass_messages import announced_number
+from robotsoccer.skills.pass_receivers import ReceiverMind
 from robotsoccer.skills.setplay import (
     SEARCH_TURN_RAD,
     SLOW_ZONE_REACHES,
