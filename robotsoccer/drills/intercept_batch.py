@@ -68,14 +68,13 @@ from robotsoccer.drills.intercept_batch_coach import DEFENDER_ROW, SHOOTER_ROW, 
 from robotsoccer.runs.runner import TrialResult, TrialSpec, field_options
 from robotsoccer.skills.intercept import (
     DASH_POWER,
-    RANDOM_TA_HALF_RANGE_RAD,
     TA_CLIP_RAD,
-    AnalyticPolicy,
     Behaviour,
     TaMode,
     file_key,
     load_lookup_table,
 )
+from robotsoccer.skills.turn_policies import RANDOM_TA_HALF_RANGE_RAD, AnalyticPolicy
 
 Array = npt.NDArray[np.float64]
 Mask = npt.NDArray[np.bool_]
