@@ -279,6 +279,12 @@ def build_parser() -> argparse.ArgumentParser:
         default=None,
         help="a learned layer-3 table (.npz): skip training, play the series only",
     )
+    team.add_argument(
+        "--every",
+        action="store_true",
+        help="TPOT-RL's own rule: the holder chooses a destination on every spell on the ball "
+        "(shoot and keep included), not only where the layered team would ask the tree",
+    )
     _experiment_options(team)
 
     reproduce = command(
@@ -326,6 +332,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     match.add_argument("--net", type=Path, default=None, help="layer 1's net (.npz)")
     match.add_argument("--tree", type=Path, default=None, help="layer 2's tree (.json)")
+    match.add_argument(
+        "--tpot",
+        type=Path,
+        default=None,
+        help="layer 3's table (.npz, from `learn team`) for a layer3 team; it plays with the "
+        "rule it learned with (every spell on the ball or only where blocked)",
+    )
     match.add_argument(
         "--players", type=_index, default=0, help="players a side (0: 11 open field, 5 table)"
     )
@@ -474,7 +487,7 @@ def _experiment_options(p: argparse.ArgumentParser) -> None:
 # ----------------------------------------------------------------------------- main
 
 
-TEAM_KINDS = ("layered", "baseline")
+TEAM_KINDS = ("layered", "baseline", "layer3")
 """The match drill's team kinds (:class:`robotsoccer.drills.match.TeamKind`)."""
 
 

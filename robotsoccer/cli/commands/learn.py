@@ -94,14 +94,15 @@ def cmd_learn_team(args: argparse.Namespace) -> int:
 
     preset = args.field_preset or default_preset(args.field)
     net, tree = find_layers(args)
-    plan = plan_for(args.quick)
+    plan = plan_for(args.quick, args.every)
     base = match_base(args.field, args.field_preset, args.seed, net, tree)
     check_spec(base.with_options(left="layered", right="baseline"))
     if args.table is not None:
         from learning.tpot import load_table
 
         load_table(args.table)  # a corrupt or foreign table fails here, in one line
-    tag = f"learn-team-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
+    tag = f"learn-team-{args.field}-{Path(preset).stem}" + ("-every" if args.every else "")
+    tag += "-quick" if args.quick else ""
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     workers = args.workers or default_workers()
@@ -161,7 +162,7 @@ def cmd_learn_lead(args: argparse.Namespace) -> int:
     tag = "learn-lead" + (f"-{args.field}" if args.field else "") + ("-quick" if args.quick else "")
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    plan = plan_for(args.quick)
+    plan = plan_for(args.quick, args.every)
     workers = args.workers or default_workers()
     start = time.perf_counter()
     try:
@@ -211,7 +212,7 @@ def _run_layer1(
     for model, preset in models:  # a bad preset fails here with one line, not in a worker
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    plan = plan_for(args.quick)
+    plan = plan_for(args.quick, args.every)
     workers = args.workers or default_workers()
     start = time.perf_counter()
     log = clock_log()
