@@ -162,7 +162,7 @@ def cmd_learn_lead(args: argparse.Namespace) -> int:
     tag = "learn-lead" + (f"-{args.field}" if args.field else "") + ("-quick" if args.quick else "")
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    plan = plan_for(args.quick, args.every)
+    plan = plan_for(args.quick)
     workers = args.workers or default_workers()
     start = time.perf_counter()
     try:
@@ -212,7 +212,7 @@ def _run_layer1(
     for model, preset in models:  # a bad preset fails here with one line, not in a worker
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    plan = plan_for(args.quick, args.every)
+    plan = plan_for(args.quick)
     workers = args.workers or default_workers()
     start = time.perf_counter()
     log = clock_log()
