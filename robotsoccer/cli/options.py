@@ -300,6 +300,11 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="without layer 1's lead decision (robotsoccer learn lead) after layers 1 and 2",
     )
+    reproduce.add_argument(
+        "--no-team",
+        action="store_true",
+        help="without layer 3 (a quick `learn team --every` on the Soccer Server's layers)",
+    )
     _transfer_options(reproduce)
     transfer = command(
         "transfer",

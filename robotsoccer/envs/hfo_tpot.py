@@ -26,11 +26,15 @@ distances (:data:`~robotsoccer.drills.match.SHOOT_RANGE_UNITS`,
   open; FAILURE when an opponent is seen nearer than the teammate within :data:`LANE_RAD` of
   its direction; SUCCESS otherwise.
 
-**Rewards** (:func:`learning.tpot.reward`): an attacker's choice is fixed when the same
-attacker chooses again (from the ball's x over its own observations since, the share of the
-way it advanced toward the goal or fell back) or when the episode ends: GOAL as a goal for,
-CAPTURED_BY_DEFENSE and OUT_OF_BOUNDS as a goal against (HFO's lost episodes), both discounted
-by the time since the choice; OUT_OF_TIME from the ball's advance.
+**Rewards** (:func:`learning.tpot.reward`, TPOT-RL's window of t_lim after the action): every
+choice is fixed when the episode ends. Within :data:`~learning.tpot.HORIZON_S` of the choice,
+GOAL counts as a goal for, CAPTURED_BY_DEFENSE and OUT_OF_BOUNDS as a goal against (HFO's lost
+episodes), both discounted by the time since the choice; OUT_OF_TIME, and any end past the
+horizon, from the ball's x over the choosing attacker's own observations since (the share of
+the way it advanced toward the goal or fell back). A first version fixed a choice already at
+the same attacker's next choice, as the match's layer 3 does: then the last kick of an episode
+(mostly a shot or a pass) bore the loss of nearly every captured episode while the dribbles
+before it were paid their short advance, and the greedy table dribbled (README, "Layer 3").
 
 **Training** (:func:`train_holder`): episodes of experiment seed :data:`TRAIN_SEED` (apart from
 the table's seed-0 episodes), the table updated after every episode, epsilon linear from
@@ -53,6 +57,7 @@ import numpy.typing as npt
 from field_models.registry import FIELD_MODELS
 from learning.tpot import (
     FAILURE,
+    HORIZON_S,
     MISS,
     SUCCESS,
     Experience,
@@ -289,7 +294,7 @@ def train_holder(
     for k in range(episodes):
         holder.epsilon = epsilon_at(k, episodes, epsilon_start, epsilon_end)
         observations, infos = env.reset(seed=seed if k == 0 else None)
-        pending: dict[str, _Pending] = {}
+        pending: list[tuple[str, _Pending]] = []  # every choice still open, in order
         experiences: list[Experience] = []
         status = OUT_OF_TIME
         while env.agents:
@@ -300,23 +305,23 @@ def train_holder(
                 obs, mask = view["observation"], view["action_mask"]
                 tick = int(infos[agent]["tick"])
                 x = layout.ball_x(obs)
-                if agent in pending and x is not None:
-                    pending[agent].samples.append(x)
+                for who, open_ in pending:
+                    if who == agent and x is not None:
+                        open_.samples.append(x)
                 if infos[agent]["deciding"] and bool(mask[Macro.SHOOT]):
-                    if agent in pending:
-                        experiences.append(_fixed(pending.pop(agent), 0, tick, layout))
                     actions[agent] = holder(obs, mask)
                     if x is not None:
                         feature, action = holder.last
-                        pending[agent] = _Pending(feature, action, tick, x, [])
+                        pending.append((agent, _Pending(feature, action, tick, x, [])))
                 else:
                     actions[agent] = int(Macro.AUTO)
             observations, _, _, _, infos = env.step(actions)
         info = next(iter(infos.values()))
         status, tick = str(info["status"]), int(info["tick"])
         sign = 1 if status == GOAL else 0 if status == OUT_OF_TIME else -1
-        for agent in sorted(pending):
-            experiences.append(_fixed(pending[agent], sign, tick, layout))
+        for _, open_ in pending:  # past the horizon a goal no longer counts (reward())
+            late = (tick - open_.tick) * layout.dt_s > HORIZON_S
+            experiences.append(_fixed(open_, 0 if late else sign, tick, layout))
         for experience in experiences:
             update(table, experience)
         goals += status == GOAL

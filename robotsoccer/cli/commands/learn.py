@@ -6,7 +6,7 @@ import argparse
 import json
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -19,7 +19,7 @@ from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
-    pass
+    from robotsoccer.experiments.report import ModelSection
 
 
 def cmd_learn(args: argparse.Namespace) -> int:
@@ -154,6 +154,33 @@ def _lead_section(
     return text
 
 
+def _team_section(
+    args: argparse.Namespace,
+    out: Path,
+    sections: Sequence[ModelSection],
+    workers: int,
+    log: Callable[[str], None],
+) -> str:
+    """Layer 3 on the Soccer Server's new layers: a quick ``learn team --every`` (its report).
+
+    The quick plan (8 training games, 4-game series) shows every step runs on this run's net
+    and tree; the measured study is ``robotsoccer learn team --every``.
+    """
+    from robotsoccer.experiments import team_study
+
+    field = "soccer_server"
+    found = [s for s in sections if s.field_model == field]
+    if not found:
+        return ""
+    models = out / "models" / field
+    net, tree = models / f"net_{found[0].net_examples}.npz", models / "pass_tree.json"
+    base = team_study.match_base(field, found[0].preset, args.seed, net, tree)
+    plan = team_study.plan_for(True, True)
+    report = team_study.run_team_study(base, plan, out / "team", workers=workers, log=log)
+    text = report.read_text().replace("## Layer 3", "## Layer 3 (quick: a smoke-size run)", 1)
+    return text
+
+
 def cmd_learn_lead(args: argparse.Namespace) -> int:
     """``learn lead``: layer 1's two decisions on one or both field models, with a report."""
     from robotsoccer.experiments.lead_study import plan_for
@@ -249,6 +276,10 @@ def _run_layer1(
                 f.write("\n" + layer2_markdown(layer2, plan2, plots))
         if with_layer2 and not args.no_lead:
             section = _lead_section(args, out / "lead", workers, log)
+            with report.open("a") as f:
+                f.write("\n" + section)
+        if with_layer2 and not args.no_team:
+            section = _team_section(args, out, sections, workers, log)
             with report.open("a") as f:
                 f.write("\n" + section)
         if with_layer2 and not args.no_transfer:
