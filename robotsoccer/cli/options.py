@@ -26,6 +26,8 @@ DEFAULT_FIELD = "robot_physics"
 """The field model every command runs on unless told otherwise: the paper's mini-robots."""
 PAPER_MODELS = ("soccer_server", "robot_physics")
 
+TEAM_FIELD = "soccer_server"
+"""Where ``reproduce`` runs layer 3: the 11-a-side match of the paper's §7 and of TPOT-RL."""
 REFERENCE_FIELD, TARGET_FIELD = "soccer_server", "robot_physics"
 """The transfer study's source of randomised variants and the field it closes the gap on."""
 

@@ -38,9 +38,9 @@ before it were paid their short advance, and the greedy table dribbled (README, 
 
 **Training** (:func:`train_holder`): episodes of experiment seed :data:`TRAIN_SEED` (apart from
 the table's seed-0 episodes), the table updated after every episode, epsilon linear from
-``epsilon_start`` to ``epsilon_end``; everything is seeded. ``python -m
-robotsoccer.envs.hfo_tpot`` trains and prints the table's four rows (hand-written, random,
-TPOT-RL; CEM's weights are the example's).
+``epsilon_start`` to ``epsilon_end``; everything is seeded.
+``python -m robotsoccer.envs.hfo_tpot --field F`` trains and prints the table's rows for the
+hand-written, random and TPOT-RL holders (CEM's row: ``examples/train_hfo_holder_cem.py``).
 """
 
 from __future__ import annotations
@@ -260,7 +260,7 @@ class HolderTraining:
 
 
 @dataclass(slots=True)
-class _Pending:
+class _OpenChoice:
     feature: int
     action: int
     tick: int
@@ -294,7 +294,7 @@ def train_holder(
     for k in range(episodes):
         holder.epsilon = epsilon_at(k, episodes, epsilon_start, epsilon_end)
         observations, infos = env.reset(seed=seed if k == 0 else None)
-        pending: list[tuple[str, _Pending]] = []  # every choice still open, in order
+        pending: list[tuple[str, _OpenChoice]] = []  # every choice still open, in order
         experiences: list[Experience] = []
         status = OUT_OF_TIME
         while env.agents:
@@ -312,7 +312,7 @@ def train_holder(
                     actions[agent] = holder(obs, mask)
                     if x is not None:
                         feature, action = holder.last
-                        pending.append((agent, _Pending(feature, action, tick, x, [])))
+                        pending.append((agent, _OpenChoice(feature, action, tick, x, [])))
                 else:
                     actions[agent] = int(Macro.AUTO)
             observations, _, _, _, infos = env.step(actions)
@@ -331,7 +331,7 @@ def train_holder(
     return HolderTraining(table, episodes, goals, fixed, wall)
 
 
-def _fixed(pending: _Pending, goal: int, tick: int, layout: Layout) -> Experience:
+def _fixed(pending: _OpenChoice, goal: int, tick: int, layout: Layout) -> Experience:
     after = (tick - pending.tick) * layout.dt_s
     r = reward(
         pending.x0,
@@ -347,7 +347,7 @@ def _fixed(pending: _Pending, goal: int, tick: int, layout: Layout) -> Experienc
 def main(argv: list[str] | None = None) -> None:
     """Train TPOT-RL's holder, then print the table's rows on the same episodes."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--field", default="soccer_server")
+    parser.add_argument("--field", required=True, choices=FIELD_MODELS)
     parser.add_argument("--train-episodes", type=int, default=3000)
     parser.add_argument("--episodes", type=int, default=500)
     parser.add_argument("--seed", type=int, default=0)

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
 from robotsoccer.cli.commands.transfer import transfer_section
-from robotsoccer.cli.options import EXIT_INTERRUPTED, LEAD_DRILLS, PAPER_MODELS
+from robotsoccer.cli.options import EXIT_INTERRUPTED, LEAD_DRILLS, PAPER_MODELS, TEAM_FIELD
 from robotsoccer.cli.running import check_spec, clock_log, fail
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
@@ -168,7 +168,7 @@ def _team_section(
     """
     from robotsoccer.experiments import team_study
 
-    field = "soccer_server"
+    field = TEAM_FIELD
     found = [s for s in sections if s.field_model == field]
     if not found:
         return ""
