@@ -447,7 +447,7 @@ def run_team_study(
     else:
         table_path, learned = table, load_table(table)
         lines += [f"Table given: `{table}` (provenance: {json.dumps(learned.provenance)})."]
-    lines += ["", feature_line(learned), ""]
+    lines += ["", feature_line(learned)]
     lines += ["", "Learned Q(position, SUCCESS, destination) (updates in brackets):", ""]
     lines += table_lines(learned)
     lines.append("")
