@@ -26,6 +26,8 @@ DEFAULT_FIELD = "robot_physics"
 """The field model every command runs on unless told otherwise: the paper's mini-robots."""
 PAPER_MODELS = ("soccer_server", "robot_physics")
 
+TEAM_FIELD = "soccer_server"
+"""Where ``reproduce`` runs layer 3: the 11-a-side match of the paper's §7 and of TPOT-RL."""
 REFERENCE_FIELD, TARGET_FIELD = "soccer_server", "robot_physics"
 """The transfer study's source of randomised variants and the field it closes the gap on."""
 
@@ -279,6 +281,12 @@ def build_parser() -> argparse.ArgumentParser:
         default=None,
         help="a learned layer-3 table (.npz): skip training, play the series only",
     )
+    team.add_argument(
+        "--every",
+        action="store_true",
+        help="TPOT-RL's own rule: the holder chooses a destination on every spell on the ball "
+        "(shoot and keep included), not only where the layered team would ask the tree",
+    )
     _experiment_options(team)
 
     reproduce = command(
@@ -293,6 +301,11 @@ def build_parser() -> argparse.ArgumentParser:
         "--no-lead",
         action="store_true",
         help="without layer 1's lead decision (robotsoccer learn lead) after layers 1 and 2",
+    )
+    reproduce.add_argument(
+        "--no-team",
+        action="store_true",
+        help="without layer 3 (a quick `learn team --every` on the Soccer Server's layers)",
     )
     _transfer_options(reproduce)
     transfer = command(
@@ -326,6 +339,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     match.add_argument("--net", type=Path, default=None, help="layer 1's net (.npz)")
     match.add_argument("--tree", type=Path, default=None, help="layer 2's tree (.json)")
+    match.add_argument(
+        "--tpot",
+        type=Path,
+        default=None,
+        help="layer 3's table (.npz, from `learn team`) for a layer3 team; it plays with the "
+        "rule it learned with (every spell on the ball or only where blocked)",
+    )
     match.add_argument(
         "--players", type=_index, default=0, help="players a side (0: 11 open field, 5 table)"
     )
@@ -484,7 +504,7 @@ def _experiment_options(p: argparse.ArgumentParser) -> None:
 # ----------------------------------------------------------------------------- main
 
 
-TEAM_KINDS = ("layered", "baseline")
+TEAM_KINDS = ("layered", "baseline", "layer3")
 """The match drill's team kinds (:class:`robotsoccer.drills.match.TeamKind`)."""
 
 
