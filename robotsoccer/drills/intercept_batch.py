@@ -50,11 +50,11 @@ from field_models.registry import field_facts, make_batch_arena
 from field_models.seeding import StreamBatch
 from learning.interception_file import BatchTurnFunction, load_batch_turn_function
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.intercept import (
+from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.intercept_judge import (
     AT_END_LINE_WIDE,
     AT_SIDE_LINE,
     BACKWARD_SHARE,
-    DEFENDER,
     DEFLECTED_STOPPED,
     INTO_GOAL,
     MOVING_BACK,
@@ -63,16 +63,11 @@ from robotsoccer.drills.intercept import (
     PAST_INTO_GOAL,
     PAST_WIDE,
     SAVE_SPEED_PER_LENGTH,
-    SHOOTER,
     STOPPED_SHORT,
-    ClientKind,
-    Decision,
-    InterceptDrill,
-    Launch,
-    LaunchPlan,
-    Shot,
     deflected_then,
 )
+from robotsoccer.drills.intercept_options import ClientKind, Decision, Launch, Shot
+from robotsoccer.drills.intercept_plan import DEFENDER, SHOOTER, LaunchPlan
 from robotsoccer.runs.runner import TrialResult, TrialSpec, field_options
 from robotsoccer.skills.intercept import (
     DASH_POWER,

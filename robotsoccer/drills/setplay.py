@@ -93,7 +93,7 @@ from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Action, Crossing, Kick, Mind, Percept, PlayerRef
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import GoalWatch, Verdict
-from robotsoccer.drills.intercept import LaunchPlan
+from robotsoccer.drills.intercept_plan import LaunchPlan
 from robotsoccer.drills.passing import (
     STOPPED_SPEED_PER_LENGTH,
     LayeredDrill,

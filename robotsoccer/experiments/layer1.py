@@ -48,7 +48,8 @@ from field_models.registry import default_preset, field_facts, has_preset
 from learning.datasets import InterceptionDataset, Provenance
 from learning.lookup import PAPER_GRID_DEG, LookupTable
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.intercept import InterceptDrill, launch_plan
+from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.intercept_plan import launch_plan
 from robotsoccer.experiments import paper
 from robotsoccer.experiments.report import Counts, ModelSection, StageTiming
 from robotsoccer.runs.folders import lock_run_folder

@@ -32,7 +32,8 @@ from pathlib import Path
 
 from field_models.registry import field_facts
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.intercept import InterceptDrill, LaunchPlan
+from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.intercept_plan import LaunchPlan
 from robotsoccer.experiments.layer1 import (
     Condition,
     Layer1Plan,
