@@ -29,19 +29,18 @@ from pathlib import Path
 import numpy as np
 
 from learning.datasets import InterceptionDataset, Provenance
-from robotsoccer.experiments.layer1 import (
+from robotsoccer.experiments.layer1_collect import collect
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import (
     Condition,
     Field,
     Layer1Plan,
     Log,
     Seeds,
     base_spec,
-    collect,
     condition,
-    evaluate,
-    prefix,
-    train_series,
 )
+from robotsoccer.experiments.layer1_train import prefix, train_series
 from robotsoccer.experiments.report import paired_cell, percent_cell
 from robotsoccer.runs.runner import TrialResult
 

@@ -43,7 +43,8 @@ from learning.pass_tree import LABELS, PassTree
 from learning.pass_tree_file import save_pass_tree
 from learning.pass_tree_grow import fit_pass_tree
 from robotsoccer.experiments import paper
-from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import Condition, Log, Seeds
 from robotsoccer.experiments.report import (
     StageTiming,
     field_setting,

@@ -36,16 +36,10 @@ from robotsoccer.experiments.gap_closing import (
     gap_plan,
     plot_curve,
 )
-from robotsoccer.experiments.layer1 import (
-    Condition,
-    Field,
-    Log,
-    Seeds,
-    collect_into,
-    evaluate,
-    plan_for,
-    train_main_net,
-)
+from robotsoccer.experiments.layer1 import train_main_net
+from robotsoccer.experiments.layer1_collect import collect_into
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import Condition, Field, Log, Seeds, plan_for
 from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill, train_net
 from robotsoccer.experiments.transfer import (

@@ -96,7 +96,7 @@ def transfer_section(
 ) -> str:
     """Run the transfer study into `out` (the options say which parts) and return its text."""
     from robotsoccer.experiments.gap_closing import Randomisation
-    from robotsoccer.experiments.layer1 import seeds_for
+    from robotsoccer.experiments.layer1_plan import seeds_for
     from robotsoccer.experiments.lead_study import StudyDrill
     from robotsoccer.experiments.transfer_study import StudyParts, run_transfer_study
 

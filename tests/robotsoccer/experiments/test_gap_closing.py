@@ -26,7 +26,8 @@ from robotsoccer.experiments.gap_closing import (
     variant_text,
     write_variants,
 )
-from robotsoccer.experiments.layer1 import base_spec, collect, plan_for, seeds_for
+from robotsoccer.experiments.layer1_collect import collect
+from robotsoccer.experiments.layer1_plan import base_spec, plan_for, seeds_for
 from robotsoccer.experiments.transfer import run_transfer
 from robotsoccer.experiments.transfer_study import references
 from tests.robotsoccer.experiments.test_transfer import MODELS, nets
