@@ -20,13 +20,10 @@ from robotsoccer.experiments.ablations import (
     ablations,
     run_ablations,
 )
-from robotsoccer.experiments.calibration import calibrate as calibration_fit
-from robotsoccer.experiments.calibration import (
-    calibrated_drill,
-    record_traces,
-    recovered_markdown,
-    write_preset,
-)
+from robotsoccer.experiments.calibration import recovered_markdown
+from robotsoccer.experiments.calibration_fit import calibrate as calibration_fit
+from robotsoccer.experiments.calibration_preset import calibrated_drill, write_preset
+from robotsoccer.experiments.calibration_traces import record_traces
 from robotsoccer.experiments.gap_closing import (
     Randomisation,
     References,
