@@ -65,14 +65,8 @@ from robotsoccer.skills.intercept import (
     transfer_distance_factor,
 )
 from robotsoccer.skills.lead import LeadDefenderMind
-from robotsoccer.skills.passing import (
-    Chooser,
-    PasserMind,
-    PassEvaluator,
-    PassPhysics,
-    ReceiverMind,
-    WaitingInterceptorMind,
-)
+from robotsoccer.skills.pass_receivers import ReceiverMind, WaitingInterceptorMind
+from robotsoccer.skills.passing import Chooser, PasserMind, PassEvaluator, PassPhysics
 
 PASSER = PlayerRef(LEFT, 1)
 RECEIVERS = (PlayerRef(LEFT, 2), PlayerRef(LEFT, 3), PlayerRef(LEFT, 4))
