@@ -3,8 +3,9 @@
 The drill's parts, each in a module of its own: its options, one typed record
 (:mod:`robotsoccer.drills.intercept_options`); the geometry and the launch on a field, scaled
 from the paper's (:mod:`robotsoccer.drills.intercept_plan`); the coach's labels SAVE, GOAL and
-MISS (:mod:`robotsoccer.drills.intercept_judge`). This module is the drill that places the
-players, gives the defender its mind and reads the verdict. Placement draws, in this order, the
+MISS (:mod:`robotsoccer.drills.intercept_judge`); the defender's mind
+(:mod:`robotsoccer.drills.intercept_minds`). This module is the drill that places the players,
+gives them their minds and reads the verdict. Placement draws, in this order, the
 distance and the bearing from ``rngs["placement"]``.
 
 **Defender** (:mod:`robotsoccer.skills.intercept`): the behaviour (option ``behaviour``: still,
@@ -36,8 +37,8 @@ from field_models.protocol import Mind, PlayerRef, wrap_angle
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept_judge import DEFLECTED_STOPPED, STOPPED_SHORT, InterceptJudge
+from robotsoccer.drills.intercept_minds import AnyDefender, defender_mind
 from robotsoccer.drills.intercept_options import (
-    ClientKind,
     Decision,
     InterceptOptions,
     Launch,
@@ -49,21 +50,14 @@ from robotsoccer.drills.intercept_plan import (
     LaunchPlan,
     ablated,
     cached_launch_plan,
-    decision_ticks,
 )
-from robotsoccer.skills.cycle import CycleDefenderMind
 from robotsoccer.skills.intercept import (
     AimedShooterMind,
     Behaviour,
-    DefenderMind,
-    TaMode,
-    load_net_function,
-    make_policy,
     model_decision,
     model_origin,
     transfer_distance_factor,
 )
-from robotsoccer.skills.lead import LeadDefenderMind, ScaledLead, lead_policy
 
 
 class InterceptDrill:
@@ -106,7 +100,7 @@ class InterceptDrill:
         self.sector_rad = math.radians(o.sector_deg)
         self.max_time_s = o.max_time_s
         self.defender_kick, self.transfer = o.defender_kick, o.transfer
-        self.defender_mind: DefenderMind | CycleDefenderMind | LeadDefenderMind | None = None
+        self.defender_mind: AnyDefender | None = None
         self._aim_offset_trial_rad = self.aim_offset_rad
         self._judge_state: InterceptJudge | None = None
         self._plan: LaunchPlan | None = None
@@ -271,73 +265,16 @@ class InterceptDrill:
         )
 
     def minds(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
-        """The defender's behaviour, and the shooter when it launches the ball."""
+        """The defender (``intercept_minds``), and the shooter when it launches the ball."""
         plan = self.plan(arena)
-        defender: DefenderMind | CycleDefenderMind | LeadDefenderMind
-        if self.decision is Decision.LEAD:
-            defender = self._lead_mind(arena, plan, rngs)
-        elif self.client is ClientKind.CYCLE:
-            defender = self._cycle_mind(arena, plan, rngs)
-        else:
-            defender = self._turn_mind(arena, plan, rngs)
+        factor = self.distance_factor(arena.facts)
+        defender = defender_mind(self.options, arena, plan, rngs, factor)
         self.defender_mind = defender
         minds: dict[PlayerRef, Mind] = {DEFENDER: defender}
         if plan.launch is Launch.SHOOTER:
             aim = self._aim_offset_trial_rad if plan.aimable_kick else 0.0
             minds[SHOOTER] = AimedShooterMind(DEFENDER, plan.kick_power, aim)
         return minds
-
-    def _lead_mind(self, arena: Arena, plan: LaunchPlan, rngs: TrialRngs) -> LeadDefenderMind:
-        """The lead defender (:mod:`robotsoccer.skills.lead`)."""
-        net = None
-        if self.behaviour is Behaviour.NET:
-            net = load_net_function(self.model, self.distance_factor(arena.facts))
-            if self.lead_time_scale != 1.0:
-                net = ScaledLead(net, self.lead_time_scale)
-        policy = lead_policy(self.behaviour.value, rngs["policy"], net, plan.arrival_time_s)
-        return LeadDefenderMind(
-            policy,
-            arena.facts,
-            plan.max_distance_m,  # decide at the first full velocity fit: no time to wait
-            replan=self.behaviour is Behaviour.ANALYTIC,
-            kickable_distance_m=plan.kickable_distance_m if self.defender_kick else None,
-            turn_tolerance_rad=plan.turn_tolerance_rad,
-        )
-
-    def _turn_mind(self, arena: Arena, plan: LaunchPlan, rngs: TrialRngs) -> DefenderMind:
-        """The paper's TA defender (:mod:`robotsoccer.skills.intercept`)."""
-        policy = make_policy(
-            self.behaviour, rngs["policy"], self.model, self.distance_factor(arena.facts)
-        )
-        return DefenderMind(
-            policy,
-            plan.trigger_distance_m,
-            ta_mode=self.ta_mode,
-            kickable_distance_m=plan.kickable_distance_m if self.defender_kick else None,
-            turn_tolerance_rad=plan.turn_tolerance_rad,
-            decision_period_ticks=decision_ticks(plan, arena.facts),
-        )
-
-    def _cycle_mind(self, arena: Arena, plan: LaunchPlan, rngs: TrialRngs) -> CycleDefenderMind:
-        """The TA defender on a per-cycle client (:mod:`robotsoccer.skills.cycle`).
-
-        Raises:
-            ValueError: The plan sets a decision period (the ``task`` scaling), or TA is
-                chosen at every see (the cycle client holds it).
-        """
-        if decision_ticks(plan, arena.facts):
-            raise ValueError("client 'cycle' acts every cycle: this plan sets a decision period")
-        if self.ta_mode is not TaMode.HOLD:
-            raise ValueError("client 'cycle' holds TA: use ta_mode=hold")
-        policy = make_policy(
-            self.behaviour, rngs["policy"], self.model, self.distance_factor(arena.facts)
-        )
-        return CycleDefenderMind(
-            policy,
-            arena.facts,
-            plan.trigger_distance_m,
-            kickable_distance_m=plan.kickable_distance_m if self.defender_kick else None,
-        )
 
     def judge(self, arena: Arena) -> Verdict | None:
         """SAVE, GOAL, MISS or carry on (:mod:`robotsoccer.drills.intercept_judge`)."""
