@@ -54,17 +54,10 @@ from field_models.registry import field_facts, make_batch_arena
 from field_models.seeding import StreamBatch
 from learning.interception_file import BatchTurnFunction, load_batch_turn_function
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.intercept import (
-    DEFENDER,
-    SHOOTER,
-    ClientKind,
-    Decision,
-    InterceptDrill,
-    Launch,
-    LaunchPlan,
-    Shot,
-)
+from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.intercept_batch_coach import DEFENDER_ROW, SHOOTER_ROW, BatchCoach
+from robotsoccer.drills.intercept_options import ClientKind, Decision, Launch, Shot
+from robotsoccer.drills.intercept_plan import DEFENDER, SHOOTER, LaunchPlan
 from robotsoccer.runs.runner import TrialResult, TrialSpec, field_options
 from robotsoccer.skills.intercept import (
     DASH_POWER,

@@ -18,7 +18,7 @@ import numpy.typing as npt
 
 from field_models.batch_arena import BatchArena
 from field_models.protocol import Crossing, Pitch, end_line_crossing
-from robotsoccer.drills.intercept import (
+from robotsoccer.drills.intercept_judge import (
     AT_END_LINE_WIDE,
     AT_SIDE_LINE,
     BACKWARD_SHARE,
@@ -31,9 +31,9 @@ from robotsoccer.drills.intercept import (
     PAST_WIDE,
     SAVE_SPEED_PER_LENGTH,
     STOPPED_SHORT,
-    LaunchPlan,
     deflected_then,
 )
+from robotsoccer.drills.intercept_plan import LaunchPlan
 from robotsoccer.runs.runner import TrialResult
 
 Array = npt.NDArray[np.float64]

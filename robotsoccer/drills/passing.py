@@ -51,13 +51,8 @@ from learning.pass_boost import load_pass_boost
 from learning.pass_features import PASS_SCHEMA
 from learning.pass_tree_file import load_pass_tree
 from robotsoccer.drills.base import Verdict
-from robotsoccer.drills.intercept import (
-    Launch,
-    LaunchPlan,
-    Scaling,
-    cached_launch_plan,
-    decision_ticks,
-)
+from robotsoccer.drills.intercept_options import Launch, Scaling
+from robotsoccer.drills.intercept_plan import LaunchPlan, cached_launch_plan, decision_ticks
 from robotsoccer.options import choice, duration, flag
 from robotsoccer.skills.intercept import (
     Behaviour,

@@ -14,7 +14,7 @@ import math
 
 from field_models.arena import Arena, FieldFacts
 from field_models.protocol import Action, Kick, Mind, Percept, PlayerRef
-from robotsoccer.drills.intercept import LaunchPlan
+from robotsoccer.drills.intercept_plan import LaunchPlan
 from robotsoccer.skills.ball_sense import BallSense
 from robotsoccer.skills.lead import velocity_window
 from robotsoccer.skills.setplay import KickPowers

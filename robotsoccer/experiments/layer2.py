@@ -41,7 +41,8 @@ import numpy as np
 from learning.pass_dataset import PassDataset
 from learning.pass_tree import LABELS, PassTree
 from robotsoccer.experiments import paper
-from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import Condition, Log, Seeds
 from robotsoccer.experiments.layer2_training import (
     dataset_from,
     passer_half_only,

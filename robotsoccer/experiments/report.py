@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 
 from field_models.arena import FieldFacts
 from field_models.registry import PAPER_FIELD
-from robotsoccer.drills.intercept import DEFAULT_SECTOR_DEG
+from robotsoccer.drills.intercept_options import DEFAULT_SECTOR_DEG
 from robotsoccer.experiments.paper import (
     AIM_4_DEG_WIDE,
     AIM_OFFSET_DEG,

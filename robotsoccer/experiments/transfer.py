@@ -32,15 +32,16 @@ from pathlib import Path
 
 from field_models.registry import field_facts
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.intercept import InterceptDrill, LaunchPlan
-from robotsoccer.experiments.layer1 import (
+from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.intercept_plan import LaunchPlan
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import (
     Condition,
     Layer1Plan,
     Log,
     Seeds,
     base_spec,
     condition,
-    evaluate,
 )
 from robotsoccer.experiments.layer2 import Layer2Plan, pass_spec
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill

@@ -12,14 +12,14 @@ from pathlib import Path
 
 import pytest
 
-import robotsoccer.experiments.layer1 as layer1
+import robotsoccer.experiments.layer1_plan as layer1_plan
 import robotsoccer.experiments.layer2 as layer2
 import robotsoccer.experiments.lead_study as lead_study
 import robotsoccer.experiments.team_study as team_study
 import robotsoccer.experiments.transfer_study as transfer_study
 from robotsoccer.cli import main
 
-TINY_LAYER1 = layer1.Layer1Plan(
+TINY_LAYER1 = layer1_plan.Layer1Plan(
     name="tiny",
     eval_trials=12,
     collect_saves=20,
@@ -41,7 +41,7 @@ TINY_TEAM = team_study.TeamPlan("tiny", 2, 2, 5.0, 0.3, 0.05, 2, 5.0, 2, True, 0
 
 @pytest.fixture
 def tiny_plans(monkeypatch: pytest.MonkeyPatch) -> None:
-    for module in (layer1, transfer_study):
+    for module in (layer1_plan, transfer_study):
         monkeypatch.setattr(module, "plan_for", lambda quick: TINY_LAYER1)
     for module in (layer2, transfer_study):
         monkeypatch.setattr(module, "layer2_plan", lambda quick: TINY_LAYER2)

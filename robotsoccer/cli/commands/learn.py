@@ -39,7 +39,8 @@ def cmd_learn(args: argparse.Namespace) -> int:
 
 def cmd_learn_pass(args: argparse.Namespace) -> int:
     """``learn pass``: layer 2 on one field model (collect → train → evaluate → report)."""
-    from robotsoccer.experiments.layer1 import plan_for, seeds_for, train_main_net
+    from robotsoccer.experiments.layer1 import train_main_net
+    from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
     from robotsoccer.experiments.plots_layer2 import layer2_plots
 
@@ -144,7 +145,7 @@ def _lead_section(
     args: argparse.Namespace, out: Path, workers: int, log: Callable[[str], None]
 ) -> str:
     """The lead study (:mod:`robotsoccer.experiments.lead_study`) on the chosen fields."""
-    from robotsoccer.experiments.layer1 import seeds_for
+    from robotsoccer.experiments.layer1_plan import seeds_for
     from robotsoccer.experiments.lead_study import StudyDrill, plan_for, run_study
 
     field = getattr(args, "field", None)
@@ -232,7 +233,8 @@ def _run_layer1(
     *,
     with_layer2: bool = False,
 ) -> int:
-    from robotsoccer.experiments.layer1 import plan_for, run_layer1, seeds_for
+    from robotsoccer.experiments.layer1 import run_layer1
+    from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
     from robotsoccer.experiments.plots_layer2 import layer2_plots
 

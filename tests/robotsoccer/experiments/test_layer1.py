@@ -12,19 +12,17 @@ import pytest
 from learning.datasets import InterceptionDataset
 from learning.lookup import LookupTable
 from robotsoccer.experiments import paper
-from robotsoccer.experiments.layer1 import (
+from robotsoccer.experiments.layer1 import run_layer1
+from robotsoccer.experiments.layer1_evaluate import experiments, unique_conditions
+from robotsoccer.experiments.layer1_plan import (
     Layer1Plan,
     PipelineError,
-    Trained,
     base_spec,
-    experiments,
     full_plan,
     quick_plan,
-    run_layer1,
     seeds_for,
-    training_sizes,
-    unique_conditions,
 )
+from robotsoccer.experiments.layer1_train import Trained, training_sizes
 from robotsoccer.experiments.paper import PaperRow
 from robotsoccer.experiments.report import (
     OWN_SETTING,

@@ -14,7 +14,7 @@ from learning.datasets import Provenance
 from learning.pass_dataset import PassDataset
 from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
 from learning.pass_tree_file import load_pass_tree
-from robotsoccer.experiments.layer1 import seeds_for
+from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.layer2 import (
     Layer2Plan,
     Layer2Section,

@@ -18,8 +18,9 @@ from field_models.protocol import (
     wrap_angle,
 )
 from field_models.registry import field_facts
-from robotsoccer.drills.intercept import DEFENDER, InterceptDrill
+from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.intercept_batch import batch_reason
+from robotsoccer.drills.intercept_plan import DEFENDER
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial, run_trial
 from robotsoccer.skills.cycle import CycleDefenderMind, fit_ball
 from robotsoccer.skills.localise import Localiser
