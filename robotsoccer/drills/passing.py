@@ -16,10 +16,10 @@
 **The conversation and the minds** are in :mod:`robotsoccer.skills.passing`. Receivers and
 defenders use layer 1's interception (``interceptor``, ``net`` with the run's own net file) with
 layer 1's trigger distance and turn tolerance on this field
-(:func:`robotsoccer.drills.intercept.launch_plan`). The pass itself is layer 1's launch: the same
-kick power on the Soccer Server. On a field without an aimable kick (the 1997 robots), the coach
-launches the ball at the plan's launch speed along the direction the passer chose, one tick
-after its announcement.
+(:func:`robotsoccer.drills.intercept_plan.launch_plan`). The pass itself is layer 1's launch:
+the same kick power on the Soccer Server. On a field without an aimable kick (the 1997 robots),
+the coach launches the ball at the plan's launch speed along the direction the passer chose,
+one tick after its announcement.
 
 **The coach's labels.** From the pass on, at every tick, the first player other than the passer
 within *control* distance of the ball (its kick reach, or touching plus a quarter unit on a field

@@ -64,7 +64,7 @@ at which that player is within kick reach of the ball (a kicker that fires when 
 it; the robot's next decision comes a camera period later, so a receiver can kick a pass on
 first time: it sends the kick as it sees the ball about to come into reach): the ball's velocity
 gains the kick's speed (its power times
-:attr:`~robotsoccer.drills.intercept.LaunchPlan.launch_speed_mps` / the plan's power, layer 1's
+:attr:`~robotsoccer.drills.intercept_plan.LaunchPlan.launch_speed_mps` / the plan's power, layer 1's
 launch at full power) along the player's heading plus the kick's direction, as the server's kick
 adds to the ball's velocity. The kick reach there is touching plus
 :data:`~robotsoccer.drills.setplay_kicks.KICK_MARGIN_UNITS` (the server's ``kickable_margin``, 1

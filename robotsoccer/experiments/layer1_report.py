@@ -51,7 +51,7 @@ def scaling_notes(field_model: str, preset: str) -> list[str]:
     """
     plan = launch_plan(field_facts(field_model, preset))
     lines = [
-        "Drill geometry and launch (`robotsoccer.drills.intercept.launch_plan`; distances in "
+        "Drill geometry and launch (`robotsoccer.drills.intercept_plan.launch_plan`; distances in "
         "metres, one unit = pitch length / 105; the scaling rule is in that module's "
         "docstring):",
         "",

@@ -21,7 +21,7 @@ The pipeline for one field model, on top of layer 1's net from the same run:
    we differ.
 
 Seeds: collection uses the run's derived collection seed, evaluation the experiment seed
-(:func:`robotsoccer.experiments.layer1.seeds_for`), so the tree is never tested on its own
+(:func:`robotsoccer.experiments.layer1_plan.seeds_for`), so the tree is never tested on its own
 placements.
 """
 
