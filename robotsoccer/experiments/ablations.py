@@ -30,7 +30,7 @@ from robotsoccer.experiments.layer1_collect import collect
 from robotsoccer.experiments.layer1_evaluate import evaluate
 from robotsoccer.experiments.layer1_plan import Field, Layer1Plan, Log, Seeds, base_spec, condition
 from robotsoccer.experiments.layer1_train import train_series
-from robotsoccer.experiments.report import paired_cell, percent_cell
+from robotsoccer.experiments.report_cells import paired_cell, percent_cell
 from robotsoccer.runs.runner import DrillOption, TrialResult, TrialSpec
 
 

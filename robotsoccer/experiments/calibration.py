@@ -62,7 +62,7 @@ import numpy as np
 
 from field_models.arena import FieldFacts
 from robotsoccer.experiments.calibration_fit import CYCLES_PER_SEE, Calibration
-from robotsoccer.experiments.report import paired_cell, percent_cell
+from robotsoccer.experiments.report_cells import paired_cell, percent_cell
 from robotsoccer.runs.runner import TrialResult
 
 

@@ -49,7 +49,7 @@ from robotsoccer.experiments.layer1_plan import (
     condition,
 )
 from robotsoccer.experiments.layer1_train import prefix, train_series
-from robotsoccer.experiments.report import percent_cell
+from robotsoccer.experiments.report_cells import percent_cell
 from robotsoccer.runs.runner import TrialResult
 
 

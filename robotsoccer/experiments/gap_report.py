@@ -13,7 +13,7 @@ from pathlib import Path
 
 from robotsoccer.experiments.gap_closing import CurvePoint, GapPlan, RandomisedNet, save_share
 from robotsoccer.experiments.gap_variants import Randomisation
-from robotsoccer.experiments.report import paired_cell
+from robotsoccer.experiments.report_cells import paired_cell
 from robotsoccer.runs.runner import TrialResult
 
 

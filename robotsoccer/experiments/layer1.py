@@ -67,7 +67,7 @@ from robotsoccer.experiments.layer1_train import (
     train_series,
     training_sizes,
 )
-from robotsoccer.experiments.report import ModelSection, StageTiming
+from robotsoccer.experiments.report_records import ModelSection, StageTiming
 from robotsoccer.runs.folders import lock_run_folder
 from robotsoccer.runs.provenance import code_version
 from robotsoccer.runs.runner import TrialResult

@@ -30,7 +30,7 @@ from robotsoccer.experiments.layer1_plan import (
     base_spec,
     condition,
 )
-from robotsoccer.experiments.report import Counts, StageTiming
+from robotsoccer.experiments.report_records import Counts, StageTiming
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 
 

@@ -19,7 +19,7 @@ from typing import Any
 from field_models.registry import has_preset
 from robotsoccer.experiments.layer1_plan import Condition, Layer1Plan, Log, condition
 from robotsoccer.experiments.layer1_train import Trained
-from robotsoccer.experiments.report import Counts
+from robotsoccer.experiments.report_records import Counts
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 from robotsoccer.runs.table import iter_results

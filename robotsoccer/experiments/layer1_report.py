@@ -15,7 +15,7 @@ from field_models.registry import field_facts
 from robotsoccer.drills.intercept_plan import launch_plan
 from robotsoccer.experiments.layer1_evaluate import SWEPT_EXPERIMENT
 from robotsoccer.experiments.layer1_plan import Layer1Plan, Seeds
-from robotsoccer.experiments.report import Counts, ModelSection
+from robotsoccer.experiments.report_records import Counts, ModelSection
 
 
 def fill_section(

@@ -51,14 +51,14 @@ from robotsoccer.experiments.layer2_training import (
     train_boost,
     train_tree,
 )
-from robotsoccer.experiments.report import (
-    StageTiming,
-    field_setting,
+from robotsoccer.experiments.report_cells import (
     paired_difference,
     percent_cell,
     versus_cell,
     versus_paper,
 )
+from robotsoccer.experiments.report_records import StageTiming
+from robotsoccer.experiments.report_tables import field_setting
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import reliability
 

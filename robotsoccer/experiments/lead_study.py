@@ -52,7 +52,7 @@ from robotsoccer.experiments.layer1_collect import decided_saves
 from robotsoccer.experiments.layer1_evaluate import counts_of, evaluate
 from robotsoccer.experiments.layer1_plan import Condition as EvalCondition
 from robotsoccer.experiments.layer1_plan import Seeds
-from robotsoccer.experiments.report import paired_cell, percent_cell
+from robotsoccer.experiments.report_cells import paired_cell, percent_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
 

@@ -19,7 +19,7 @@ from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
-    from robotsoccer.experiments.report import ModelSection
+    from robotsoccer.experiments.report_records import ModelSection
 
 
 def cmd_learn(args: argparse.Namespace) -> int:

@@ -23,7 +23,7 @@ from robotsoccer.experiments.layer2 import (
     run_layer2_model,
     table2_lines,
 )
-from robotsoccer.experiments.report import OWN_SETTING, PAPER_SETTING
+from robotsoccer.experiments.report_records import OWN_SETTING, PAPER_SETTING
 from robotsoccer.runs.runner import TrialResult
 
 PLAN = Layer2Plan("test", collect_trials=60, eval_trials=16, tree_depth_shown=2)
