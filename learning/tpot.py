@@ -45,7 +45,8 @@ import numpy as np
 import numpy.typing as npt
 
 N_ACTIONS = 8
-"""Ball destinations a player chooses among (the TPOT-RL paper's 8)."""
+"""Ball destinations a player chooses among (the TPOT-RL paper's 8; a table may hold another
+number of actions, e.g. the half-field offense holder's macros)."""
 FEATURE_VALUES: tuple[str, ...] = ("SUCCESS", "FAILURE", "MISS")
 """The values of e(s, a), in table order: the layer-2 labels (|U| = 3)."""
 SUCCESS, FAILURE, MISS = 0, 1, 2
@@ -75,7 +76,8 @@ class TpotTable:
     """Per-position Q-values with their update counts and provenance.
 
     Attributes:
-        q: float64 (n_positions, |U|, N_ACTIONS): Q(p, e, a); position p is uniform number p+1.
+        q: float64 (n_positions, |U|, n_actions): Q(p, e, a); position p is uniform number p+1
+            (n_actions: :data:`N_ACTIONS` for the field's destinations, or another count).
         n: int64, same shape: how many rewards each entry has averaged.
         provenance: JSON scalars and strings: seed, games, code version, tree digest, ...
     """
@@ -87,10 +89,9 @@ class TpotTable:
     def __post_init__(self) -> None:
         self.q = np.asarray(self.q, dtype=np.float64)
         self.n = np.asarray(self.n, dtype=np.int64)
-        expected = (len(FEATURE_VALUES), N_ACTIONS)
-        if self.q.ndim != 3 or self.q.shape[1:] != expected or self.q.shape[0] < 1:
-            raise ValueError(f"a Q table is (positions, {expected[0]}, {expected[1]}), got "
-                             f"{self.q.shape}")  # fmt: skip
+        u = len(FEATURE_VALUES)
+        if self.q.ndim != 3 or self.q.shape[1] != u or min(self.q.shape) < 1:
+            raise ValueError(f"a Q table is (positions, {u}, actions), got {self.q.shape}")
         if self.n.shape != self.q.shape:
             raise ValueError(f"counts {self.n.shape} do not match values {self.q.shape}")
         if not np.all(np.isfinite(self.q)) or np.any(np.abs(self.q) > Q_MAX):
@@ -99,11 +100,16 @@ class TpotTable:
             raise ValueError("update counts must be >= 0")
 
     @classmethod
-    def empty(cls, positions: int, provenance: Mapping[str, Any] | None = None) -> TpotTable:
+    def empty(
+        cls,
+        positions: int,
+        provenance: Mapping[str, Any] | None = None,
+        actions: int = N_ACTIONS,
+    ) -> TpotTable:
         """A table of zeros for `positions` positions (uniform numbers 1..positions)."""
-        if positions < 1:
-            raise ValueError(f"positions must be >= 1, got {positions}")
-        shape = (positions, len(FEATURE_VALUES), N_ACTIONS)
+        if positions < 1 or actions < 1:
+            raise ValueError(f"positions and actions must be >= 1, got {positions}, {actions}")
+        shape = (positions, len(FEATURE_VALUES), actions)
         return cls(np.zeros(shape), np.zeros(shape, dtype=np.int64), dict(provenance or {}))
 
     @property
@@ -111,13 +117,18 @@ class TpotTable:
         """How many positions the table holds."""
         return int(self.q.shape[0])
 
+    @property
+    def actions(self) -> int:
+        """How many actions each position chooses among."""
+        return int(self.q.shape[2])
+
     def values(
         self, number: int, features: Sequence[int] | npt.NDArray[np.intp]
     ) -> npt.NDArray[np.float64]:
         """Q(p, e(a), a) for every action a of the player with uniform `number`."""
         p = self._row(number)
-        e = _features(features)
-        return self.q[p, e, np.arange(N_ACTIONS)]
+        e = _features(features, self.actions)
+        return self.q[p, e, np.arange(self.actions)]
 
     def digest(self) -> str:
         """SHA-256 (short) of the values and counts as stored (little-endian)."""
@@ -139,7 +150,7 @@ class Experience:
     Attributes:
         number: The acting player's uniform number (its position).
         feature: e(s, a) of the action taken (index into :data:`FEATURE_VALUES`).
-        action: The destination chosen (0..N_ACTIONS-1).
+        action: The action chosen (0..the table's actions - 1).
         reward: The reward fixed for it (:func:`reward`).
     """
 
@@ -149,10 +160,10 @@ class Experience:
     reward: float
 
 
-def _features(features: Sequence[int] | npt.NDArray[np.intp]) -> npt.NDArray[np.intp]:
+def _features(features: Sequence[int] | npt.NDArray[np.intp], actions: int) -> npt.NDArray[np.intp]:
     e = np.asarray(features, dtype=np.intp)
-    if e.shape != (N_ACTIONS,):
-        raise ValueError(f"one feature per action ({N_ACTIONS}), got shape {e.shape}")
+    if e.shape != (actions,):
+        raise ValueError(f"one feature per action ({actions}), got shape {e.shape}")
     if np.any((e < 0) | (e >= len(FEATURE_VALUES))):
         raise ValueError(f"feature values must be in 0..{len(FEATURE_VALUES) - 1}, got {e}")
     return e
@@ -173,10 +184,10 @@ def choose(
     """
     if not 0.0 <= epsilon <= 1.0:
         raise ValueError(f"epsilon must be in [0, 1], got {epsilon}")
-    e = _features(features)
+    e = _features(features, table.actions)
     allowed = np.flatnonzero(np.isin(e, list(considered)))
     if allowed.size == 0:
-        allowed = np.arange(N_ACTIONS)
+        allowed = np.arange(table.actions)
     if epsilon > 0.0 and rng.random() < epsilon:
         return int(allowed[_index(rng, allowed.size)])
     q = table.values(number, e)[allowed]
@@ -195,8 +206,8 @@ def update(table: TpotTable, experience: Experience, alpha_min: float = ALPHA_MI
     r = float(experience.reward)
     if not (math.isfinite(r) and abs(r) <= Q_MAX):
         raise ValueError(f"a reward must be finite and within +-{Q_MAX:g}, got {r}")
-    if not 0 <= experience.action < N_ACTIONS:
-        raise ValueError(f"action {experience.action} outside 0..{N_ACTIONS - 1}")
+    if not 0 <= experience.action < table.actions:
+        raise ValueError(f"action {experience.action} outside 0..{table.actions - 1}")
     if not 0 <= experience.feature < len(FEATURE_VALUES):
         raise ValueError(f"feature {experience.feature} outside 0..{len(FEATURE_VALUES) - 1}")
     key = (table._row(experience.number), experience.feature, experience.action)
@@ -273,7 +284,7 @@ def save_table(table: TpotTable, path: str | os.PathLike[str]) -> Path:
         "format": TABLE_FORMAT,
         "version": TABLE_FORMAT_VERSION,
         "feature_values": list(FEATURE_VALUES),
-        "actions": N_ACTIONS,
+        "actions": table.actions,
         "digest": table.digest(),
         "provenance": table.provenance,
     }
@@ -308,8 +319,10 @@ def load_table(path: str | os.PathLike[str]) -> TpotTable:
     if header.get("version") != TABLE_FORMAT_VERSION:
         raise ValueError(f"{name}: format version {header.get('version')!r}, "
                          f"this code reads {TABLE_FORMAT_VERSION}")  # fmt: skip
-    if header.get("feature_values") != list(FEATURE_VALUES) or header.get("actions") != N_ACTIONS:
-        raise ValueError(f"{name}: features or actions differ from this code's")
+    actions = q.shape[2] if q.ndim == 3 else None
+    if header.get("feature_values") != list(FEATURE_VALUES) or header.get("actions") != actions:
+        raise ValueError(f"{name}: features or actions differ from this code's or its values "
+                         f"(header: {header.get('actions')!r} actions)")  # fmt: skip
     if q.dtype.kind != "f" or n.dtype.kind not in "iu":
         raise ValueError(f"{name}: arrays of the wrong types ({q.dtype}, {n.dtype})")
     provenance = header.get("provenance", {})

@@ -209,7 +209,7 @@ def _score_env_figures(model: str, quick: bool, repeats: int) -> Iterator[tuple[
     The repeat with the median ratio gives every figure, so they belong together.
     """
     from robotsoccer.bench_envs import score_env_figures
-    from robotsoccer.envs.control import ScoreEnv
+    from robotsoccer.envs.score import ScoreEnv
 
     seconds = 60.0 if quick else 200.0
     ticks = round(seconds / ScoreEnv(model).facts.dt_s)

@@ -25,7 +25,7 @@ import numpy as np
 from field_models.registry import make_arena
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.match import MatchDrill
-from robotsoccer.envs.control import ScoreEnv
+from robotsoccer.envs.score import ScoreEnv
 from robotsoccer.runs.runner import TrialLoop
 
 

@@ -19,7 +19,7 @@ import argparse
 from collections import Counter
 
 from field_models.protocol import RIGHT
-from robotsoccer.drills.intercept import DEFENDER
+from robotsoccer.drills.intercept_plan import DEFENDER
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.runs.runner import TrialSpec, build_trial, play
 from robotsoccer.skills.intercept import load_net_function

@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 
 from robotsoccer.cli.running import clock_log
-from robotsoccer.experiments.layer1 import seeds_for
+from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.layer2 import Layer2Plan, layer2_markdown, run_layer2_model
 from robotsoccer.experiments.plots_layer2 import layer2_plots
 

@@ -1,8 +1,9 @@
 """The ``robotsoccer`` command line: demo, trace, learn, reproduce, transfer, bench, replay, ...
 
-A package: the parser and the options every command shares in :mod:`.options`, what every
-command does around its work in :mod:`.running`, and the commands in :mod:`.commands`, one
-module per group; :func:`main` dispatches through :data:`COMMANDS`.
+A package: the parser and the options every command shares in :mod:`.parser`, their types,
+bounds and the exit statuses in :mod:`.options`, what every command does around its work in
+:mod:`.running`, and the commands in :mod:`.commands`, one module per group; :func:`main`
+dispatches through :data:`COMMANDS`.
 
 Every error reaches the user as one line and a non-zero exit status, never a traceback (unless
 ``--debug`` is given): a wrong option, preset or model file exits with 2; a file-system error
@@ -41,8 +42,8 @@ from robotsoccer.cli.options import (
     _noise,
     _positive_float,
     _positive_int,
-    build_parser,
 )
+from robotsoccer.cli.parser import build_parser
 from robotsoccer.cli.running import fail, silence_stdout
 from robotsoccer.runs.folders import release_run_folders
 from robotsoccer.runs.pool import using_backend

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import inspect
 from collections.abc import Callable, Mapping
@@ -21,7 +22,8 @@ DRILLS: dict[str, Callable[..., Drill]] = {
     "setplay": SetPlayDrill,
     "match": MatchDrill,
 }
-"""Registered drills: name → factory taking the drill's options as keywords."""
+"""Registered drills: name → factory taking the drill's options as keywords
+(:func:`drill_options` names them)."""
 
 
 def make_drill(name: str, options: Mapping[str, Any] | None = None) -> Drill:
@@ -49,8 +51,16 @@ def make_drill(name: str, options: Mapping[str, Any] | None = None) -> Drill:
 
 @functools.cache
 def drill_options(name: str) -> tuple[str, ...]:
-    """The options drill `name` takes, in its signature's order."""
-    return tuple(inspect.signature(DRILLS[name]).parameters)
+    """The options drill `name` takes, in order.
+
+    A drill whose options are a typed record names it as ``OPTIONS`` (a dataclass): its fields;
+    any other drill takes its options as keywords: its signature's parameters.
+    """
+    factory = DRILLS[name]
+    record = getattr(factory, "OPTIONS", None)
+    if isinstance(record, type) and dataclasses.is_dataclass(record):
+        return tuple(field.name for field in dataclasses.fields(record))
+    return tuple(inspect.signature(factory).parameters)
 
 
 __all__ = ["DRILLS", "Drill", "GoalWatch", "Verdict", "drill_options", "make_drill"]

@@ -31,6 +31,10 @@ ball collisions), with the field options (ball noise, perfect perception). Not h
 
 Trials that end leave the arrays (the batch compacts itself), so a batch costs what its
 longest trials cost, not its size times the longest.
+
+The coach's rules and the results they give are
+:class:`~robotsoccer.drills.intercept_batch_coach.BatchCoach`; this module places the trials,
+plays the shooter and the defender, and steps the batch.
 """
 
 from __future__ import annotations
@@ -44,46 +48,26 @@ import numpy.typing as npt
 
 from field_models.arena import FieldFacts
 from field_models.batch_arena import BatchArena
-from field_models.protocol import Crossing, Pitch, end_line_crossing, wrap_angle
+from field_models.protocol import Pitch, wrap_angle
 from field_models.registry import batch_reason as field_batch_reason
 from field_models.registry import field_facts, make_batch_arena
 from field_models.seeding import StreamBatch
 from learning.interception_file import BatchTurnFunction, load_batch_turn_function
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.intercept import (
-    AT_END_LINE_WIDE,
-    AT_SIDE_LINE,
-    BACKWARD_SHARE,
-    DEFENDER,
-    DEFLECTED_STOPPED,
-    INTO_GOAL,
-    MOVING_BACK,
-    OVER_LINE_WIDE,
-    OVER_OWN_LINE,
-    PAST_INTO_GOAL,
-    PAST_WIDE,
-    SAVE_SPEED_PER_LENGTH,
-    SHOOTER,
-    STOPPED_SHORT,
-    ClientKind,
-    Decision,
-    InterceptDrill,
-    Launch,
-    LaunchPlan,
-    Shot,
-    deflected_then,
-)
+from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.intercept_batch_coach import DEFENDER_ROW, SHOOTER_ROW, BatchCoach
+from robotsoccer.drills.intercept_options import ClientKind, Decision, Launch, Shot
+from robotsoccer.drills.intercept_plan import DEFENDER, SHOOTER, LaunchPlan
 from robotsoccer.runs.runner import TrialResult, TrialSpec, field_options
 from robotsoccer.skills.intercept import (
     DASH_POWER,
-    RANDOM_TA_HALF_RANGE_RAD,
     TA_CLIP_RAD,
-    AnalyticPolicy,
     Behaviour,
     TaMode,
     file_key,
     load_lookup_table,
 )
+from robotsoccer.skills.turn_policies import RANDOM_TA_HALF_RANGE_RAD, AnalyticPolicy
 
 Array = npt.NDArray[np.float64]
 Mask = npt.NDArray[np.bool_]
@@ -95,21 +79,6 @@ COMPACT_SHARE = 0.75
 """The batch drops its finished trials once fewer than this share of its rows still run."""
 
 _NONE, _TURN, _DASH = 0, 1, 2
-_SHOOTER_ROW, _DEFENDER_ROW = 1, 2
-
-# Verdicts as codes: (label, reason) pairs; a "not in" reason has a deflected twin at +1.
-_VERDICTS: list[tuple[str, str]] = [
-    ("GOAL", INTO_GOAL),
-    ("SAVE", DEFLECTED_STOPPED),
-    ("SAVE", MOVING_BACK),
-    ("GOAL", PAST_INTO_GOAL),
-    ("MISS", STOPPED_SHORT),
-]
-_NOT_IN: dict[str, int] = {}
-for _reason in (OVER_OWN_LINE, OVER_LINE_WIDE, AT_SIDE_LINE, AT_END_LINE_WIDE, PAST_WIDE):
-    _NOT_IN[_reason] = len(_VERDICTS)
-    _VERDICTS += [("MISS", _reason), ("SAVE", deflected_then(_reason))]
-_INTO_GOAL, _DEFLECTED_STOPPED, _MOVING_BACK, _PAST_INTO_GOAL, _STOPPED_SHORT = range(5)
 
 
 def batch_reason(spec: TrialSpec) -> str | None:
@@ -271,33 +240,9 @@ class _InterceptBatch:
         else:
             assert plan.aimable_kick, "the Soccer Server's kick takes a direction"
             server.move_ball(bx, by)
-        server.move_player(_SHOOTER_ROW, bx - gap * ux, by - gap * uy, bearing)
-        server.move_player(_DEFENDER_ROW, dx, dy, bearing + math.pi)
-        self._init_judge()
-
-    def _init_judge(self) -> None:
-        """The coach's _Judge and GoalWatch state at the start of every trial."""
-        s = self.server
-        pitch = self.setting.pitch
-        x0, y0 = s.x[:, 0].copy(), s.y[:, 0].copy()
-        ddx, ddy = s.x[:, _DEFENDER_ROW] - x0, s.y[:, _DEFENDER_ROW] - y0
-        # math.hypot, as the one-trial judge: numpy's hypot differs in the last bit.
-        distance = _hypots(ddx, ddy)
-        self.j = {
-            "x0": x0,
-            "y0": y0,
-            "ux": ddx / distance,
-            "uy": ddy / distance,
-            "past": distance + pitch.player_radius_m + pitch.ball_radius_m,
-            "last_x": x0.copy(),
-            "last_y": y0.copy(),
-            "trig_t": np.full(len(x0), np.nan),
-            "trig_x": np.zeros(len(x0)),
-            "trig_y": np.zeros(len(x0)),
-        }
-        self.approaching = np.zeros(len(x0), dtype=bool)
-        self.deflected = np.zeros(len(x0), dtype=bool)
-        self.scores = (s.score_left.copy(), s.score_right.copy())
+        server.move_player(SHOOTER_ROW, bx - gap * ux, by - gap * uy, bearing)
+        server.move_player(DEFENDER_ROW, dx, dy, bearing + math.pi)
+        self.coach = BatchCoach(server, self.setting.pitch, self.setting.dt_s, plan)
 
     def _init_minds(self, k: int) -> None:
         """The shooter's and the defender's state (AimedShooterMind, DefenderMind)."""
@@ -340,16 +285,16 @@ class _InterceptBatch:
         """Each player's next queued body command (the arena's plans, one per cycle)."""
         s = self.server
         if self.kick_due.any():
-            s.kick(_SHOOTER_ROW, self.setting.plan.kick_power, self.kick_dir, self.kick_due)
+            s.kick(SHOOTER_ROW, self.setting.plan.kick_power, self.kick_dir, self.kick_due)
             self.kick_due[:] = False
         col = np.minimum(self.queue_next, 1)
         at = np.arange(len(col))
         kind = np.where(self.queue_next < 2, self.queue_kind[at, col], _NONE)
         arg = self.queue_arg[at, col]
         if (kind == _TURN).any():
-            s.turn(_DEFENDER_ROW, arg, kind == _TURN)
+            s.turn(DEFENDER_ROW, arg, kind == _TURN)
         if (kind == _DASH).any():
-            s.dash(_DEFENDER_ROW, DASH_POWER, 0.0, kind == _DASH)
+            s.dash(DEFENDER_ROW, DASH_POWER, 0.0, kind == _DASH)
         self.queue_next += kind != _NONE
 
     def _shooter_sees(self) -> None:
@@ -357,7 +302,7 @@ class _InterceptBatch:
         waits = self.shooter_waits
         if not waits.any():
             return
-        shown, _, angle = self.server.see(_SHOOTER_ROW, _DEFENDER_ROW)
+        shown, _, angle = self.server.see(SHOOTER_ROW, DEFENDER_ROW)
         aim = np.where(shown, angle, 0.0) + self.setting.drill.aim_offset_rad
         self.kick_dir = np.where(waits, aim, self.kick_dir)
         self.kick_due |= waits
@@ -368,7 +313,7 @@ class _InterceptBatch:
         choose = self.setting.choose
         if choose is None:  # still: never acts
             return
-        ball, bd, ba = self.server.see(_DEFENDER_ROW, 0)
+        ball, bd, ba = self.server.see(DEFENDER_ROW, 0)
         kinds = np.zeros((len(ba), 2), dtype=np.int8)
         args = np.zeros((len(ba), 2))
         kinds[~ball & self.triggered, 0] = _DASH  # ball not seen: dash once triggered
@@ -412,121 +357,20 @@ class _InterceptBatch:
     # ------------------------------------------------------------------ the coach
 
     def _judge(self) -> None:
-        """InterceptDrill.judge (the _Judge and GoalWatch rules, in order) for every trial."""
-        s, j, pitch = self.server, self.j, self.setting.pitch
-        newly = self.triggered & np.isnan(j["trig_t"])
-        if newly.any():
-            j["trig_t"] = np.where(newly, s.cycle * self.setting.dt_s, j["trig_t"])
-            j["trig_x"] = np.where(newly, s.x[:, _DEFENDER_ROW], j["trig_x"])
-            j["trig_y"] = np.where(newly, s.y[:, _DEFENDER_ROW], j["trig_y"])
-        k = 1.0 / self.setting.dt_s  # BodyState's m/tick -> m/s
-        x, y, vx, vy = s.x[:, 0], s.y[:, 0], s.vx[:, 0] * k, s.vy[:, 0] * k
-        verdict = np.full(len(x), -1)
-        open_ = self.alive.copy()
-
-        def decide(where: Mask, code: npt.NDArray[np.int_] | int) -> None:
-            nonlocal open_
-            hit = where & open_
-            if hit.any():  # most rules fire in no trial at a given tick
-                verdict[hit] = np.broadcast_to(code, verdict.shape)[hit]
-                open_ = open_ & ~hit
-
-        def not_in(where: Mask, reason: str) -> None:
-            if where.any():
-                decide(where, _NOT_IN[reason] + self.deflected.astype(int))
-
-        self._goal_line(x, y, decide, not_in)
-        edge = pitch.ball_radius_m + 0.01 * pitch.half_length_m
-        not_in(np.abs(y) >= pitch.half_width_m - edge, AT_SIDE_LINE)
-        wide = (x >= pitch.half_length_m - edge) & (np.abs(y) >= 0.5 * pitch.goal_width_m)
-        not_in(wide, AT_END_LINE_WIDE)
-        eps = SAVE_SPEED_PER_LENGTH * pitch.length_m
-        decide(self.deflected & (vx * vx + vy * vy < eps * eps), _DEFLECTED_STOPPED)
-        along = vx * j["ux"] + vy * j["uy"]
-        self.approaching |= open_ & (along > eps)
-        back = open_ & ~(along > eps) & self.approaching & (along < -eps)
-        if back.any():
-            speed = np.zeros(len(x))
-            rows = np.flatnonzero(back)
-            speed[rows] = _hypots(vx[rows], vy[rows])
-            decide(back & (along < -BACKWARD_SHARE * speed), _MOVING_BACK)
-            self.deflected |= back & open_
-        past = open_ & ((x - j["x0"]) * j["ux"] + (y - j["y0"]) * j["uy"] > j["past"])
-        if past.any():
-            with np.errstate(divide="ignore", invalid="ignore"):
-                cross = y + (pitch.half_length_m - x) * vy / vx
-            decide(past & (vx > 0.0) & (np.abs(cross) < 0.5 * pitch.goal_width_m), _PAST_INTO_GOAL)
-            not_in(past, PAST_WIDE)
+        """InterceptDrill.judge for every trial (:class:`BatchCoach`); end those it decides."""
+        verdict = self.coach.judge(self.triggered, self.alive)
         self._finish(verdict >= 0, verdict)
-
-    def _goal_line(
-        self,
-        x: Array,
-        y: Array,
-        decide: Callable[[Mask, npt.NDArray[np.int_] | int], None],
-        not_in: Callable[[Mask, str], None],
-    ) -> None:
-        """GoalWatch.step: a referee's goal, else the one goal-line rule where the ball is out."""
-        s, j, pitch = self.server, self.j, self.setting.pitch
-        lx, ly = j["last_x"], j["last_y"]
-        j["last_x"], j["last_y"] = x.copy(), y.copy()
-        scored_left = s.score_left != self.scores[0]
-        scored = scored_left | (s.score_right != self.scores[1])
-        line = 0.5 * pitch.length_m + pitch.ball_radius_m
-        out = ~scored & ~((-line <= x) & (x <= line))
-        if not (scored.any() or out.any()):
-            return
-        crossing = np.zeros(len(x), dtype=int)
-        crossing[scored] = np.where(scored_left, int(Crossing.RIGHT_GOAL), int(Crossing.LEFT_GOAL))[
-            scored
-        ]
-        for row in np.flatnonzero(out).tolist():
-            step = (float(lx[row]), float(ly[row]), float(x[row]), float(y[row]))
-            crossing[row] = int(end_line_crossing(pitch, *step))
-        decide(crossing == int(Crossing.RIGHT_GOAL), _INTO_GOAL)
-        not_in(crossing == int(Crossing.LEFT_GOAL), OVER_OWN_LINE)
-        not_in(crossing != 0, OVER_LINE_WIDE)
 
     def _time_out(self) -> None:
         """InterceptDrill.timeout for every trial still running."""
-        codes = np.where(self.deflected, _DEFLECTED_STOPPED, _STOPPED_SHORT)
-        self._finish(self.alive.copy(), codes)
+        self._finish(self.alive.copy(), self.coach.time_out_codes())
 
     def _finish(self, ended: Mask, codes: npt.NDArray[np.int_]) -> None:
-        """Write the results of the trials `ended` (TrialResult, as run_trial builds it)."""
+        """Write the results of the trials `ended` and take them out of the running."""
         rows = np.flatnonzero(ended)
         if not rows.size:
             return
-        s, j, plan = self.server, self.j, self.setting.plan
-        ticks = s.cycle
-        time_s = ticks * self.setting.dt_s
-        t0 = j["trig_t"][rows]
-        seconds = time_s - t0  # the one-trial judge's float operations, elementwise
-        dx = s.x[rows, _DEFENDER_ROW] - j["trig_x"][rows]
-        dy = s.y[rows, _DEFENDER_ROW] - j["trig_y"][rows]
-        travel = _hypots(dx, dy) / plan.unit_m
-        positions = self.rows[rows]
-        columns = zip(
-            positions.tolist(),
-            self.trials[positions].tolist(),
-            codes[rows].tolist(),
-            self.example[rows].tolist(),
-            np.isnan(t0).tolist(),
-            travel.tolist(),
-            seconds.tolist(),
-            (seconds / plan.sensor_period_s).tolist(),
-            strict=True,
-        )
-        out, verdicts = self.out, _VERDICTS
-        for position, trial, code, example, untriggered, units, secs, updates in columns:
-            label, reason = verdicts[code]
-            data = () if example[0] != example[0] else tuple(example)  # NaN: no decision
-            measures = () if untriggered else (
-                ("defender_travel_units", units),
-                ("trigger_to_end_s", secs),
-                ("updates_after_trigger", updates),
-            )  # fmt: skip
-            out[position] = TrialResult(trial, label, reason, ticks, time_s, data, measures)
+        self.out.update(self.coach.results(rows, codes, self.rows, self.trials, self.example))
         self.alive[rows] = False
 
     def _compact(self) -> None:
@@ -536,24 +380,16 @@ class _InterceptBatch:
         self.policy = self.policy.subset(keep)
         for name in _PER_TRIAL:
             setattr(self, name, getattr(self, name)[keep])
-        self.j = {name: values[keep] for name, values in self.j.items()}
-        self.scores = (self.scores[0][keep], self.scores[1][keep])
+        self.coach.keep(keep)
 
 
 _PER_TRIAL = (
     "rows", "alive", "shooter_waits", "kick_due", "kick_dir", "queue_kind", "queue_arg",
     "queue_next", "triggered", "ta", "prev_bd", "prev_x", "prev_y", "heading", "pending_turn",
-    "example", "approaching", "deflected", "turn_angles",
+    "example", "turn_angles",
 )  # fmt: skip
-"""The per-trial state arrays of :class:`_InterceptBatch` (compacted together)."""
-
-
-def _hypots(a: Array, b: Array) -> Array:
-    """``math.hypot`` elementwise, as the one-trial judge does.
-
-    numpy's hypot differs in the last bit; this runs once per trial or on rare events only.
-    """
-    return np.array([math.hypot(u, v) for u, v in zip(a.tolist(), b.tolist(), strict=True)])
+"""The per-trial state arrays of :class:`_InterceptBatch` (compacted together; the coach's
+own with :meth:`~robotsoccer.drills.intercept_batch_coach.BatchCoach.keep`)."""
 
 
 # ----------------------------------------------------------------------------- TA rules

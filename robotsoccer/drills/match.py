@@ -10,7 +10,9 @@ ball rolling at their end as layer 1's goal-mouth drill does, the layered team w
 net, the baseline straight (:mod:`robotsoccer.skills.team`, "Pushing"). ``layer3`` — the
 layered team whose ball holder, where the layered team would ask the tree, asks TPOT-RL's
 table instead (:mod:`robotsoccer.skills.layer3`, option ``tpot``: the table file; ``explore``:
-its exploration rate; ``learn``: record its rewards as the trial's data, for training).
+its exploration rate; ``learn``: record its rewards as the trial's data, for training;
+``tpot_every``: it decides on every spell on the ball, shot and dribble included, TPOT-RL's own
+rule; ``tpot_success``: the tree's least confidence for e = SUCCESS).
 
 **Size.** ``players`` per side: by default 11 on an open field (the Soccer Server) and 5 on a
 walled table (the robots). Formation homes are in units (:data:`FORMATIONS`, ours: 4-4-2 and
@@ -134,6 +136,9 @@ class MatchDrill(LayeredDrill):
         explore: Layer 3's exploration rate epsilon in [0, 1].
         learn: Layer 3 records its rewards: :meth:`data` returns them
             (:func:`layer3_experiences` reads them back).
+        tpot_every: Layer 3 decides on every spell on the ball (shoot and keep included),
+            not only where the layered team would ask the tree.
+        tpot_success: Layer 3's SUCCESS cut on the tree's confidence, in [0, 1].
         steady_turns: The minds reckon their turns into the heading between landmark fixes and
             do not turn back within a short hold (:attr:`~robotsoccer.skills.team.TeamSetup.
             steady_turns`); False (default): the 1996 client's turning.
@@ -159,6 +164,8 @@ class MatchDrill(LayeredDrill):
         tpot: str = "",
         explore: float | str = 0.0,
         learn: bool | str = False,
+        tpot_every: bool | str = False,
+        tpot_success: float | str = PASS_THRESHOLD,
     ) -> None:
         self.steady_turns = flag("steady_turns", steady_turns)
         self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
@@ -171,6 +178,8 @@ class MatchDrill(LayeredDrill):
         self.tpot = tpot if layer3 else ""
         self.explore = bounded("explore", _number("explore", explore), 0.0, 1.0)
         self.learn = flag("learn", learn)
+        self.tpot_every = flag("tpot_every", tpot_every)
+        self.tpot_success = bounded("tpot_success", _number("tpot_success", tpot_success), 0.0, 1.0)
         self.policies: dict[str, TpotBallPolicy] = {}
         self._tick = 0
         self.net = net if layered else ""
@@ -321,10 +330,15 @@ class MatchDrill(LayeredDrill):
             pass_power=setup.powers.passing,
             dt_s=facts.dt_s,
             evaluator=tree,
-            threshold=PASS_THRESHOLD,
+            threshold=self.tpot_success,
             rng=rngs["policy"],
             epsilon=self.explore,
             learn=self.learn,
+            every_ball=self.tpot_every,
+            shoot_range_m=setup.shoot_range_m,
+            blocked_m=setup.blocked_m,
+            shot_power=setup.powers.shot,
+            dribble_power=setup.powers.dribble,
         )
 
     def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:

@@ -16,10 +16,10 @@
 **The conversation and the minds** are in :mod:`robotsoccer.skills.passing`. Receivers and
 defenders use layer 1's interception (``interceptor``, ``net`` with the run's own net file) with
 layer 1's trigger distance and turn tolerance on this field
-(:func:`robotsoccer.drills.intercept.launch_plan`). The pass itself is layer 1's launch: the same
-kick power on the Soccer Server. On a field without an aimable kick (the 1997 robots), the coach
-launches the ball at the plan's launch speed along the direction the passer chose, one tick
-after its announcement.
+(:func:`robotsoccer.drills.intercept_plan.launch_plan`). The pass itself is layer 1's launch:
+the same kick power on the Soccer Server. On a field without an aimable kick (the 1997 robots),
+the coach launches the ball at the plan's launch speed along the direction the passer chose,
+one tick after its announcement.
 
 **The coach's labels.** From the pass on, at every tick, the first player other than the passer
 within *control* distance of the ball (its kick reach, or touching plus a quarter unit on a field
@@ -51,13 +51,8 @@ from learning.pass_boost import load_pass_boost
 from learning.pass_features import PASS_SCHEMA
 from learning.pass_tree_file import load_pass_tree
 from robotsoccer.drills.base import Verdict
-from robotsoccer.drills.intercept import (
-    Launch,
-    LaunchPlan,
-    Scaling,
-    cached_launch_plan,
-    decision_ticks,
-)
+from robotsoccer.drills.intercept_options import Launch, Scaling
+from robotsoccer.drills.intercept_plan import LaunchPlan, cached_launch_plan, decision_ticks
 from robotsoccer.options import choice, duration, flag
 from robotsoccer.skills.intercept import (
     Behaviour,
@@ -70,14 +65,8 @@ from robotsoccer.skills.intercept import (
     transfer_distance_factor,
 )
 from robotsoccer.skills.lead import LeadDefenderMind
-from robotsoccer.skills.passing import (
-    Chooser,
-    PasserMind,
-    PassEvaluator,
-    PassPhysics,
-    ReceiverMind,
-    WaitingInterceptorMind,
-)
+from robotsoccer.skills.pass_receivers import ReceiverMind, WaitingInterceptorMind
+from robotsoccer.skills.passing import Chooser, PasserMind, PassEvaluator, PassPhysics
 
 PASSER = PlayerRef(LEFT, 1)
 RECEIVERS = (PlayerRef(LEFT, 2), PlayerRef(LEFT, 3), PlayerRef(LEFT, 4))

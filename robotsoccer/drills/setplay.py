@@ -38,12 +38,15 @@ ball with layer 1, dribbles the same way and passes by the tree to left 5 or 6; 
 intercepts and shoots. Defenders and goalie are layer 1's interception (the same behaviour
 and net), triggered by the ball's distance as in the drill of §5.
 
-**Speeds.** A dribble kick sends the ball :data:`DRIBBLE_UNITS` in :data:`DRIBBLE_PERIODS`
-sensor periods, but no faster than half the speed a player comes up to the ball at; that
-speed is the one it can stop from, after seeing the ball its sensor latency late, within half
-its kick margin (:func:`stop_speed`; it matters on the robots, whose wheels brake slowly
-and whose camera lags). Passes are layer 1's launch on the Soccer Server and the robot's top
-speed on the robots (:func:`pass_speed`), shots full power.
+**Speeds.** A dribble kick sends the ball
+:data:`~robotsoccer.drills.setplay_kicks.DRIBBLE_UNITS` in
+:data:`~robotsoccer.drills.setplay_kicks.DRIBBLE_PERIODS` sensor periods, but no faster than
+half the speed a player comes up to the ball at; that speed is the one it can stop from, after
+seeing the ball its sensor latency late, within half its kick margin
+(:func:`~robotsoccer.drills.setplay_kicks.stop_speed`; it matters on the robots, whose wheels
+brake slowly and whose camera lags). Passes are layer 1's launch on the Soccer Server and the
+robot's top speed on the robots (:func:`~robotsoccer.drills.setplay_kicks.pass_speed`), shots
+full power.
 
 **Defenders** (option ``defenders``): ``same`` (the default) gives the defenders and goalie
 the attackers' layer 1, as the paper's set play does (§7: "the defenders are all equipped with
@@ -52,20 +55,20 @@ whatever the attackers use (``straight``: the baseline's defenders facing layere
 The winger, uncovered, starts its layer 1 on the cue wherever the ball is on the robots; on
 the Soccer Server it keeps the drill's trigger distance.
 
-**Kicks.** Where the players have an aimable kick (the Soccer Server), they kick. Where they
-do not (the 1997 robots pushed the ball), the coach stands in for the kicker, as layer 1 and
-layer 2's drills launch the ball on that field: a ``Kick`` a set-play attacker sends is not
-passed to the robot but carried out by the coach, at the first tick within
-:data:`ARMED_PERIODS` sensor period of the one it was sent on at which that player is within
-kick reach of the ball (a kicker that fires when the ball reaches it; the robot's next
-decision comes a camera period later, so a receiver can kick a pass on first time: it sends
-the kick as it sees the ball about to come into reach): the ball's velocity gains the kick's
-speed (its power times
-:attr:`~robotsoccer.drills.intercept.LaunchPlan.launch_speed_mps` / the plan's power, layer
-1's launch at full power) along the player's heading plus the kick's direction, as the
-server's kick adds to the ball's velocity. The kick reach there is touching plus
-:data:`KICK_MARGIN_UNITS` (the server's ``kickable_margin``, 1 unit). Defenders keep the
-field's own behaviour (robots without a kicker block).
+**Kicks.** Where the players have an aimable kick (the Soccer Server), they kick. Where they do
+not (the 1997 robots pushed the ball), the coach stands in for the kicker, as layer 1 and layer
+2's drills launch the ball on that field: a ``Kick`` a set-play attacker sends is not passed to
+the robot but carried out by the coach, at the first tick within
+:data:`~robotsoccer.drills.setplay_kicks.ARMED_PERIODS` sensor period of the one it was sent on
+at which that player is within kick reach of the ball (a kicker that fires when the ball reaches
+it; the robot's next decision comes a camera period later, so a receiver can kick a pass on
+first time: it sends the kick as it sees the ball about to come into reach): the ball's velocity
+gains the kick's speed (its power times
+:attr:`~robotsoccer.drills.intercept_plan.LaunchPlan.launch_speed_mps` / the plan's power, layer 1's
+launch at full power) along the player's heading plus the kick's direction, as the server's kick
+adds to the ball's velocity. The kick reach there is touching plus
+:data:`~robotsoccer.drills.setplay_kicks.KICK_MARGIN_UNITS` (the server's ``kickable_margin``, 1
+unit). Defenders keep the field's own behaviour (robots without a kicker block).
 
 **The coach.** At every tick the player nearest the ball, if within kick reach, holds it. The
 play's passes are completed in order (:data:`STAGES`): the first when a first receiver (left 2
@@ -82,6 +85,10 @@ or 3) holds the ball, the second when the winger then holds it, the third when a
 
 **Measures** per play: ``passes`` completed (0–3), ``shot`` and ``goal`` (0 or 1), and the
 first pass's receiver (0 without a pass).
+
+This module is the drill (set-up, minds, labels); the field's kick numbers and the coach's
+kicks are :mod:`robotsoccer.drills.setplay_kicks`, the coach's verdict
+:mod:`robotsoccer.drills.setplay_judge`.
 """
 
 from __future__ import annotations
@@ -90,23 +97,18 @@ import dataclasses
 import math
 
 from field_models.arena import Arena, FieldFacts
-from field_models.protocol import LEFT, RIGHT, Action, Crossing, Kick, Mind, Percept, PlayerRef
+from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
-from robotsoccer.drills.base import GoalWatch, Verdict
-from robotsoccer.drills.intercept import LaunchPlan
-from robotsoccer.drills.passing import (
-    STOPPED_SPEED_PER_LENGTH,
-    LayeredDrill,
-    load_evaluator,
-)
+from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.passing import LayeredDrill, load_evaluator
+from robotsoccer.drills.setplay_judge import SetPlayJudge
+from robotsoccer.drills.setplay_kicks import CoachKickRelay, ball_sense, coach_kicks, kick_powers
 from robotsoccer.options import choice, duration, flag
-from robotsoccer.skills.intercept import (
-    Behaviour,
-    check_behaviour,
-)
-from robotsoccer.skills.lead import velocity_window
-from robotsoccer.skills.passing import Chooser, PasserMind, ReceiverMind
-from robotsoccer.skills.setplay import BallSense, CarrierMind, KickPowers, SetPlayReceiverMind
+from robotsoccer.skills.intercept import Behaviour, check_behaviour
+from robotsoccer.skills.pass_receivers import ReceiverMind
+from robotsoccer.skills.passing import Chooser, PasserMind
+from robotsoccer.skills.setplay_carrier import CarrierMind
+from robotsoccer.skills.setplay_receiver import SetPlayReceiverMind
 
 STARTER = PlayerRef(LEFT, 1)
 FIRST_RECEIVERS = (PlayerRef(LEFT, 2), PlayerRef(LEFT, 3))
@@ -142,19 +144,7 @@ BLOCKED_UNITS = 22.0
 """An opponent this close in the path ends a dribble (the paper's "predetermined distance");
 more than layer 1's trigger distance (14 units), so the one in the path does not start for the
 ball while the carrier asks."""
-DRIBBLE_UNITS = 4.0
-DRIBBLE_PERIODS = 8.0
-"""A dribble kick sends the ball this far in this many sensor periods (2 s on the server)."""
-KICK_MARGIN_UNITS = 1.0
-"""Kick reach beyond touching where the coach kicks for the players (the server's margin)."""
-ARMED_PERIODS = 1
-"""A coach's kick stays armed this many sensor periods (to the player's next decision)."""
 TIME_LIMIT_ARRIVALS = 40.0
-RECALL_PERIODS = 2
-"""A ball the sensor misses is taken to be where it was last seen for this many periods."""
-SAFE_REACH_SHARE = 0.85
-"""The players kick when the ball seems within this share of their kick margin beyond
-touching (sensor noise)."""
 
 
 class SetPlayDrill(LayeredDrill):
@@ -167,7 +157,8 @@ class SetPlayDrill(LayeredDrill):
         net: The interception net for ``net``.
         max_time_s: The play's time limit [s]; None: 40 arrival times of layer 1's drill.
         transfer: Accept a tree or net trained on another field model or preset.
-        pass_speed_mps: The passes' speed [m/s]; None: the field's (:func:`kick_powers`).
+        pass_speed_mps: The passes' speed [m/s]; None: the field's
+            (:func:`~robotsoccer.drills.setplay_kicks.kick_powers`).
         defenders: The defenders' and goalie's interception: ``same`` as the attackers'
             `interceptor` (the paper's set play, §7: "the defenders are all equipped with the
             same ball-interception skill as the receivers"), or a behaviour of their own
@@ -206,7 +197,7 @@ class SetPlayDrill(LayeredDrill):
         self.transfer = flag("transfer", transfer)
         self.pass_speed_mps = None if pass_speed_mps is None else float(pass_speed_mps)
         self.defenders = defenders if defenders == "same" else check_behaviour(defenders, net)
-        self._judge: _SetPlayJudge | None = None
+        self._judge: SetPlayJudge | None = None
         self._checked: FieldFacts | None = None
 
     def players(self) -> tuple[PlayerRef, ...]:
@@ -238,7 +229,14 @@ class SetPlayDrill(LayeredDrill):
         for ref, (x, y) in spots.items():
             heading = 0.0 if ref == STARTER else math.atan2(sy - y, bx - x)
             arena.place_player(ref, x, y, heading)
-        self._judge = _SetPlayJudge(arena, (bx, sy), coach_kicks(facts, plan))
+        self._judge = SetPlayJudge(
+            arena,
+            (bx, sy),
+            coach_kicks(facts, plan),
+            starter=STARTER,
+            players=PLAYERS,
+            stages=STAGES,
+        )
 
     def minds(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
         """Every player's mind (module docstring)."""
@@ -326,7 +324,7 @@ class SetPlayDrill(LayeredDrill):
         self._judge.minds = dict(minds)
         if self._judge.kicks is not None:
             for ref in (STARTER, WINGER, *FIRST_RECEIVERS, *LAST_RECEIVERS):
-                minds[ref] = _CoachKickRelay(minds[ref], ref, self._judge.kicks)
+                minds[ref] = CoachKickRelay(minds[ref], ref, self._judge.kicks)
         return minds
 
     def judge(self, arena: Arena) -> Verdict | None:
@@ -357,251 +355,3 @@ class SetPlayDrill(LayeredDrill):
             "goal": float(judge.goal),
             "first_receiver": float(judge.first_receiver),
         }
-
-
-def kick_reach(facts: FieldFacts) -> float:
-    """Kick reach: the field's kick, else touching plus :data:`KICK_MARGIN_UNITS` [m]."""
-    if facts.kick is not None:
-        return facts.kick.reach_m
-    return facts.touch_distance_m + KICK_MARGIN_UNITS * facts.unit_m
-
-
-def coach_kicks(facts: FieldFacts, plan: LaunchPlan) -> CoachKicks | None:
-    """The coach's kicks for the attackers where they have no aimable kick; else None."""
-    if facts.kick is not None and facts.kick.aimable:
-        return None
-    armed = ARMED_PERIODS * round(facts.sensor_period_s / facts.dt_s) - 1
-    return CoachKicks(plan.launch_speed_mps / plan.kick_power, facts.ball_max_speed_mps, armed)
-
-
-def ball_sense(facts: FieldFacts, plan: LaunchPlan) -> BallSense:
-    """What the attackers know of the ball and their kick (the coach's kick where they lack one)."""
-    kick = facts.kick
-    if kick is not None and kick.aimable:
-        per_power = kick.speed_per_power_mps
-    else:
-        per_power = plan.launch_speed_mps / plan.kick_power
-    touch = facts.touch_distance_m
-    reach = touch + SAFE_REACH_SHARE * (kick_reach(facts) - touch)
-    period_ticks = round(facts.sensor_period_s / facts.dt_s)
-    # A server command runs in the next cycle; a robot's turn runs over about a camera
-    # period after the link (the host's timed turn, §2), so it shows a period later.
-    settle = 1 if facts.sensor_latency_s is None else 1 + period_ticks
-    margin = kick_reach(facts) - touch
-    top = facts.player_top_speed_mps
-    # A camera (a sensor with latency that gives positions: the robots) lets a player fit the
-    # ball's velocity to its sightings, as layer 1's lead defender does; the 1996 server's see
-    # gives none to fit, and there the ball is dead-reckoned as before.
-    camera = facts.sensor_latency_s is not None and bool(facts.landmarks)
-    return BallSense(
-        facts.ball,
-        per_power,
-        100.0,
-        touch,
-        reach,
-        facts.sensor_period_s,
-        top_speed_mps=top,
-        approach_power=100.0 * min(1.0, stop_speed(facts, margin) / top),
-        turn_settle_ticks=settle,
-        recall_ticks=RECALL_PERIODS * period_ticks,
-        landmarks=facts.landmarks if camera else (),
-        track_window=velocity_window(facts.sensor_period_s) if camera else 0,
-    )
-
-
-def stop_speed(facts: FieldFacts, distance_m: float) -> float:
-    """The speed [m/s] a player can stop from within half of `distance_m`.
-
-    It sees the ball the sensor latency late and then brakes at its acceleration a: the
-    speed v with v·latency + v²/(2a) = distance / 2.
-    """
-    a, lag = facts.player_accel_mps2, facts.sensor_latency_s or 0.0
-    return a * (math.sqrt(lag * lag + distance_m / a) - lag)
-
-
-def kick_powers(
-    facts: FieldFacts, plan: LaunchPlan, pass_speed_mps: float | None = None
-) -> KickPowers:
-    """Dribble, pass and shot powers: full power for shots; passes at `pass_speed_mps`.
-
-    Passes default to layer 1's launch where the players have an aimable kick (the Soccer
-    Server) and to :func:`pass_speed` where the coach kicks for them (the robots).
-
-    Raises:
-        ValueError: No kick sends the ball :data:`DRIBBLE_UNITS` in the dribble's time, or
-            the pass speed is beyond the top kick.
-    """
-    sense = ball_sense(facts, plan)
-    time_s = DRIBBLE_PERIODS * facts.sensor_period_s
-    speed = facts.ball.speed_to_cover(DRIBBLE_UNITS * facts.unit_m, time_s)
-    if speed is None or speed > sense.speed(sense.max_power):
-        raise ValueError(f"{facts.preset}: no kick sends the ball {DRIBBLE_UNITS:g} units")
-    # A carrier must catch up with its ball at its last approach speed, from which it can stop
-    # beside it (the robots' slow wheels): half that speed at most.
-    speed = min(speed, 0.5 * stop_speed(facts, sense.reach_m - sense.touch_m))
-    passing = plan.kick_power
-    if pass_speed_mps is None and coach_kicks(facts, plan) is not None:
-        pass_speed_mps = pass_speed(facts)
-    if pass_speed_mps is not None:
-        top = sense.speed(sense.max_power)
-        if not 0.0 < pass_speed_mps <= top:
-            raise ValueError(
-                f"pass_speed_mps must be in (0, {top:.3g}] m/s, got {pass_speed_mps!r}"
-            )
-        passing = pass_speed_mps / sense.speed_per_power_mps
-    return KickPowers(
-        dribble=speed / sense.speed_per_power_mps, passing=passing, shot=sense.max_power
-    )
-
-
-def pass_speed(facts: FieldFacts) -> float:
-    """A pass's speed [m/s] where the coach kicks for the players (the robots).
-
-    The robot's top speed (1.2 m/s on ``small_size_1997``): about what a 1997 robot without a
-    kicker gives the ball by driving through it, and the top of the range of ball speeds
-    layer 1's lead net was trained on there (0.6-1.2 m/s, :mod:`robotsoccer.drills.intercept`'s
-    robot drill), so the learned skill meets passes it knows. Layer 1's launch (2.05 m/s on
-    that table) is a shot's speed: a receiver cannot turn such a ball toward the winger with
-    one kick of at most that speed.
-    """
-    return facts.player_top_speed_mps
-
-
-class CoachKicks:
-    """Kicks the coach carries out for players without an aimable kick (module docstring).
-
-    A kick stays armed for `armed_ticks` after the tick it was sent on (a robot's next decision
-    comes a camera period later and replaces it): it fires at the first tick its player is
-    within kick reach of the ball, as a kicker that fires when the ball reaches it would; one
-    whose ball never comes is dropped.
-
-    Args:
-        speed_per_power_mps: Ball speed a kick adds per unit of power [m/s].
-        max_speed_mps: The ball's top speed [m/s].
-        armed_ticks: Ticks a kick waits for the ball after the one it was sent on.
-    """
-
-    def __init__(
-        self, speed_per_power_mps: float, max_speed_mps: float, armed_ticks: int = 0
-    ) -> None:
-        self.speed_per_power_mps = speed_per_power_mps
-        self.max_speed_mps = max_speed_mps
-        self.armed_ticks = armed_ticks
-        self.pending: dict[PlayerRef, tuple[Kick, int]] = {}
-        self.fired = 0
-        """Kicks carried out so far."""
-
-    def arm(self, ref: PlayerRef, kick: Kick, tick: int) -> None:
-        """`ref` sends `kick` at `tick` (it replaces one of its own still armed)."""
-        self.pending[ref] = (kick, tick + self.armed_ticks)
-
-    def apply(self, arena: Arena, reach_m: float) -> None:
-        """Carry out the armed kicks of players within `reach_m` of the ball; drop stale ones."""
-        for ref, (kick, until) in list(self.pending.items()):
-            x, y, _, vx, vy = arena.ball_state()
-            p = arena.player_state(ref)
-            if (p.x - x) ** 2 + (p.y - y) ** 2 > reach_m * reach_m:
-                if arena.tick >= until:
-                    del self.pending[ref]  # a kick that misses the ball, as on the server
-                continue
-            del self.pending[ref]
-            self.fired += 1
-            speed = max(0.0, min(100.0, kick.power)) * self.speed_per_power_mps
-            direction = p.heading + kick.direction_rad
-            vx += speed * math.cos(direction)
-            vy += speed * math.sin(direction)
-            top = math.hypot(vx, vy)
-            if top > self.max_speed_mps:
-                vx, vy = vx * self.max_speed_mps / top, vy * self.max_speed_mps / top
-            arena.place_ball(x, y, vx, vy)
-
-
-class _CoachKickRelay:
-    """A mind whose kicks go to the coach (:class:`CoachKicks`) instead of its robot."""
-
-    def __init__(self, mind: Mind, ref: PlayerRef, kicks: CoachKicks) -> None:
-        self.mind = mind
-        self.ref = ref
-        self.kicks = kicks
-
-    @property
-    def done(self) -> bool:
-        """The wrapped mind's ``done``."""
-        return bool(getattr(self.mind, "done", False))
-
-    def act(self, percept: Percept) -> tuple[Action, ...]:
-        """The mind's actions without its kicks, which are handed to the coach."""
-        actions = self.mind.act(percept)
-        kept: list[Action] = []
-        for action in actions:
-            if isinstance(action, Kick):
-                self.kicks.arm(self.ref, action, percept.tick)
-            else:
-                kept.append(action)
-        return tuple(kept)
-
-
-class _SetPlayJudge:
-    """The coach's rule for one play (module docstring)."""
-
-    def __init__(self, arena: Arena, ball: tuple[float, float], kicks: CoachKicks | None) -> None:
-        facts = arena.facts
-        pitch = facts.pitch
-        self.reach = kick_reach(facts)
-        self.reach2 = self.reach * self.reach
-        self.half_length = pitch.half_length_m
-        self.half_width = pitch.half_width_m
-        self.eps2 = (STOPPED_SPEED_PER_LENGTH * pitch.length_m) ** 2
-        self.goals = GoalWatch(arena, ball)
-        self.kicks = kicks
-        self.minds: dict[PlayerRef, Mind] = {}
-        self.holder: PlayerRef | None = STARTER
-        self.passes = 0
-        self.first_receiver = 0
-        self.shot_tick: int | None = None
-        self.goal = False
-
-    def _shot(self) -> int | None:
-        for ref in LAST_RECEIVERS:
-            mind = self.minds.get(ref)
-            if isinstance(mind, SetPlayReceiverMind) and mind.kicked_tick is not None:
-                return mind.kicked_tick
-        return None
-
-    def judge(self, arena: Arena) -> Verdict | None:
-        """The verdict of this tick, or None."""
-        if self.kicks is not None and self.kicks.pending:
-            self.kicks.apply(arena, self.reach)
-        x, y, _, vx, vy = arena.ball_state()
-        crossing = self.goals.step(arena, x, y)
-        if self.shot_tick is None:
-            self.shot_tick = self._shot()
-        if crossing is Crossing.RIGHT_GOAL:
-            self.goal = True
-            return Verdict("GOAL", f"goal after {self.passes} passes")
-        taken = self._holder(arena, x, y)
-        if taken is not None and taken != self.holder:
-            if taken.team == RIGHT:
-                label = "SHOT" if self.shot_tick is not None else "INTERCEPTED"
-                return Verdict(label, f"{taken} took the ball after {self.passes} passes")
-            if self.passes < len(STAGES) and taken in STAGES[self.passes]:
-                self.passes += 1  # the play's next pass (module docstring)
-                if self.passes == 1:
-                    self.first_receiver = taken.number
-            self.holder = taken
-        if abs(x) > self.half_length or abs(y) > self.half_width or crossing is not Crossing.NONE:
-            label = "SHOT" if self.shot_tick is not None else "OUT"
-            return Verdict(label, f"the ball left the field after {self.passes} passes")
-        if self.shot_tick is not None and vx * vx + vy * vy < self.eps2:
-            return Verdict("SHOT", "the shot stopped short")
-        return None
-
-    def _holder(self, arena: Arena, x: float, y: float) -> PlayerRef | None:
-        """The player nearest the ball among those within kick reach, or None."""
-        best, best_d2 = None, self.reach2
-        for ref in PLAYERS:
-            p = arena.player_state(ref)
-            d2 = (p.x - x) ** 2 + (p.y - y) ** 2
-            if d2 <= best_d2:
-                best, best_d2 = ref, d2
-        return best

@@ -16,8 +16,9 @@
 * :mod:`robotsoccer.envs.hfo` — half-field offense in HFO's shape (attackers against defenders
   and a goalie), :func:`~robotsoccer.envs.hfo.half_field_offense_env`, and
   :mod:`robotsoccer.envs.hfo_eval`, the attackers' goal rate for a ball-holder policy;
-* :mod:`robotsoccer.envs.control` — per-step control: ``robotsoccer/GoToBall-v0`` and
-  ``robotsoccer/Score-v0`` on either field model (spaces in
+* :mod:`robotsoccer.envs.control` — per-step control: ``robotsoccer/GoToBall-v0``
+  (:mod:`robotsoccer.envs.go_to_ball`) and ``robotsoccer/Score-v0``
+  (:mod:`robotsoccer.envs.score`) on either field model (spaces in
   :mod:`robotsoccer.envs.control_spaces`; ``gymnasium.make_vec`` gives Gymnasium's sync or,
   with ``vectorization_mode="async"``, multi-process vector environments).
 
@@ -31,12 +32,13 @@ from __future__ import annotations
 
 from gymnasium.envs.registration import register, registry
 
-from robotsoccer.envs.control import GoToBallEnv, ScoreEnv
+from robotsoccer.envs.go_to_ball import GoToBallEnv
 from robotsoccer.envs.hfo import HalfFieldOffenseEnv, half_field_offense_env
 from robotsoccer.envs.intercept import InterceptEnv
 from robotsoccer.envs.intercept_vector import InterceptVectorEnv
 from robotsoccer.envs.match import MatchParallelEnv, match_parallel_env
 from robotsoccer.envs.passing import PassParallelEnv, pass_parallel_env
+from robotsoccer.envs.score import ScoreEnv
 
 INTERCEPT_ID = "robotsoccer/Intercept-v0"
 """The versioned Gymnasium id of :class:`~robotsoccer.envs.intercept.InterceptEnv`."""
@@ -49,14 +51,14 @@ if INTERCEPT_ID not in registry:
     )
 
 GO_TO_BALL_ID = "robotsoccer/GoToBall-v0"
-"""The versioned Gymnasium id of :class:`~robotsoccer.envs.control.GoToBallEnv`."""
+"""The versioned Gymnasium id of :class:`~robotsoccer.envs.go_to_ball.GoToBallEnv`."""
 SCORE_ID = "robotsoccer/Score-v0"
-"""The versioned Gymnasium id of :class:`~robotsoccer.envs.control.ScoreEnv`."""
+"""The versioned Gymnasium id of :class:`~robotsoccer.envs.score.ScoreEnv`."""
 
-for _id, _entry in ((GO_TO_BALL_ID, "GoToBallEnv"), (SCORE_ID, "ScoreEnv")):
+for _id, _entry in ((GO_TO_BALL_ID, "go_to_ball:GoToBallEnv"), (SCORE_ID, "score:ScoreEnv")):
     if _id not in registry:
         # No step limit here: each task's own time limit truncates (max_time_s).
-        register(id=_id, entry_point=f"robotsoccer.envs.control:{_entry}")
+        register(id=_id, entry_point=f"robotsoccer.envs.{_entry}")
 
 __all__ = [
     "GO_TO_BALL_ID",

@@ -3,17 +3,20 @@
 Where :class:`~robotsoccer.envs.intercept.InterceptEnv` poses one decision per trial, these
 give a policy the body every step, as robot-soccer RL users expect (rSoccer's ``VSS-v0``):
 
-* ``robotsoccer/GoToBall-v0`` (:class:`GoToBallEnv`): one player alone with a still ball. It
-  must reach the ball and face a target point (module :class:`GoToBallEnv` docstring).
-* ``robotsoccer/Score-v0`` (:class:`ScoreEnv`): one learning player in a small-sided match
-  (3 v 3 by default, on the robots the ``vss`` preset), everyone else driven by the baseline
-  team minds (:mod:`robotsoccer.skills.team`) under the match's referee. The episode ends on a
-  goal, on the ball leaving play (the referee's next call: a throw-in, goal kick or corner on
-  an open field, a drop ball for a ball stuck on the walled table) or on the time limit.
+* ``robotsoccer/GoToBall-v0`` (:class:`~robotsoccer.envs.go_to_ball.GoToBallEnv`): one
+  player alone with a still ball. It must reach the ball and face a target point (that
+  class's docstring).
+* ``robotsoccer/Score-v0`` (:class:`~robotsoccer.envs.score.ScoreEnv`): one learning player
+  in a small-sided match (3 v 3 by default, on the robots the ``vss`` preset), everyone else
+  driven by the baseline team minds (:mod:`robotsoccer.skills.team`) under the match's
+  referee. The episode ends on a goal, on the ball leaving play (the referee's next call: a
+  throw-in, goal kick or corner on an open field, a drop ball for a ball stuck on the walled
+  table) or on the time limit.
 
 Both run on every field model (``field_model=...``): the Soccer Server twin takes the same
 task in that field's own commands. Actions, observations and reward weights are documented
-in :mod:`robotsoccer.envs.control_spaces`.
+in :mod:`robotsoccer.envs.control_spaces`. This module is what the tasks share
+(:class:`ControlEnv`); each task is a module of its own.
 
 **One step** is ``frames_per_step`` percepts of the learning player (default one: a camera
 frame on the robots, a see on the Soccer Server). The action is sent when the step starts and
@@ -49,11 +52,9 @@ import gymnasium as gym
 from gymnasium import spaces
 
 from field_models.arena import Arena, FieldFacts, FieldOptions, WheelDrive
-from field_models.protocol import LEFT, Mind, Percept, PlayerRef, wrap_angle
-from field_models.registry import FIELD_MODELS, field_facts, has_preset, make_arena
+from field_models.protocol import Mind, Percept, PlayerRef
+from field_models.registry import FIELD_MODELS, field_facts, make_arena
 from field_models.seeding import TrialRngs
-from robotsoccer.drills.match import KICKER, MatchDrill
-from robotsoccer.drills.passing import control_reach
 from robotsoccer.envs.control_spaces import (
     ACTION_KINDS,
     COMMAND_PERIOD_S,
@@ -323,225 +324,3 @@ class ControlEnv(gym.Env[Any, Any]):
 def reward_weights_for(env: ControlEnv, given: dict[str, float] | None) -> dict[str, float]:
     """The task's default weights with `given` ones replacing them (unknown terms refused)."""
     return reward_weights(type(env).default_weights, given)
-
-
-# ----------------------------------------------------------------------------- go to the ball
-
-GO_PLAYER = PlayerRef(LEFT, 1)
-MARGIN_UNITS = 5.0
-"""Ball, player and target are placed at least this far inside the lines [units]."""
-DISTANCE_UNITS = (8.0, 30.0)
-"""The player starts this far from the ball [units] (uniform)."""
-TARGET_MIN_UNITS = 10.0
-"""The target point lies at least this far from the ball [units]."""
-REACH_UNITS = 1.5
-"""At the ball: within the field's control reach, or touching plus this much [units]."""
-FACE_TOLERANCE_RAD = math.radians(20.0)
-"""Facing the target: its direction within this of the heading."""
-GO_TIME_PERIODS = 200
-"""The default time limit, in sensor periods (6.7 s on the robots, 50 s on the server)."""
-
-
-class GoToBallEnv(ControlEnv):
-    """Go to the ball and face a target point (``robotsoccer/GoToBall-v0``).
-
-    **Placement** (the episode's "placement" stream): the ball uniformly inside the lines
-    less :data:`MARGIN_UNITS`; the player :data:`DISTANCE_UNITS` from it in a uniform
-    direction, facing a uniform heading; the target point uniformly inside, at least
-    :data:`TARGET_MIN_UNITS` from the ball. The ball lies still.
-
-    **Success** (the coach, on the truth, every tick): the ball within reach
-    (:data:`REACH_UNITS`) and the target within :data:`FACE_TOLERANCE_RAD` of the heading.
-    The episode then terminates with ``info["is_success"]`` True.
-
-    **Rewards** (weights: ``reward_weights``): ``success`` 1 at the success; ``approach``
-    the fall of the player-ball distance over L (weight 1); ``facing`` the gain of
-    cos(heading error to the target) × exp(-distance / (2·reach)), i.e. of facing the target
-    near the ball (weight 0.2); ``time`` a cost per step (weight 0.001). The shaped terms are
-    differences of potentials, so they do not change which policy is best.
-    """
-
-    default_weights: ClassVar[dict[str, float]] = {
-        "success": 1.0,
-        "approach": 1.0,
-        "facing": 0.2,
-        "time": 0.001,
-    }
-    sparse_term: ClassVar[str] = "success"
-    learner = GO_PLAYER
-
-    def _default_max_time_s(self, facts: FieldFacts) -> float:
-        return GO_TIME_PERIODS * facts.sensor_period_s
-
-    def _task_players(self, facts: FieldFacts) -> tuple[PlayerRef, ...]:
-        unit = facts.unit_m
-        self.reach_m = max(control_reach(facts), facts.touch_distance_m + REACH_UNITS * unit)
-        self.target_xy = (0.0, 0.0)
-        return (GO_PLAYER,)
-
-    def _task_setup(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
-        facts = arena.facts
-        unit, pitch = facts.unit_m, facts.pitch
-        hx = pitch.half_length_m - MARGIN_UNITS * unit
-        hy = pitch.half_width_m - MARGIN_UNITS * unit
-        rng = rngs["placement"]
-        bx, by = rng.uniform(-hx, hx), rng.uniform(-hy, hy)
-        px, py = bx, by
-        for _ in range(100):  # redraw until the player starts inside (a fixed number of draws)
-            d = rng.uniform(*DISTANCE_UNITS) * unit
-            a = rng.uniform(-math.pi, math.pi)
-            px, py = bx + d * math.cos(a), by + d * math.sin(a)
-            if abs(px) <= hx and abs(py) <= hy:
-                break
-        px, py = max(-hx, min(px, hx)), max(-hy, min(py, hy))
-        tx, ty = bx, by
-        for _ in range(100):
-            tx, ty = rng.uniform(-hx, hx), rng.uniform(-hy, hy)
-            if math.hypot(tx - bx, ty - by) >= TARGET_MIN_UNITS * unit:
-                break
-        self.target_xy = (tx, ty)
-        arena.place_ball(bx, by)
-        arena.place_player(GO_PLAYER, px, py, rng.uniform(-math.pi, math.pi))
-        return {}
-
-    def _errors(self, arena: Arena) -> tuple[float, float]:
-        """(player-ball distance [m], heading error to the target [rad]) on the truth."""
-        p = arena.player_state(GO_PLAYER)
-        b = arena.ball_state()
-        tx, ty = self.target_xy
-        error = wrap_angle(math.atan2(ty - p.y, tx - p.x) - p.heading)
-        return math.hypot(b.x - p.x, b.y - p.y), error
-
-    def _task_judge(self, arena: Arena) -> tuple[str, float] | None:
-        distance, error = self._errors(arena)
-        if distance <= self.reach_m and abs(error) <= FACE_TOLERANCE_RAD:
-            return "SUCCESS", 1.0
-        return None
-
-    def _task_potentials(self, arena: Arena) -> dict[str, float]:
-        distance, error = self._errors(arena)
-        near = math.exp(-distance / (2.0 * self.reach_m))
-        return {"approach": -distance / self.facts.pitch.length_m, "facing": math.cos(error) * near}
-
-    def _task_target(self) -> tuple[float, float]:
-        return self.target_xy
-
-    def _task_info(self, label: str | None) -> dict[str, Any]:
-        return {"is_success": label == "SUCCESS"}
-
-
-# ----------------------------------------------------------------------------- score
-
-SCORE_PRESET = "vss"
-"""Score's preset where the field model ships one of that name (the robots' 3 v 3 table)."""
-SCORE_TIME_S = 60.0
-"""Score's default time limit [s]."""
-
-
-class ScoreEnv(ControlEnv):
-    """Score in a small-sided match (``robotsoccer/Score-v0``).
-
-    Extra arguments: ``players_per_side`` (default 3; any size the match drill has a formation
-    for) and ``learner_number`` (default: the left team's kick-off taker). The learner plays
-    for the left team, attacking the goal at +x; the left team kicks off
-    (:class:`~robotsoccer.drills.match.MatchDrill` with two baseline teams, its referee
-    included).
-
-    **Ends**: a goal (``GOAL_FOR`` / ``GOAL_AGAINST``), the ball out of play (the referee's
-    call as the label: ``kick_in_l``, ``goal_kick_r``, ``corner_kick_l``, ``drop_ball``...),
-    or the time limit (truncation, ``TIME_OUT``).
-
-    **Rewards** (weights: ``reward_weights``): ``goal`` +1 for a goal for, -1 against;
-    ``ball_to_goal`` the fall of the ball's distance to the opponents' goal over L (weight
-    0.2); ``to_ball`` the fall of the learner's distance to the ball over L (weight 0.05);
-    ``time`` a cost per step (weight 0). Shaped terms are differences of potentials.
-    """
-
-    default_weights: ClassVar[dict[str, float]] = {
-        "goal": 1.0,
-        "ball_to_goal": 0.2,
-        "to_ball": 0.05,
-        "time": 0.0,
-    }
-    sparse_term: ClassVar[str] = "goal"
-
-    def __init__(
-        self,
-        field_model: str = FIELD_MODELS[0],
-        preset: str | None = None,
-        *,
-        players_per_side: int = 3,
-        learner_number: int | None = None,
-        **options: Any,
-    ) -> None:
-        if players_per_side not in KICKER:
-            sizes = ", ".join(str(n) for n in sorted(KICKER))
-            raise ValueError(f"players_per_side must be one of {sizes}, got {players_per_side!r}")
-        number = KICKER[players_per_side] if learner_number is None else learner_number
-        if not isinstance(number, int) or not 1 <= number <= players_per_side:
-            raise ValueError(f"learner_number must be in 1..{players_per_side}, got {number!r}")
-        self.players_per_side = players_per_side
-        self.learner = PlayerRef(LEFT, number)
-        self._drill: MatchDrill | None = None
-        super().__init__(field_model, preset, **options)
-
-    def _default_preset(self, field_model: str) -> str:
-        if has_preset(field_model, SCORE_PRESET):
-            return SCORE_PRESET
-        return super()._default_preset(field_model)
-
-    def _default_max_time_s(self, facts: FieldFacts) -> float:
-        return SCORE_TIME_S
-
-    def _new_drill(self) -> MatchDrill:
-        # Halves longer than any episode: the referee never calls half time in one.
-        half = 2.0 * (getattr(self, "max_time_s", None) or SCORE_TIME_S) + 1.0
-        return MatchDrill("baseline", "baseline", players=self.players_per_side,
-                          half_time_s=half)  # fmt: skip
-
-    def _task_players(self, facts: FieldFacts) -> tuple[PlayerRef, ...]:
-        return self._new_drill().players_for(facts)
-
-    def _task_slots(self) -> tuple[int, int]:
-        return (self.players_per_side - 1, self.players_per_side)
-
-    def _task_setup(self, arena: Arena, rngs: TrialRngs) -> dict[PlayerRef, Mind]:
-        drill = self._drill = self._new_drill()
-        drill.setup(arena, rngs)
-        minds = drill.minds(arena, rngs)
-        del minds[self.learner]
-        drill.drain_events()
-        return minds
-
-    def _task_judge(self, arena: Arena) -> tuple[str, float] | None:
-        drill = self._drill
-        assert drill is not None
-        drill.judge(arena)
-        referee = drill.referee
-        assert referee is not None
-        if not referee.events:
-            return None
-        for event in referee.drain():
-            if event.text.startswith("goal_l"):
-                return "GOAL_FOR", 1.0
-            if event.text.startswith("goal_r"):
-                return "GOAL_AGAINST", -1.0
-            if event.text != "play_on":
-                return event.text, 0.0
-        return None
-
-    def _task_potentials(self, arena: Arena) -> dict[str, float]:
-        b = arena.ball_state()
-        p = arena.player_state(self.learner)
-        gx, length = self.facts.pitch.half_length_m, self.facts.pitch.length_m
-        return {
-            "ball_to_goal": -math.hypot(gx - b.x, b.y) / length,
-            "to_ball": -math.hypot(b.x - p.x, b.y - p.y) / length,
-        }
-
-    def _task_target(self) -> tuple[float, float]:
-        return (self.facts.pitch.half_length_m, 0.0)
-
-    def _task_info(self, label: str | None) -> dict[str, Any]:
-        referee = self._drill.referee if self._drill is not None else None
-        return {"score": tuple(referee.score) if referee is not None else (0, 0)}

@@ -44,7 +44,8 @@ from gymnasium import spaces
 from field_models.protocol import Mind, Percept, PlayerRef
 from field_models.registry import FIELD_MODELS, field_facts
 from robotsoccer.drills.base import Verdict
-from robotsoccer.drills.intercept import DEFENDER, InterceptDrill
+from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.intercept_plan import DEFENDER
 from robotsoccer.envs.checks import checked_seed, checked_turns
 from robotsoccer.envs.rendering import RENDER_MODES, ArenaView
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial

@@ -6,6 +6,8 @@
 * :mod:`robotsoccer.experiments.plots_layer2` — Table 2 by confidence bin and the reliability
   plot as PNG.
 * :mod:`robotsoccer.experiments.report` — markdown tables in the paper's layout, ours beside.
+  Its layers: ``report_records`` (counts, rows, sections), ``report_cells`` (cells, paired
+  statistics), ``report_tables`` (per-model tables), ``report_differences`` ("Where we differ").
 * :mod:`robotsoccer.experiments.plots` — the Figure 7 and Figure 8 curves as PNG (matplotlib Agg).
 * :mod:`robotsoccer.experiments.paper` — the paper's numbers as data.
 

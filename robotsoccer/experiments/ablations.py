@@ -26,18 +26,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from robotsoccer.experiments.layer1 import (
-    Field,
-    Layer1Plan,
-    Log,
-    Seeds,
-    base_spec,
-    collect,
-    condition,
-    evaluate,
-    train_series,
-)
-from robotsoccer.experiments.report import paired_cell, percent_cell
+from robotsoccer.experiments.layer1_collect import collect
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import Field, Layer1Plan, Log, Seeds, base_spec, condition
+from robotsoccer.experiments.layer1_train import train_series
+from robotsoccer.experiments.report_cells import paired_cell, percent_cell
 from robotsoccer.runs.runner import DrillOption, TrialResult, TrialSpec
 
 

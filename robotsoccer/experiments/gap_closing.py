@@ -9,13 +9,15 @@ win it back are measured here, each against the same matrix cells, on the same p
   (:meth:`learning.interception.InterceptionModel.fine_tuned`); beside it a net trained from
   scratch on the same n saves. Saves against n is the sample-efficiency curve.
 * **Domain randomisation** (:func:`domain_randomised_net`): the reference drill is run on
-  :attr:`Randomisation.variants` variant presets whose parameters are drawn from ranges chosen to
-  cover the target (:class:`ParameterRange`, written as preset files that name the reference
-  preset as their ``base``), an equal share of saves is collected on each, and one net trained on
-  the pooled saves is tested on the target (its distances in drill units) and on the reference.
+  ``Randomisation.variants`` variant presets whose parameters are drawn from ranges chosen to
+  cover the target (:mod:`robotsoccer.experiments.gap_variants`: written as preset files that
+  name the reference preset as their ``base``), an equal share of saves is collected on each,
+  and one net trained on the pooled saves is tested on the target (its distances in drill
+  units) and on the reference.
 
 Which field is the reference and which parameters are randomised is the caller's choice (the
-CLI names the models); nothing here depends on a particular field model.
+CLI names the models); nothing here depends on a particular field model. The report section and
+the fine-tuning plot are :mod:`robotsoccer.experiments.gap_report`'s.
 """
 
 from __future__ import annotations
@@ -29,132 +31,31 @@ from pathlib import Path
 import numpy as np
 
 from learning.datasets import InterceptionDataset, Provenance
-from robotsoccer.experiments.layer1 import (
+from robotsoccer.experiments.gap_variants import (
+    PresetValue,
+    Randomisation,
+    draw_variants,
+    write_variants,
+)
+from robotsoccer.experiments.layer1_collect import collect
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import (
     Condition,
     Field,
     Layer1Plan,
     Log,
     Seeds,
     base_spec,
-    collect,
     condition,
-    evaluate,
-    prefix,
-    train_series,
 )
-from robotsoccer.experiments.report import paired_cell, percent_cell
+from robotsoccer.experiments.layer1_train import prefix, train_series
+from robotsoccer.experiments.report_cells import percent_cell
 from robotsoccer.runs.runner import TrialResult
 
-PresetValue = float | int
 
-
-# ----------------------------------------------------------------------------- randomisation
-
-
-@dataclass(frozen=True)
-class ParameterRange:
-    """One preset parameter drawn per variant, uniformly (or log-uniformly) in [low, high].
-
-    Attributes:
-        key: Dotted preset key, ``"<table>.<name>"`` (e.g. ``"dynamics.player_decay"``).
-        low: Smallest value, in the key's unit.
-        high: Largest value.
-        log: Draw uniformly in log space (for rates spanning a factor of several).
-        step: Round to a multiple of this (an integer step gives an integer); None: no rounding.
-        why: What on the target the range is meant to cover, for the report.
-    """
-
-    key: str
-    low: float
-    high: float
-    log: bool = False
-    step: float | None = None
-    why: str = ""
-
-    def __post_init__(self) -> None:
-        table, _, name = self.key.partition(".")
-        if not table or not name or "." in name:
-            raise ValueError(f"range key {self.key!r} is not '<table>.<name>'")
-        if not (math.isfinite(self.low) and math.isfinite(self.high) and self.low <= self.high):
-            raise ValueError(
-                f"range {self.key}: need finite low <= high, got {self.low}, {self.high}"
-            )
-        if self.log and self.low <= 0.0:
-            raise ValueError(f"range {self.key}: a log range needs low > 0, got {self.low}")
-        if self.step is not None and not self.step > 0.0:
-            raise ValueError(f"range {self.key}: step must be > 0, got {self.step}")
-
-    def draw(self, rng: np.random.Generator) -> PresetValue:
-        """One value from `rng`."""
-        if self.log:
-            value = math.exp(rng.uniform(math.log(self.low), math.log(self.high)))
-        else:
-            value = rng.uniform(self.low, self.high)
-        if self.step is None:
-            return float(value)
-        rounded = self.step * round(value / self.step)
-        return int(rounded) if float(self.step).is_integer() else float(rounded)
-
-
-@dataclass(frozen=True)
-class Randomisation:
-    """Domain randomisation of the reference field: its preset and the ranges drawn.
-
-    Attributes:
-        base_preset: The reference preset every variant starts from.
-        ranges: The parameters drawn per variant.
-        variants: Variant presets (each collects an equal share of the saves).
-    """
-
-    base_preset: str
-    ranges: tuple[ParameterRange, ...]
-    variants: int = 10
-
-    def __post_init__(self) -> None:
-        if self.variants < 1:
-            raise ValueError(f"variants must be >= 1, got {self.variants}")
-        keys = [r.key for r in self.ranges]
-        if len(set(keys)) != len(keys):
-            raise ValueError(f"a key is drawn twice: {keys}")
-
-
-RANDOMISATION_STREAM = 0xD0A1
-"""Names the generator of the variants' draws among those spawned from a run's seed."""
-
-
-def draw_variants(randomisation: Randomisation, seed: int) -> list[dict[str, PresetValue]]:
-    """Each variant's drawn values, by key; a function of `seed` only."""
-    rng = np.random.default_rng(np.random.SeedSequence([seed, RANDOMISATION_STREAM]))
-    return [
-        {r.key: r.draw(rng) for r in randomisation.ranges} for _ in range(randomisation.variants)
-    ]
-
-
-def variant_text(base_preset: str, values: Mapping[str, PresetValue], note: str) -> str:
-    """A preset file naming `base_preset` as its base and setting `values` (TOML)."""
-    tables: dict[str, list[str]] = {}
-    for key, value in values.items():
-        table, name = key.split(".")
-        tables.setdefault(table, []).append(f"{name} = {value!r}")
-    lines = [f"# {note}", f'base = "{base_preset}"']
-    for table, entries in tables.items():
-        lines += ["", f"[{table}]", *entries]
-    return "\n".join(lines) + "\n"
-
-
-def write_variants(randomisation: Randomisation, folder: Path, seed: int) -> list[Path]:
-    """Write the variant presets into `folder` (``variant_<k>.toml``); their paths."""
-    folder.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for k, values in enumerate(draw_variants(randomisation, seed)):
-        note = f"domain randomisation variant {k} of {randomisation.base_preset} (seed {seed})"
-        path = folder / f"variant_{k}.toml"
-        path.write_text(variant_text(randomisation.base_preset, values, note))
-        paths.append(path.resolve())
-    return paths
-
-
-# ----------------------------------------------------------------------------- plan
+def save_share(results: Sequence[TrialResult]) -> str:
+    """The saves among `results`, in % with its 95% Wilson interval (a report cell)."""
+    return percent_cell(sum(r.label == "SAVE" for r in results), len(results))
 
 
 @dataclass(frozen=True)
@@ -191,9 +92,6 @@ def gap_plan(layer1: Layer1Plan, quick: bool) -> GapPlan:
         eval_trials=layer1.eval_trials,
         noise=layer1.noise,
     )
-
-
-# ----------------------------------------------------------------------------- fine-tuning
 
 
 @dataclass(frozen=True)
@@ -260,8 +158,8 @@ def fine_tuning_curve(
         }
         point = CurvePoint(n, tuple(results["scratch"]), tuple(results["tuned"]))
         log(
-            f"  [fine-tuning] {n} saves: scratch {_share(point.scratch)}, "
-            f"fine-tuned {_share(point.tuned)}"
+            f"  [fine-tuning] {n} saves: scratch {save_share(point.scratch)}, "
+            f"fine-tuned {save_share(point.tuned)}"
         )
         points.append(point)
     return points
@@ -285,9 +183,6 @@ def _tested(
         cond = Condition(cond.name, cond.spec.with_options(transfer=True), cond.n_trials)
     results, _, _ = evaluate(cond, out / "results" / "gap" / field[0], workers, progress)
     return results
-
-
-# ----------------------------------------------------------------------------- randomisation
 
 
 @dataclass(frozen=True)
@@ -364,7 +259,7 @@ def domain_randomised_net(
         ),
     }  # fmt: skip
     for field, trials in results.items():
-        log(f"  [randomised] on {field}: {_share(trials)}")
+        log(f"  [randomised] on {field}: {save_share(trials)}")
     return RandomisedNet(path, variants, share, results)
 
 
@@ -398,151 +293,3 @@ def _pooled(
     x = np.concatenate([p.x for p in parts])
     y = np.concatenate([p.y for p in parts])
     return InterceptionDataset(x, y, provenance)
-
-
-# ----------------------------------------------------------------------------- report
-
-
-@dataclass(frozen=True)
-class References:
-    """The matrix's cells on the target field that the methods are measured against.
-
-    Attributes:
-        target: The target field model.
-        reference: The reference field model.
-        transferred: The reference's net on the target (the gap's lower end).
-        native: The target's own net (its upper end).
-        straight: The straight defender on the target.
-    """
-
-    target: str
-    reference: str
-    transferred: tuple[TrialResult, ...]
-    native: tuple[TrialResult, ...]
-    straight: tuple[TrialResult, ...]
-
-
-def _share(results: Sequence[TrialResult]) -> str:
-    return percent_cell(sum(r.label == "SAVE" for r in results), len(results))
-
-
-def gap_markdown(
-    refs: References,
-    curve: Sequence[CurvePoint],
-    randomised: RandomisedNet | None,
-    randomisation: Randomisation | None,
-    plan: GapPlan,
-    plot: Path | None = None,
-) -> str:
-    """The report section: each method's saves on the target and the points it recovers."""
-    t, r = refs.target, refs.reference
-    lines = [
-        f"## Closing the gap: the {r} net on {t}",
-        "",
-        f"Saves on {t} at ball noise {plan.noise:g}, in % with 95% Wilson intervals, "
-        f"{len(refs.native)} trials per net on the transfer matrix's placements, so every gap is "
-        f"paired trial by trial (95% interval). *Recovered* is a method's net minus the {r} "
-        f"net moved as it is; *left* is it minus {t}'s own net.",
-        "",
-        f"- {r} net on {t}, as it is: {_share(refs.transferred)}; {t}'s own net: "
-        f"{_share(refs.native)}; straight: {_share(refs.straight)}.",
-        f"- the gap: {paired_cell(refs.transferred, refs.native)} points.",
-    ]
-    if randomised is not None and randomisation is not None:
-        lines += ["", *_randomised_lines(refs, randomised, randomisation)]
-    if curve:
-        lines += ["", *_curve_lines(refs, curve, plan)]
-    if plot is not None:
-        lines += ["", f"![Fine-tuning: saves against {t} examples](plots/{plot.name})"]
-    return "\n".join(lines) + "\n"
-
-
-def _randomised_lines(
-    refs: References, net: RandomisedNet, randomisation: Randomisation
-) -> list[str]:
-    on_target = net.results[refs.target]
-    on_reference = net.results.get(refs.reference, ())
-    lines = [
-        "### Domain randomisation",
-        "",
-        f"{len(net.variants)} variants of `{randomisation.base_preset}`, each drawn from the "
-        f"ranges below, {net.saves_per_variant} random-TA saves from each, one net on the "
-        "pooled saves:",
-        "",
-        "| parameter | range | drawn | covers |",
-        "|---|---|---|---|",
-    ]
-    for rng in randomisation.ranges:
-        drawn = ", ".join(f"{v[rng.key]:g}" for v in net.variants)
-        scale = " (log-uniform)" if rng.log else ""
-        lines.append(f"| `{rng.key}` | {rng.low:g} – {rng.high:g}{scale} | {drawn} | {rng.why} |")
-    lines += [
-        "",
-        f"| net | on {refs.target} | recovered | left | on {refs.reference} |",
-        "|---|---|---|---|---|",
-        f"| randomised | {_share(on_target)} | {paired_cell(on_target, refs.transferred)} | "
-        f"{paired_cell(on_target, refs.native)} | {_share(on_reference)} |",
-    ]
-    return lines
-
-
-def _curve_lines(refs: References, curve: Sequence[CurvePoint], plan: GapPlan) -> list[str]:
-    lines = [
-        "### Fine-tuning: a sample-efficiency curve",
-        "",
-        f"The {refs.reference} net, reading {refs.target}'s distances in drill units, trains "
-        f"{plan.fine_tune_epochs} more epochs (Adam, step {plan.fine_tune_rate:g}, no weight "
-        f"decay) on {refs.target}'s first n random-TA saves; *scratch* trains a new net "
-        f"({plan.epochs} epochs, layer 1's recipe) on the same saves.",
-        "",
-        "| n saves | scratch | fine-tuned | fine-tuned - scratch | recovered | left |",
-        "|---|---|---|---|---|---|",
-    ]
-    for p in curve:
-        lines.append(
-            f"| {p.examples} | {_share(p.scratch)} | {_share(p.tuned)} | "
-            f"{paired_cell(p.tuned, p.scratch)} | {paired_cell(p.tuned, refs.transferred)} | "
-            f"{paired_cell(p.tuned, refs.native)} |"
-        )
-    return lines
-
-
-def plot_curve(refs: References, curve: Sequence[CurvePoint], path: Path) -> Path | None:
-    """Saves against target examples, scratch and fine-tuned, beside the matrix's references."""
-    from robotsoccer.experiments.plots import _pyplot, _save, error_bars
-    from robotsoccer.stats import wilson_interval
-
-    if not curve:
-        return None
-
-    def share(results: Sequence[TrialResult]) -> tuple[float, float, float]:
-        k, n = sum(r.label == "SAVE" for r in results), len(results)
-        low, high = wilson_interval(k, n)
-        return 100 * k / n, 100 * low, 100 * high
-
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(6.4, 4.2))
-    xs = [p.examples for p in curve]
-    for kind, colour in (("scratch", "tab:blue"), ("tuned", "tab:orange")):
-        values = [share(getattr(p, kind)) for p in curve]
-        ax.errorbar(
-            xs,
-            [v[0] for v in values],
-            yerr=error_bars(*zip(*values, strict=True)),
-            marker="o",
-            capsize=3,
-            color=colour,
-            label="fine-tuned" if kind == "tuned" else "from scratch",
-        )
-    for results, label, style in (
-        (refs.native, f"{refs.target}'s own net", "-"),
-        (refs.transferred, f"{refs.reference} net as it is", "--"),
-        (refs.straight, "straight", ":"),
-    ):
-        ax.axhline(share(results)[0], color="grey", linestyle=style, label=label)
-    ax.set_xscale("log")
-    ax.set_xlabel(f"{refs.target} random-TA saves trained on")
-    ax.set_ylabel(f"saves on {refs.target} (%)")
-    ax.legend(fontsize=8)
-    ax.set_title("Fine-tuning against training from scratch")
-    return _save(plt, fig, path)

@@ -6,9 +6,11 @@ The pipeline for one field model, on top of layer 1's net from the same run:
    receiver: the plan's trials (paper: 5000). Each trial that passed becomes a row of 174
    attributes and the coach's label, saved as a :class:`~learning.pass_dataset.PassDataset`
    with its provenance.
-2. :func:`train_tree` — the C4.5-like tree (:func:`learning.pass_tree_grow.fit_pass_tree`), saved as
-   JSON with its provenance: its node count and training error go beside the paper's 87 nodes
-   and 26%, and its first levels are printed in Figure 14's style.
+2. :func:`~robotsoccer.experiments.layer2_training.train_tree` — the C4.5-like tree
+   (:func:`learning.pass_tree_grow.fit_pass_tree`), saved as JSON with its provenance: its node
+   count and training error go beside the paper's 87 nodes and 26%, and its first levels are
+   printed in Figure 14's style (the learning steps:
+   :mod:`robotsoccer.experiments.layer2_training`).
 3. The test conditions (:func:`layer2_conditions`), the plan's trials each (paper: 5000), on one
    evaluation seed, so trial i places every player identically whatever the chooser (paired):
    the tree forced to pass (Table 2), a random receiver, the closest teammate, the analytic
@@ -19,7 +21,7 @@ The pipeline for one field model, on top of layer 1's net from the same run:
    we differ.
 
 Seeds: collection uses the run's derived collection seed, evaluation the experiment seed
-(:func:`robotsoccer.experiments.layer1.seeds_for`), so the tree is never tested on its own
+(:func:`robotsoccer.experiments.layer1_plan.seeds_for`), so the tree is never tested on its own
 placements.
 """
 
@@ -36,29 +38,31 @@ from typing import Any
 
 import numpy as np
 
-from learning.pass_boost import PassBoost, fit_pass_boost, save_pass_boost
 from learning.pass_dataset import PassDataset
-from learning.pass_features import ATTRIBUTE_NAMES, HALF, PASS_SCHEMA
 from learning.pass_tree import LABELS, PassTree
-from learning.pass_tree_file import save_pass_tree
-from learning.pass_tree_grow import fit_pass_tree
 from robotsoccer.experiments import paper
-from robotsoccer.experiments.layer1 import Condition, Log, Seeds, evaluate
-from robotsoccer.experiments.report import (
-    StageTiming,
-    field_setting,
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import Condition, Log, Seeds
+from robotsoccer.experiments.layer2_training import (
+    dataset_from,
+    passer_half_only,
+    passes,
+    tests_by_side,
+    train_boost,
+    train_tree,
+)
+from robotsoccer.experiments.report_cells import (
     paired_difference,
     percent_cell,
     versus_cell,
     versus_paper,
 )
+from robotsoccer.experiments.report_records import StageTiming
+from robotsoccer.experiments.report_tables import field_setting
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import reliability
 
 DRILL = "pass"
-HEAD = 4
-"""Leading values of a pass trial's data before the attributes: receiver, confidence,
-candidates, reports (:meth:`robotsoccer.drills.passing.PassDrill.data`)."""
 RELIABILITY_BINS = tuple(round(0.1 * k, 1) for k in range(11))
 """Bins of the reliability table and plot: tenths of confidence."""
 
@@ -139,21 +143,6 @@ def layer2_conditions(
     return {name: Condition(name, spec, n) for name, spec in specs.items()}
 
 
-def passes(results: Sequence[TrialResult]) -> list[TrialResult]:
-    """The trials in which the passer passed (their data carry the attributes)."""
-    return [r for r in results if len(r.data) == HEAD + len(ATTRIBUTE_NAMES)]
-
-
-def dataset_from(results: Sequence[TrialResult], provenance: dict[str, Any]) -> PassDataset:
-    """The passes' attributes and labels, in trial order."""
-    done = passes(results)
-    x = np.array([r.data[HEAD:] for r in done], dtype=np.float64).reshape(
-        len(done), len(ATTRIBUTE_NAMES)
-    )
-    y = np.array([r.label for r in done], dtype=str)
-    return PassDataset(x, y, provenance)
-
-
 def collect_passes(
     base: TrialSpec, plan: Layer2Plan, results_dir: Path, path: Path, workers: int | None,
     progress: bool,
@@ -174,30 +163,6 @@ def collect_passes(
     dataset = dataset_from(results, provenance)
     dataset.save(path)
     return dataset, results, StageTiming("collect (random receiver)", ran, wall)
-
-
-HOLDOUT_SHARE = 0.3
-"""The last share of the training passes that a second tree, fitted on the rest, is tested on."""
-
-
-def train_tree(dataset: PassDataset, path: Path, seed: int) -> tuple[PassTree, float]:
-    """Fit the C4.5-like tree on the dataset, save it with its provenance; measure generality.
-
-    Returns:
-        The tree and the error of the same procedure on held-out passes: a tree fitted on the
-        first 70% (trial order) and tested on the last 30%. The paper gives only the training
-        error; a held-out error says how much of ours is memorised.
-    """
-    tree = fit_pass_tree(dataset.x, dataset.y, ATTRIBUTE_NAMES, schema=PASS_SCHEMA, seed=seed)
-    provenance = {**dataset.provenance, "rows": len(dataset)}
-    save_pass_tree(tree, path, provenance)
-    cut = round((1.0 - HOLDOUT_SHARE) * len(dataset))
-    if cut < 2 or cut >= len(dataset):
-        return tree, math.nan
-    part = fit_pass_tree(
-        dataset.x[:cut], dataset.y[:cut], ATTRIBUTE_NAMES, schema=PASS_SCHEMA, seed=seed
-    )
-    return tree, part.training_error(dataset.x[cut:], dataset.y[cut:])
 
 
 @dataclass(frozen=True)
@@ -282,7 +247,7 @@ def run_layer2_model(
     section.tree_nodes, section.tree_leaves = tree.n_nodes, tree.n_leaves
     section.training_error = tree.training_error(dataset.x, dataset.y)
     section.tree_text = tree.render(max_depth=plan.tree_depth_shown)
-    section.passer_tests, section.receiver_tests = _tests_by_side(tree)
+    section.passer_tests, section.receiver_tests = tests_by_side(tree)
     (tree_path.parent / "pass_tree.txt").write_text(tree.render() + "\n")
     section.stages.append(StageTiming("train tree", 0, time.perf_counter() - start))
     log(
@@ -301,27 +266,6 @@ def run_layer2_model(
     heard = [r.data[3] for r in passes(section.results["tree"])]
     section.reports_heard = float(np.mean(heard)) if heard else math.nan
     return section
-
-
-def train_boost(dataset: PassDataset, path: Path, seed: int) -> PassBoost:
-    """Fit gradient-boosted trees on the dataset and save them with its provenance."""
-    model = fit_pass_boost(dataset.x, dataset.y, ATTRIBUTE_NAMES, schema=PASS_SCHEMA, seed=seed)
-    save_pass_boost(model, path, {**dataset.provenance, "rows": len(dataset)})
-    return model
-
-
-def passer_half_only(dataset: PassDataset) -> PassDataset:
-    """The dataset with the receivers' half unknown: what a passer that hears no report has."""
-    x = dataset.x.copy()
-    x[:, HALF:] = np.nan
-    return PassDataset(x, dataset.y, {**dataset.provenance, "receiver_half": "ignored"})
-
-
-def _tests_by_side(tree: PassTree) -> tuple[int, int]:
-    """How many of the tree's tests use the passer's attributes, and how many the receiver's."""
-    used = [tree.feature_names[f] for f in tree.feature.tolist() if f >= 0]
-    passer = sum(1 for name in used if name.startswith("passer"))
-    return passer, len(used) - passer
 
 
 # ----------------------------------------------------------------------------- the report

@@ -48,14 +48,11 @@ from typing import Any
 import numpy as np
 
 from learning.datasets import InterceptionDataset, Provenance
-from robotsoccer.experiments.layer1 import Condition as EvalCondition
-from robotsoccer.experiments.layer1 import (
-    Seeds,
-    counts_of,
-    decided_saves,
-    evaluate,
-)
-from robotsoccer.experiments.report import paired_cell, percent_cell
+from robotsoccer.experiments.layer1_collect import decided_saves
+from robotsoccer.experiments.layer1_evaluate import counts_of, evaluate
+from robotsoccer.experiments.layer1_plan import Condition as EvalCondition
+from robotsoccer.experiments.layer1_plan import Seeds
+from robotsoccer.experiments.report_cells import paired_cell, percent_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
 

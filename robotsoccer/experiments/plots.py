@@ -25,7 +25,7 @@ from robotsoccer.experiments.paper import (
     PAPER_ALL_SAVES,
     PAPER_NOISE,
 )
-from robotsoccer.experiments.report import BEHAVIOUR_NAMES, Counts, ModelSection
+from robotsoccer.experiments.report_records import BEHAVIOUR_NAMES, Counts, ModelSection
 from robotsoccer.stats import wilson_interval
 
 _MODEL_COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:purple")

@@ -40,8 +40,9 @@ from pathlib import Path
 from typing import Any
 
 from robotsoccer.drills.setplay import SetPlayDrill
-from robotsoccer.experiments.layer1 import Field, Log, PipelineError, claim_folder
-from robotsoccer.experiments.report import paired_difference, percent_cell
+from robotsoccer.experiments.layer1 import claim_folder
+from robotsoccer.experiments.layer1_plan import Field, Log, PipelineError
+from robotsoccer.experiments.report_cells import paired_difference, percent_cell
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.provenance import code_version
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial

@@ -12,7 +12,8 @@ layer1.train_main_net`, the same files ``reproduce`` writes) is tested on every 
 
 Every condition on a test field shares its evaluation seed, so the trials are paired (trial i
 has the same placement and noise whatever the defender): the differences between nets are taken
-trial by trial, with 95% intervals (:func:`~robotsoccer.experiments.report.paired_difference`).
+trial by trial, with 95% intervals
+(:func:`~robotsoccer.experiments.report_cells.paired_difference`).
 The report gives the matrix as a table (saves with 95% Wilson intervals and n) and a heatmap.
 
 Layer 2 (:func:`run_transfer_layer2`) does the same for the pass tree: each field's tree picks
@@ -32,19 +33,20 @@ from pathlib import Path
 
 from field_models.registry import field_facts
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.intercept import InterceptDrill, LaunchPlan
-from robotsoccer.experiments.layer1 import (
+from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.intercept_plan import LaunchPlan
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import (
     Condition,
     Layer1Plan,
     Log,
     Seeds,
     base_spec,
     condition,
-    evaluate,
 )
 from robotsoccer.experiments.layer2 import Layer2Plan, pass_spec
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill
-from robotsoccer.experiments.report import paired_cell
+from robotsoccer.experiments.report_cells import paired_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
 

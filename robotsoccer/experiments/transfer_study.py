@@ -20,32 +20,17 @@ from robotsoccer.experiments.ablations import (
     ablations,
     run_ablations,
 )
-from robotsoccer.experiments.calibration import calibrate as calibration_fit
-from robotsoccer.experiments.calibration import (
-    calibrated_drill,
-    record_traces,
-    recovered_markdown,
-    write_preset,
-)
-from robotsoccer.experiments.gap_closing import (
-    Randomisation,
-    References,
-    domain_randomised_net,
-    fine_tuning_curve,
-    gap_markdown,
-    gap_plan,
-    plot_curve,
-)
-from robotsoccer.experiments.layer1 import (
-    Condition,
-    Field,
-    Log,
-    Seeds,
-    collect_into,
-    evaluate,
-    plan_for,
-    train_main_net,
-)
+from robotsoccer.experiments.calibration import recovered_markdown
+from robotsoccer.experiments.calibration_fit import calibrate as calibration_fit
+from robotsoccer.experiments.calibration_preset import calibrated_drill, write_preset
+from robotsoccer.experiments.calibration_traces import record_traces
+from robotsoccer.experiments.gap_closing import domain_randomised_net, fine_tuning_curve, gap_plan
+from robotsoccer.experiments.gap_report import References, gap_markdown, plot_curve
+from robotsoccer.experiments.gap_variants import Randomisation
+from robotsoccer.experiments.layer1 import train_main_net
+from robotsoccer.experiments.layer1_collect import collect_into
+from robotsoccer.experiments.layer1_evaluate import evaluate
+from robotsoccer.experiments.layer1_plan import Condition, Field, Log, Seeds, plan_for
 from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill, train_net
 from robotsoccer.experiments.transfer import (

@@ -58,10 +58,10 @@ from robotsoccer.skills.intercept import (
     DASH_POWER,
     KICK_POWER,
     TA_CLIP_RAD,
-    Point,
     TurnPolicy,
     clearing_direction,
 )
+from robotsoccer.skills.turn_policies import Point
 
 MIN_CYCLES_LEFT = 3.0
 """The worth-a-turn rule assumes at least this many cycles left (a far or receding ball)."""

@@ -30,7 +30,8 @@ Details the paper leaves open, chosen here:
   paper's client; robots use a few times the camera's heading noise, because a robot stops to
   spin for a whole camera period on every turn however small (the robots' host).
 
-**Behaviours** (:class:`Behaviour`), each a small :class:`TurnPolicy`:
+**Behaviours** (:class:`Behaviour`), each a small :class:`TurnPolicy`
+(:mod:`robotsoccer.skills.turn_policies`):
 
 * ``still`` — never moves (the paper's "if the defender remains still" check); no policy;
 * ``straight`` — TA = 0;
@@ -65,7 +66,6 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Callable
 from enum import StrEnum
 from pathlib import Path
 from typing import Protocol
@@ -74,10 +74,17 @@ from field_models.arena import FieldFacts
 from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Turn, wrap_angle
 from field_models.registry import field_facts
 from field_models.seeding import Rng
-from learning.analytic import MOTION_MULTIPLIER, analytic_turn_angle_xy
 from learning.interception_file import TurnAngleFunction, load_turn_function, read_net_file
 from learning.lookup import LookupTable
 from robotsoccer.options import choice
+from robotsoccer.skills.turn_policies import (
+    AnalyticPolicy,
+    LookupPolicy,
+    NetPolicy,
+    Point,
+    RandomPolicy,
+    straight_policy,
+)
 
 
 class Behaviour(StrEnum):
@@ -103,9 +110,6 @@ class TaMode(StrEnum):
     EVERY_SEE = "every_see"
 
 
-RANDOM_TA_HALF_RANGE_RAD = math.radians(45.0)
-"""The training behaviour's TA range: uniform in [-45°, 45°] (paper §5)."""
-
 TA_CLIP_RAD = math.radians(90.0)
 """Any TA is clipped to ±90° (a safety net; see the module docstring)."""
 
@@ -114,8 +118,6 @@ DASH_POWER = 100.0
 
 KICK_POWER = 100.0
 """The defender's clearing kick power."""
-
-Point = tuple[float, float]
 
 
 class TurnPolicy(Protocol):
@@ -132,100 +134,6 @@ class TurnPolicy(Protocol):
     ) -> float:
         """TA from BD, BA and previous BD; the two sightings as positions in one frame [m]."""
         ...
-
-
-# ----------------------------------------------------------------------------- policies
-
-
-def straight_policy(
-    ball_distance_m: float,
-    ball_angle_rad: float,
-    previous_ball_distance_m: float,
-    previous_ball_xy_m: Point | None,
-    ball_xy_m: Point,
-) -> float:
-    """TA = 0: move directly toward where the ball was seen (paper §5, "straight")."""
-    return 0.0
-
-
-class RandomPolicy:
-    """TA uniform in [-half_range, half_range] from a generator (the training behaviour)."""
-
-    def __init__(self, rng: Rng, half_range_rad: float = RANDOM_TA_HALF_RANGE_RAD) -> None:
-        self.rng = rng
-        self.half_range_rad = half_range_rad
-
-    def __call__(
-        self,
-        ball_distance_m: float,
-        ball_angle_rad: float,
-        previous_ball_distance_m: float,
-        previous_ball_xy_m: Point | None,
-        ball_xy_m: Point,
-    ) -> float:
-        """A fresh random TA [rad]."""
-        return float(self.rng.uniform(-self.half_range_rad, self.half_range_rad))
-
-
-class NetPolicy:
-    """TA = the interception net's output f(BD, BA, previous BD) (plain Python)."""
-
-    def __init__(self, function: TurnAngleFunction) -> None:
-        self.function = function
-
-    def __call__(
-        self,
-        ball_distance_m: float,
-        ball_angle_rad: float,
-        previous_ball_distance_m: float,
-        previous_ball_xy_m: Point | None,
-        ball_xy_m: Point,
-    ) -> float:
-        """The net's TA [rad]."""
-        return self.function(ball_distance_m, ball_angle_rad, previous_ball_distance_m)
-
-
-class LookupPolicy:
-    """TA = the one-dimensional table's entry for BA (paper §5, Table 1)."""
-
-    def __init__(self, table: Callable[[float], float]) -> None:
-        self.table = table
-
-    def __call__(
-        self,
-        ball_distance_m: float,
-        ball_angle_rad: float,
-        previous_ball_distance_m: float,
-        previous_ball_xy_m: Point | None,
-        ball_xy_m: Point,
-    ) -> float:
-        """The table's TA for this BA [rad]."""
-        return self.table(ball_angle_rad)
-
-
-class AnalyticPolicy:
-    """TA toward the ball's predicted position two sensory steps ahead (Bowling's rule, §5).
-
-    Without a previous sighting the motion is unknown and TA is 0 (move at the ball).
-    """
-
-    def __init__(self, motion_multiplier: float = MOTION_MULTIPLIER) -> None:
-        self.motion_multiplier = motion_multiplier
-
-    def __call__(
-        self,
-        ball_distance_m: float,
-        ball_angle_rad: float,
-        previous_ball_distance_m: float,
-        previous_ball_xy_m: Point | None,
-        ball_xy_m: Point,
-    ) -> float:
-        """The analytic TA [rad] from the two sightings."""
-        if previous_ball_xy_m is None:
-            return 0.0
-        px, py = previous_ball_xy_m
-        x, y = ball_xy_m
-        return analytic_turn_angle_xy(px, py, x, y, self.motion_multiplier)
 
 
 # ----------------------------------------------------------------------------- model files

@@ -23,6 +23,24 @@ team's pass threshold, FAILURE below it; no such teammate gives MISS (the kick r
 **The kick**: toward the teammate judged when there is one (the pass the tree rated), else
 toward the destination point, at the pass power.
 
+**When it is asked** (``every_ball``). False (the first study's rule): only where the layered
+team would ask the tree (blocked, or the goalie), so it decides a few times a game. True (Stone
+& Veloso 1999's own rule: the player with the ball always chooses among the destinations): on
+every spell on the ball, shooting range or not, so layer 3 owns the whole ball-holder decision.
+Two destinations then change meaning so that the choice covers what the layered team does:
+
+* the opponents' goal (action 0) is *shoot*: a kick at the shot power toward the goal's centre;
+  its feature is SUCCESS within the team's shooting range with no opponent in the path
+  (:func:`~robotsoccer.skills.setplay.opponent_in_path` within the blocked distance), FAILURE
+  within range but blocked, MISS out of range (the shot reaches no one);
+* a destination with no teammate toward it (MISS) is *keep*: a dribble toward that point at the
+  dribble power, the player keeping the ball (the layered team's dribble is the dribble toward
+  the goal, or the centre ahead).
+
+The SUCCESS cut (``threshold``) is then a study setting: with the layered team's 0.5 the tree
+rated every pass it was asked about at least 0.5 (FAILURE never occurred, |U| = 2 in effect);
+the study sets it where FAILURE does occur (:mod:`robotsoccer.experiments.team_study`).
+
 **Rewards** (:func:`learning.tpot.reward`): after each action the player samples the ball's
 x in the attack frame from its own sightings (its pose plus the ball's relative position).
 The reward is fixed by a goal (the referee's call, which rcssserver sends to every client as a
@@ -55,6 +73,7 @@ from learning.tpot import (
 )
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.passing import PassEvaluator, view_arrays
+from robotsoccer.skills.setplay import opponent_in_path
 
 DESTINATIONS: tuple[tuple[str, float, float], ...] = (
     ("goal", 1.0, 0.0),
@@ -72,6 +91,9 @@ SECTOR_RAD = math.radians(20.0)
 """A teammate within this of a destination's direction is a pass toward it."""
 MIN_PASS_UNITS = 6.0
 """Teammates nearer than this are not passes (the layered team's rule, ``team.py``)."""
+
+SHOOT_ACTION = 0
+"""The opponents' goal: with ``every_ball``, the shot (module docstring)."""
 
 assert len(DESTINATIONS) == N_ACTIONS
 
@@ -127,6 +149,15 @@ class TpotBallPolicy:
         rng: The exploration's stream.
         epsilon: Exploration rate (0: greedy, in play).
         learn: Record experiences (training games).
+        every_ball: Decide on every spell on the ball, shoot and keep included (module
+            docstring); False: only where the layered team would ask the tree.
+        shoot_range_m: The team's shooting range [m] (``every_ball``).
+        blocked_m: An opponent this near in the path blocks a shot [m] (``every_ball``).
+        shot_power: The shot's kick power (``every_ball``).
+        dribble_power: The dribble's kick power (``every_ball``: keep).
+
+    Raises:
+        ValueError: A table whose actions are not the :data:`DESTINATIONS`.
 
     Attributes:
         experiences: The fixed rewards, in the order fixed (when learning).
@@ -149,7 +180,16 @@ class TpotBallPolicy:
         rng: UniformSource,
         epsilon: float = 0.0,
         learn: bool = False,
+        every_ball: bool = False,
+        shoot_range_m: float = 0.0,
+        blocked_m: float = 0.0,
+        shot_power: float = 100.0,
+        dribble_power: float = 0.0,
     ) -> None:
+        if table.actions != N_ACTIONS:
+            raise ValueError(
+                f"a table of {table.actions} actions, not the field's {N_ACTIONS} destinations"
+            )
         self.table = table
         self.attack_right = attack_right
         self.half_length_m = half_length_m
@@ -163,6 +203,11 @@ class TpotBallPolicy:
         self.rng = rng
         self.epsilon = epsilon
         self.learn = learn
+        self.every_ball = every_ball
+        self.shoot_range_m = shoot_range_m
+        self.blocked_m = blocked_m
+        self.shot_power = shot_power
+        self.dribble_power = dribble_power
         self.experiences: list[Experience] = []
         self.choices = [0] * N_ACTIONS
         self._pending: dict[int, _Pending] = {}
@@ -185,6 +230,10 @@ class TpotBallPolicy:
                 action, self.attack_right, self.half_length_m, self.half_width_m
             )
             bearing = wrap_angle(math.atan2(dy - pose.y, dx - pose.x) - pose.heading)
+            if self.every_ball and action == SHOOT_ACTION:
+                features.append(self._shot_feature(percept, pose, dx, dy, bearing))
+                directions.append(bearing)
+                continue
             near = [
                 (scores[i], s)
                 for i, s in mates
@@ -198,6 +247,24 @@ class TpotBallPolicy:
             features.append(SUCCESS if confidence >= self.threshold else FAILURE)
             directions.append(seen.angle_rad)
         return Options(tuple(features), tuple(directions))
+
+    def _shot_feature(
+        self, percept: Percept, pose: Pose, gx: float, gy: float, bearing: float
+    ) -> int:
+        """The shot's e(s, a): SUCCESS in range and open, FAILURE blocked, MISS out of range."""
+        if math.hypot(gx - pose.x, gy - pose.y) > self.shoot_range_m:
+            return MISS
+        return FAILURE if opponent_in_path(percept, bearing, self.blocked_m) else SUCCESS
+
+    def kick(self, action: int, options: Options) -> tuple[str, Kick]:
+        """(intent, kick) of destination `action` (module docstring: shoot, pass, keep)."""
+        name = DESTINATIONS[action][0]
+        direction = options.directions[action]
+        if self.every_ball and action == SHOOT_ACTION:
+            return ("tpot shoot", Kick(self.shot_power, direction))
+        if self.every_ball and options.features[action] == MISS:
+            return (f"tpot keep {name}", Kick(self.dribble_power, direction))
+        return (f"tpot {name}", Kick(self.pass_power, direction))
 
     def _confidence(self, percept: Percept, index: int, seen: SeenPlayer) -> float:
         """The tree's success confidence of a pass to `seen` (the layered team's attributes)."""
@@ -223,8 +290,8 @@ class TpotBallPolicy:
             self._pending[number] = _Pending(
                 number, options.features[action], action, percept.tick, self._along(ball_xy)
             )
-        name = DESTINATIONS[action][0]
-        return (f"tpot {name}", (Kick(self.pass_power, options.directions[action]),))
+        intent, kick = self.kick(action, options)
+        return (intent, (kick,))
 
     # ------------------------------------------------------------------ rewards
 

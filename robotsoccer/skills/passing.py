@@ -4,10 +4,11 @@ One trial's conversation, through the field model's own say/hear (the Soccer Ser
 with its length and hearing limits; on the robots the central host relays the text):
 
 1. **Intention** (Figure 9). At its first percept the passer, placed behind the ball, says
-   :data:`INTENT`.
+   :data:`~robotsoccer.skills.pass_messages.INTENT`.
 2. **Reports** (Figure 10). A receiver that heard the intention turns to face the ball. Once it
-   faces it, it says its report in its own time slot, :data:`REPORT_SLOT_PERIODS` sensor
-   periods apart by uniform number. The slots exist because the 1996 server lets a player hear
+   faces it, it says its report in its own time slot,
+   :data:`~robotsoccer.skills.pass_receivers.REPORT_SLOT_PERIODS` sensor periods apart by
+   uniform number. The slots exist because the 1996 server lets a player hear
    only one message every two cycles (``hear_decay`` 2, ``hear_inc`` 1), so three replies in
    one cycle would be lost. A report is ``r<NN>`` and then the receiver's view
    (:func:`learning.pass_codec.encode_view`): the passer's distance and direction, and every
@@ -42,6 +43,10 @@ Choosers (the rows of Table 2 and those beyond it):
 
 Distances inside the attributes are in units (Soccer Server metres, the field's ``unit_m``) and
 angles in degrees (:mod:`learning.pass_features`). The minds work in metres and radians.
+
+This module is the passer (:class:`PasserMind`, its choosers and the analytic margin); the
+receivers and waiting defenders are :mod:`robotsoccer.skills.pass_receivers`, the texts they
+say :mod:`robotsoccer.skills.pass_messages`.
 """
 
 from __future__ import annotations
@@ -55,25 +60,18 @@ from typing import Protocol
 import numpy as np
 
 from field_models.arena import BallLaw
-from field_models.protocol import Action, Kick, Mind, Percept, Say, SeenPlayer, Turn, wrap_angle
+from field_models.protocol import Action, Kick, Percept, Say, SeenPlayer
 from field_models.seeding import Rng
-from learning.pass_codec import decode_view, encode_view
 from learning.pass_features import (
     pass_attributes,
     passer_attributes,
-    receiver_attributes,
     unknown_half,
 )
 from robotsoccer.options import choice
+from robotsoccer.skills.pass_messages import INTENT, Report, announce_text, parse_report
 
-INTENT = "pass"
-"""What the passer says first (Figure 9)."""
-REPORT_SLOT_PERIODS = 2.0
-"""Sensor periods between two receivers' report slots (module docstring, step 2)."""
 REPORT_WAIT_PERIODS = 12.0
 """The passer decides at the latest this many sensor periods after its intention."""
-FACING_TOLERANCE_RAD = math.radians(10.0)
-"""A player "faces the ball" when the ball is within this of its heading."""
 
 
 class PassEvaluator(Protocol):
@@ -92,59 +90,6 @@ class Chooser(StrEnum):
     BOOST = "boost"
     CLOSEST = "closest"
     ANALYTIC = "analytic"
-
-
-def report_text(number: int, view: str | None, distance_units: float) -> str:
-    """A receiver's report: ``r<NN>`` + its encoded view, or ``r<NN>d<distance>`` without one."""
-    if view is None:
-        return f"r{number:02d}d{distance_units:.1f}"
-    return f"r{number:02d}{view}"
-
-
-def announce_text(number: int) -> str:
-    """The passer's announcement of its receiver (Figure 12)."""
-    return f"k{number:02d}"
-
-
-def announced_number(text: str) -> int | None:
-    """The receiver number an announcement names, or None if `text` is not one."""
-    if len(text) == 3 and text[0] == "k" and text[1:].isdigit():
-        return int(text[1:])
-    return None
-
-
-@dataclass(frozen=True, slots=True)
-class Report:
-    """A receiver's report as the passer decoded it.
-
-    Attributes:
-        number: The receiver's uniform number.
-        passer_distance_units: The receiver's distance to the passer [units].
-        half: The receiver's 87 attributes, all unknown when it sent only its distance.
-    """
-
-    number: int
-    passer_distance_units: float
-    half: np.ndarray
-
-
-def parse_report(text: str) -> Report | None:
-    """A report from its text; None if `text` is not a well-formed report."""
-    if len(text) < 4 or text[0] != "r" or not text[1:3].isdigit():
-        return None
-    number, body = int(text[1:3]), text[3:]
-    if body.startswith("d"):
-        try:
-            distance = float(body[1:])
-        except ValueError:
-            return None
-        return Report(number, distance, unknown_half())
-    try:
-        passer_distance, passer_angle, dist, angle, team = decode_view(body)
-    except ValueError:
-        return None
-    half = receiver_attributes(passer_distance, passer_angle, dist, angle, team)
-    return Report(number, passer_distance, half)
 
 
 def view_arrays(
@@ -387,132 +332,3 @@ class PasserMind:
             receiver = (float(x[0]) * self.unit_m, angle)
             margins.append(analytic_margin(self.physics, receiver, opponents))
         return int(np.argmax(margins))
-
-
-class ReceiverMind:
-    """A receiver (module docstring): face the ball, report, then intercept or stand.
-
-    Args:
-        number: Its uniform number.
-        interceptor: Layer 1's interception, used once it is the chosen receiver.
-        unit_m: The field's unit [m].
-        sensor_period_s: Time between two percepts [s].
-        dt_s: One tick [s].
-        slot: Its report slot (0, 1, 2, ...).
-        say_max_chars: The field's say limit; None: no limit.
-    """
-
-    def __init__(
-        self,
-        number: int,
-        interceptor: Mind,
-        *,
-        unit_m: float,
-        sensor_period_s: float,
-        dt_s: float,
-        slot: int,
-        say_max_chars: int | None,
-    ) -> None:
-        self.number = number
-        self.interceptor = interceptor
-        self.unit_m = unit_m
-        self.slot_ticks = round(slot * REPORT_SLOT_PERIODS * sensor_period_s / dt_s)
-        self.say_max_chars = say_max_chars
-        self.intent_tick: int | None = None
-        self.reported = False
-        self.chosen: bool | None = None  # None until the announcement
-        self.done = False
-
-    def act(self, percept: Percept) -> tuple[Action, ...]:
-        """Before the announcement: face the ball and report; then intercept or stand."""
-        for heard in percept.heard:
-            if heard.text == INTENT and self.intent_tick is None:
-                self.intent_tick = percept.tick
-            number = announced_number(heard.text)
-            if number is not None and self.chosen is None:
-                self.chosen = number == self.number
-        if self.chosen is not None:
-            if self.chosen:
-                return self.interceptor.act(percept)
-            self.done = True  # stands still from now on: it needs no more percepts
-            return ()
-        ball = percept.ball
-        if ball is None:
-            return (Turn(math.pi / 2),)  # look for it
-        if abs(ball.angle_rad) > FACING_TOLERANCE_RAD:
-            return (Turn(ball.angle_rad),)
-        if (
-            self.intent_tick is not None
-            and not self.reported
-            and percept.tick - self.intent_tick >= self.slot_ticks
-        ):
-            text = self._report(percept)
-            if text is not None:
-                self.reported = True
-                return (Say(text),)
-        return ()
-
-    def _report(self, percept: Percept) -> str | None:
-        """Its report; None when it cannot see the passer (next to the ball)."""
-        ball = percept.ball
-        assert ball is not None
-        own = percept.player.team
-        passer = _nearest_to(percept.players, ball.distance_m, ball.angle_rad, own)
-        if passer is None:
-            return None
-        others = [s for i, s in enumerate(percept.players) if i != passer]
-        p = percept.players[passer]
-        pd, pa = p.distance_m / self.unit_m, math.degrees(p.angle_rad)
-        dist, ang, team = view_arrays(others, own, self.unit_m)
-        full = report_text(self.number, encode_view(pd, pa, dist, ang, team), pd)
-        if self.say_max_chars is None or len(full) <= self.say_max_chars:
-            return full
-        short = report_text(self.number, None, pd)
-        return short if len(short) <= self.say_max_chars else None
-
-
-def _nearest_to(
-    seen: Sequence[SeenPlayer], distance_m: float, angle_rad: float, team: str
-) -> int | None:
-    """The seen teammate (or player of unknown team) closest to a point given in polar form."""
-    best, best_gap = None, math.inf
-    for i, s in enumerate(seen):
-        if s.team not in (team, None):
-            continue
-        gap = (
-            distance_m**2
-            + s.distance_m**2
-            - 2.0 * distance_m * s.distance_m * math.cos(s.angle_rad - angle_rad)
-        )
-        if gap < best_gap:
-            best, best_gap = i, gap
-    return best
-
-
-class WaitingInterceptorMind:
-    """A defender: faces the ball until the passer announces, then intercepts (Figure 13).
-
-    Args:
-        interceptor: Layer 1's interception.
-        still: Stand still after the announcement too (Table 2's "no defenders" test).
-    """
-
-    def __init__(self, interceptor: Mind, *, still: bool = False) -> None:
-        self.interceptor = interceptor
-        self.still = still
-        self.started = False
-        self.done = False
-
-    def act(self, percept: Percept) -> tuple[Action, ...]:
-        """Face the ball; from the announcement on, intercept."""
-        if not self.started:
-            self.started = any(announced_number(h.text) is not None for h in percept.heard)
-        if self.started:
-            if self.still:
-                self.done = True
-                return ()
-            return self.interceptor.act(percept)
-        ball = percept.ball
-        if ball is not None and abs(ball.angle_rad) > FACING_TOLERANCE_RAD:
-            return (Turn(wrap_angle(ball.angle_rad)),)
-        return ()

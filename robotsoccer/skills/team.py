@@ -417,6 +417,12 @@ class TeamMind:
 
     def _on_ball(self, percept: Percept, pose: Pose | None) -> tuple[Action, ...]:
         setup = self.setup
+        if getattr(self.ball_policy, "every_ball", False):
+            # Layer 3 owns every ball-holder decision (TPOT-RL's rule, skills/layer3.py),
+            # shooting and dribbling included; without a pose it falls back to the rule below.
+            layer3 = self._layer3(percept, pose)
+            if layer3 is not None:
+                return layer3
         goal = self._goal_direction(percept, pose)
         if goal is not None and goal[0] <= setup.shoot_range_m:
             self.intent = "shoot"
@@ -451,7 +457,11 @@ class TeamMind:
             self._layer3_kick = self.ball_policy.decide(self.number, percept, pose, self._ball_xy)
             if self._layer3_kick is None:
                 return None
-            self.passes += 1
+            intent = self._layer3_kick[0]
+            if intent.startswith("tpot shoot"):
+                self.shots += 1
+            elif not intent.startswith("tpot keep"):
+                self.passes += 1
             self._spell_kicked = "layer3"
         assert self._layer3_kick is not None
         self.intent, actions = self._layer3_kick

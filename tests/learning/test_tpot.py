@@ -136,3 +136,18 @@ def test_a_corrupt_or_foreign_table_is_refused(tmp_path: Path) -> None:
         load_table(wrong)
     with pytest.raises(ValueError, match="finite"):
         TpotTable(np.full((1, 3, 8), np.nan), np.zeros((1, 3, 8), dtype=np.int64))
+
+
+def test_a_table_may_hold_another_number_of_actions_and_its_file_says_so(tmp_path: Path) -> None:
+    table = TpotTable.empty(1, {"seed": 3}, actions=3)
+    assert table.actions == 3 and table.q.shape == (1, 3, 3)
+    assert choose(table, 1, [MISS, SUCCESS, MISS], np.random.default_rng(0)) == 1
+    with pytest.raises(ValueError, match="one feature per action"):
+        choose(table, 1, [SUCCESS] * N_ACTIONS, np.random.default_rng(0))
+    update(table, Experience(1, SUCCESS, 2, 0.5))
+    with pytest.raises(ValueError, match=r"outside 0\.\.2"):
+        update(table, Experience(1, SUCCESS, 3, 0.5))
+    path = save_table(table, tmp_path / "t.npz")
+    assert load_table(path).actions == 3
+    with pytest.raises(ValueError, match="actions must be >= 1"):
+        TpotTable.empty(1, actions=0)

@@ -131,3 +131,40 @@ def test_learn_lead_writes_its_report_and_config(tmp_path, monkeypatch, capsys) 
     assert "robot_physics" not in report
     assert json.loads((out / "config.json").read_text())["fields"] == ["soccer_server"]
     assert "report:" in capsys.readouterr().out
+
+
+def test_match_plays_layer3_with_its_table_and_refuses_a_missing_or_corrupt_one(
+    tmp_path, capsys
+) -> None:
+    from learning.tpot import TpotTable, save_table
+    from tests.robotsoccer.drills.test_passing import _tree_file
+    from tests.robotsoccer.skills.test_intercept import net_file
+
+    net = net_file(tmp_path / "net.npz", preset="soccer_server_1996")
+    tree = _tree_file(tmp_path, "soccer_server")
+    args = ["match", "--field", "soccer_server", "--left", "layer3", "--half-time", "2"]
+    args += ["--net", str(net), "--tree", str(tree), "--quiet"]
+    assert main([*args, "--out", str(tmp_path / "none")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--tpot FILE" in err[0]
+    corrupt = tmp_path / "corrupt.npz"
+    corrupt.write_bytes(b"PK\x03\x04 not a table")
+    assert main([*args, "--tpot", str(corrupt), "--out", str(tmp_path / "bad")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "not a TPOT-RL table" in err[0]
+    hfo = save_table(TpotTable.empty(1, actions=3), tmp_path / "hfo.npz")
+    assert main([*args, "--tpot", str(hfo), "--out", str(tmp_path / "hfo")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "8 ball destinations" in err[0]
+    plain = ["match", "--left", "layered", "--tpot", str(hfo), "--net", str(net)]
+    assert main([*plain, "--tree", str(tree), "--out", str(tmp_path / "p")]) == 2
+    assert "name layer3" in capsys.readouterr().err
+    table = save_table(
+        TpotTable.empty(11, {"plan": {"every": True, "success": 0.95}}), tmp_path / "t.npz"
+    )
+    out = tmp_path / "m"
+    assert main([*args, "--tpot", str(table), "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "layer3" in text and "goals_l" in text
+    options = dict(json.loads((out / "results.json").read_text())["spec"]["drill_options"])
+    assert options["tpot_every"] is True and options["tpot_success"] == 0.95  # the table's plan

@@ -12,13 +12,14 @@ from pathlib import Path
 
 import pytest
 
-import robotsoccer.experiments.layer1 as layer1
+import robotsoccer.experiments.layer1_plan as layer1_plan
 import robotsoccer.experiments.layer2 as layer2
 import robotsoccer.experiments.lead_study as lead_study
+import robotsoccer.experiments.team_study as team_study
 import robotsoccer.experiments.transfer_study as transfer_study
 from robotsoccer.cli import main
 
-TINY_LAYER1 = layer1.Layer1Plan(
+TINY_LAYER1 = layer1_plan.Layer1Plan(
     name="tiny",
     eval_trials=12,
     collect_saves=20,
@@ -35,15 +36,17 @@ TINY_LAYER2 = layer2.Layer2Plan("tiny", collect_trials=60, eval_trials=12)
 TINY_LEAD = lead_study.LeadPlan(
     "tiny", eval_trials=10, collect_saves=8, collect_batch=40, epochs=10
 )
+TINY_TEAM = team_study.TeamPlan("tiny", 2, 2, 5.0, 0.3, 0.05, 2, 5.0, 2, True, 0.95)
 
 
 @pytest.fixture
 def tiny_plans(monkeypatch: pytest.MonkeyPatch) -> None:
-    for module in (layer1, transfer_study):
+    for module in (layer1_plan, transfer_study):
         monkeypatch.setattr(module, "plan_for", lambda quick: TINY_LAYER1)
     for module in (layer2, transfer_study):
         monkeypatch.setattr(module, "layer2_plan", lambda quick: TINY_LAYER2)
     monkeypatch.setattr(lead_study, "plan_for", lambda quick: TINY_LEAD)
+    monkeypatch.setattr(team_study, "plan_for", lambda quick, every=False: TINY_TEAM)
 
 
 def test_reproduce_quick_reaches_its_report_with_the_transfer_study(
@@ -53,7 +56,8 @@ def test_reproduce_quick_reaches_its_report_with_the_transfer_study(
     args = ["reproduce", "--quick", "--out", str(out), "--workers", "1"]
     assert main([*args, "--no-ablations", "--no-gap-closing"]) == 0
     report = (out / "report.md").read_text()
-    for part in ("soccer_server", "robot_physics", "Table 2", "lead decision", "Transfer"):
+    parts = ("soccer_server", "robot_physics", "Table 2", "lead decision", "Transfer", "Layer 3")
+    for part in parts:
         assert part in report, part
     assert (out / "plots" / "figure7.png").stat().st_size > 1000
 

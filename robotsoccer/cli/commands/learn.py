@@ -6,20 +6,20 @@ import argparse
 import json
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
 from robotsoccer.cli.commands.transfer import transfer_section
-from robotsoccer.cli.options import EXIT_INTERRUPTED, LEAD_DRILLS, PAPER_MODELS
+from robotsoccer.cli.options import EXIT_INTERRUPTED, LEAD_DRILLS, PAPER_MODELS, TEAM_FIELD
 from robotsoccer.cli.running import check_spec, clock_log, fail
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
-    pass
+    from robotsoccer.experiments.report_records import ModelSection
 
 
 def cmd_learn(args: argparse.Namespace) -> int:
@@ -39,7 +39,8 @@ def cmd_learn(args: argparse.Namespace) -> int:
 
 def cmd_learn_pass(args: argparse.Namespace) -> int:
     """``learn pass``: layer 2 on one field model (collect → train → evaluate → report)."""
-    from robotsoccer.experiments.layer1 import plan_for, seeds_for, train_main_net
+    from robotsoccer.experiments.layer1 import train_main_net
+    from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
     from robotsoccer.experiments.plots_layer2 import layer2_plots
 
@@ -94,14 +95,15 @@ def cmd_learn_team(args: argparse.Namespace) -> int:
 
     preset = args.field_preset or default_preset(args.field)
     net, tree = find_layers(args)
-    plan = plan_for(args.quick)
+    plan = plan_for(args.quick, args.every)
     base = match_base(args.field, args.field_preset, args.seed, net, tree)
     check_spec(base.with_options(left="layered", right="baseline"))
     if args.table is not None:
         from learning.tpot import load_table
 
         load_table(args.table)  # a corrupt or foreign table fails here, in one line
-    tag = f"learn-team-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
+    tag = f"learn-team-{args.field}-{Path(preset).stem}" + ("-every" if args.every else "")
+    tag += "-quick" if args.quick else ""
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     workers = args.workers or default_workers()
@@ -143,13 +145,40 @@ def _lead_section(
     args: argparse.Namespace, out: Path, workers: int, log: Callable[[str], None]
 ) -> str:
     """The lead study (:mod:`robotsoccer.experiments.lead_study`) on the chosen fields."""
-    from robotsoccer.experiments.layer1 import seeds_for
+    from robotsoccer.experiments.layer1_plan import seeds_for
     from robotsoccer.experiments.lead_study import StudyDrill, plan_for, run_study
 
     field = getattr(args, "field", None)
     fields = [field] if field else list(LEAD_DRILLS)
     drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in fields]
     text, _ = run_study(drills, plan_for(args.quick), out, seeds_for(args.seed), workers, log)
+    return text
+
+
+def _team_section(
+    args: argparse.Namespace,
+    out: Path,
+    sections: Sequence[ModelSection],
+    workers: int,
+    log: Callable[[str], None],
+) -> str:
+    """Layer 3 on the Soccer Server's new layers: a quick ``learn team --every`` (its report).
+
+    The quick plan (8 training games, 4-game series) shows every step runs on this run's net
+    and tree; the measured study is ``robotsoccer learn team --every``.
+    """
+    from robotsoccer.experiments import team_study
+
+    field = TEAM_FIELD
+    found = [s for s in sections if s.field_model == field]
+    if not found:
+        return ""
+    models = out / "models" / field
+    net, tree = models / f"net_{found[0].net_examples}.npz", models / "pass_tree.json"
+    base = team_study.match_base(field, found[0].preset, args.seed, net, tree)
+    plan = team_study.plan_for(True, True)
+    report = team_study.run_team_study(base, plan, out / "team", workers=workers, log=log)
+    text = report.read_text().replace("## Layer 3", "## Layer 3 (quick: a smoke-size run)", 1)
     return text
 
 
@@ -204,7 +233,8 @@ def _run_layer1(
     *,
     with_layer2: bool = False,
 ) -> int:
-    from robotsoccer.experiments.layer1 import plan_for, run_layer1, seeds_for
+    from robotsoccer.experiments.layer1 import run_layer1
+    from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
     from robotsoccer.experiments.plots_layer2 import layer2_plots
 
@@ -248,6 +278,10 @@ def _run_layer1(
                 f.write("\n" + layer2_markdown(layer2, plan2, plots))
         if with_layer2 and not args.no_lead:
             section = _lead_section(args, out / "lead", workers, log)
+            with report.open("a") as f:
+                f.write("\n" + section)
+        if with_layer2 and not args.no_team:
+            section = _team_section(args, out, sections, workers, log)
             with report.open("a") as f:
                 f.write("\n" + section)
         if with_layer2 and not args.no_transfer:

@@ -52,18 +52,58 @@ def _net_size(stem: str) -> int:
     return int(tail) if tail.isdigit() else -1
 
 
+def layer3_options(table: Path | None) -> dict[str, Any]:
+    """The match drill's options for a layer3 team playing `table`.
+
+    The table's provenance says how it learned (every spell on the ball or only where blocked,
+    and its SUCCESS cut); it plays the same way.
+
+    Raises:
+        UsageError: No table given.
+        ValueError: Not a readable TPOT-RL table (:func:`learning.tpot.load_table`'s one line).
+    """
+    from learning.tpot import N_ACTIONS, load_table
+    from robotsoccer.drills.match import PASS_THRESHOLD
+
+    if table is None:
+        raise UsageError(
+            "a layer3 team needs its table: --tpot FILE (from `robotsoccer learn team`)"
+        )
+    learned = load_table(table)
+    if learned.actions != N_ACTIONS:
+        raise ValueError(
+            f"{table}: a table of {learned.actions} actions, not the match's {N_ACTIONS} ball "
+            "destinations (a half-field offense table?)"
+        )
+    plan = learned.provenance.get("plan", {})
+    plan = plan if isinstance(plan, dict) else {}
+    return {
+        "tpot": str(table),
+        "tpot_every": bool(plan.get("every", False)),
+        "tpot_success": float(plan.get("success", PASS_THRESHOLD)),
+    }
+
+
 def cmd_match(args: argparse.Namespace) -> int:
     """One match, or a series of layered against baseline with its report."""
     from robotsoccer.experiments.match import run_series, write_report
 
     preset = args.field_preset or default_preset(args.field)
-    layered = args.games > 1 or "layered" in (args.left, args.right)
+    kinds = (args.left, args.right)
+    layer3 = "layer3" in kinds
+    layered = args.games > 1 or "layered" in kinds or layer3
     options: dict[str, Any] = {"players": args.players}
     if args.half_time is not None:
         options["half_time_s"] = args.half_time
     if layered:
         net, tree = find_layers(args)
         options |= {"net": str(net), "tree": str(tree)}
+    if layer3:
+        options |= layer3_options(args.tpot)
+    elif args.tpot is not None:
+        raise UsageError("--tpot is layer 3's table: name layer3 in --left or --right")
+    # A series is layered against baseline, or with layer 3 the two kinds named.
+    teams = kinds if layer3 else ("layered", "baseline")
     kind = "series" if args.games > 1 else "match"
     out = args.out or Path("runs") / f"{kind}-{args.field}-{Path(preset).stem}-seed{args.seed}"
     record_dir = out / "recordings" if args.record else None
@@ -86,12 +126,13 @@ def cmd_match(args: argparse.Namespace) -> int:
         try:
             games = run_series(
                 base, args.games, out, workers=args.workers or default_workers(),
-                resume=args.resume, progress=not args.quiet,
+                resume=args.resume, progress=not args.quiet, teams=teams,
             )  # fmt: skip
         except KeyboardInterrupt:
             return fail(EXIT_INTERRUPTED, f"interrupted; finished games are kept in {out}")
-        title = f"Layered vs baseline on {args.field} ({Path(preset).stem}), seed {args.seed}"
-        write_report(games, out, title, print)
+        title = (f"{teams[0].capitalize()} vs {teams[1]} on {args.field} "
+                 f"({Path(preset).stem}), seed {args.seed}")  # fmt: skip
+        write_report(games, out, title, print, names=teams)
         print(f"\n{len(games)} games in {time.perf_counter() - start:.1f} s; report: {out}")
     else:
         spec = base.with_options(left=args.left, right=args.right)

@@ -22,7 +22,7 @@ from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
-    from robotsoccer.experiments.gap_closing import ParameterRange
+    from robotsoccer.experiments.gap_variants import ParameterRange
 
 
 def cmd_transfer(args: argparse.Namespace) -> int:
@@ -58,7 +58,7 @@ def server_ranges_covering_robots() -> tuple[ParameterRange, ...]:
     latency, the time a robot takes to turn (the server turns within one cycle) and blocking
     without a kick.
     """
-    from robotsoccer.experiments.gap_closing import ParameterRange
+    from robotsoccer.experiments.gap_variants import ParameterRange
 
     return (
         ParameterRange(
@@ -95,8 +95,8 @@ def transfer_section(
     created_by: str = "robotsoccer transfer",
 ) -> str:
     """Run the transfer study into `out` (the options say which parts) and return its text."""
-    from robotsoccer.experiments.gap_closing import Randomisation
-    from robotsoccer.experiments.layer1 import seeds_for
+    from robotsoccer.experiments.gap_variants import Randomisation
+    from robotsoccer.experiments.layer1_plan import seeds_for
     from robotsoccer.experiments.lead_study import StudyDrill
     from robotsoccer.experiments.transfer_study import StudyParts, run_transfer_study
 

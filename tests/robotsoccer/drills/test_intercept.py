@@ -13,13 +13,8 @@ from field_models.protocol import Action, BodyState, Percept, PlayerRef
 from field_models.registry import field_facts, make_arena
 from field_models.seeding import TrialRngs
 from robotsoccer.drills import DRILLS, make_drill
-from robotsoccer.drills.intercept import (
-    DEFENDER,
-    SHOOTER,
-    InterceptDrill,
-    decision_ticks,
-    launch_plan,
-)
+from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.drills.intercept_plan import DEFENDER, SHOOTER, decision_ticks, launch_plan
 from robotsoccer.runs.runner import TrialSpec, play, run_trial
 from robotsoccer.skills.intercept import AimedShooterMind
 

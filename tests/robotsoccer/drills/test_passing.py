@@ -16,14 +16,13 @@ from robotsoccer.drills import make_drill
 from robotsoccer.drills.passing import DEFENDERS, ELSEWHERE, PASSER, RECEIVERS, PassDrill
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.runner import TrialSpec, build_trial, play, run_trial
-from robotsoccer.skills.passing import (
-    PassPhysics,
-    analytic_margin,
+from robotsoccer.skills.pass_messages import (
     announce_text,
     announced_number,
     parse_report,
     report_text,
 )
+from robotsoccer.skills.passing import PassPhysics, analytic_margin
 
 HEAD = 4
 FIELDS = ["soccer_server", "robot_physics"]

@@ -18,8 +18,8 @@ from field_models.protocol import (
 )
 from field_models.registry import field_facts
 from robotsoccer.drills import make_drill
-from robotsoccer.drills.setplay import (
-    STAGES,
+from robotsoccer.drills.setplay import STAGES
+from robotsoccer.drills.setplay_kicks import (
     CoachKicks,
     ball_sense,
     coach_kicks,
@@ -29,11 +29,10 @@ from robotsoccer.drills.setplay import (
 )
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.runner import TrialSpec, run_trial
+from robotsoccer.skills.ball_sense import BallSense, Heading
+from robotsoccer.skills.ball_tracker import BallTracker, blocking_side
 from robotsoccer.skills.setplay import (
     WINGER_CUE,
-    BallSense,
-    BallTracker,
-    Heading,
     arrives,
     chase,
     dribble,
@@ -255,7 +254,7 @@ def test_a_first_time_kick_is_bent_round_the_body_not_tapped() -> None:
     tracker.note([kick], 20)
     vx, vy = tracker.velocity(percept((0.081, 0.3), tick=20))
     out = math.atan2(vy, vx)
-    assert tracker._blocking_side(0.081, 0.3, out) is None  # it clears the body
+    assert blocking_side(CAMERA, 0.081, 0.3, out) is None  # it clears the body
     assert 0.0 < abs(math.remainder(out - math.pi, 2 * math.pi)) <= math.radians(45.0) + 1e-6
 
 

@@ -10,7 +10,7 @@ import pytest
 
 from field_models.arena import BallLaw
 from field_models.registry import field_facts, paper_field_facts
-from robotsoccer.drills.intercept import launch_plan, reference_flight
+from robotsoccer.drills.intercept_plan import launch_plan, reference_flight
 from robotsoccer.drills.task_scaling import (
     REACH_UNITS,
     lateral_wander,

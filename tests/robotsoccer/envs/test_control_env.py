@@ -11,8 +11,9 @@ from gymnasium.utils.env_checker import check_env
 
 from field_models.presets import PresetError
 from robotsoccer.envs import GO_TO_BALL_ID, SCORE_ID
-from robotsoccer.envs.control import GoToBallEnv, ScoreEnv
 from robotsoccer.envs.control_spaces import DiscreteAction, observation_names
+from robotsoccer.envs.go_to_ball import GoToBallEnv
+from robotsoccer.envs.score import ScoreEnv
 
 FIELDS = ("robot_physics", "soccer_server")
 IDS = (GO_TO_BALL_ID, SCORE_ID)

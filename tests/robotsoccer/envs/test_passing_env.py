@@ -11,7 +11,7 @@ from pettingzoo.test import parallel_api_test
 
 from learning.pass_features import ATTRIBUTE_NAMES
 from robotsoccer.envs import PassParallelEnv, pass_parallel_env
-from robotsoccer.envs.passing import RECEIVER_SLOTS
+from robotsoccer.envs.pass_episode import RECEIVER_SLOTS
 from robotsoccer.runs.runner import TrialSpec, run_trial
 
 FIELDS = ["soccer_server", "robot_physics"]

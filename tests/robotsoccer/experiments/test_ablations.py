@@ -12,7 +12,7 @@ from robotsoccer.experiments.ablations import (
     median_travel,
     run_ablations,
 )
-from robotsoccer.experiments.layer1 import seeds_for
+from robotsoccer.experiments.layer1_plan import seeds_for
 
 
 def test_every_robot_row_but_the_former_rule_runs_the_task_scaling() -> None:

@@ -9,18 +9,16 @@ import numpy as np
 import pytest
 
 from field_models.registry import field_facts
-from robotsoccer.experiments.calibration import (
+from robotsoccer.experiments.calibration import gap_share
+from robotsoccer.experiments.calibration_fit import (
     CYCLES_PER_SEE,
-    Traces,
     calibrate,
     fit_dash,
     fit_geometric_decay,
     fit_quantize_step,
-    gap_share,
-    preset_text,
-    record_traces,
-    write_preset,
 )
+from robotsoccer.experiments.calibration_preset import preset_text, write_preset
+from robotsoccer.experiments.calibration_traces import Traces, record_traces
 from robotsoccer.runs.runner import TrialResult
 
 KNOWN = {"ball_decay": 0.93, "player_decay": 0.55, "dash_power_rate": 0.007}

@@ -15,18 +15,20 @@ from learning.interception import InterceptionModel
 from robotsoccer.cli import server_ranges_covering_robots
 from robotsoccer.experiments.gap_closing import (
     GapPlan,
+    domain_randomised_net,
+    fine_tuning_curve,
+    gap_plan,
+)
+from robotsoccer.experiments.gap_report import gap_markdown, plot_curve
+from robotsoccer.experiments.gap_variants import (
     ParameterRange,
     Randomisation,
-    domain_randomised_net,
     draw_variants,
-    fine_tuning_curve,
-    gap_markdown,
-    gap_plan,
-    plot_curve,
     variant_text,
     write_variants,
 )
-from robotsoccer.experiments.layer1 import base_spec, collect, plan_for, seeds_for
+from robotsoccer.experiments.layer1_collect import collect
+from robotsoccer.experiments.layer1_plan import base_spec, plan_for, seeds_for
 from robotsoccer.experiments.transfer import run_transfer
 from robotsoccer.experiments.transfer_study import references
 from tests.robotsoccer.experiments.test_transfer import MODELS, nets

@@ -12,34 +12,32 @@ import pytest
 from learning.datasets import InterceptionDataset
 from learning.lookup import LookupTable
 from robotsoccer.experiments import paper
-from robotsoccer.experiments.layer1 import (
+from robotsoccer.experiments.layer1 import run_layer1
+from robotsoccer.experiments.layer1_evaluate import experiments, unique_conditions
+from robotsoccer.experiments.layer1_plan import (
     Layer1Plan,
     PipelineError,
-    Trained,
     base_spec,
-    experiments,
     full_plan,
     quick_plan,
-    run_layer1,
     seeds_for,
-    training_sizes,
-    unique_conditions,
 )
+from robotsoccer.experiments.layer1_train import Trained, training_sizes
 from robotsoccer.experiments.paper import PaperRow
-from robotsoccer.experiments.report import (
+from robotsoccer.experiments.report import report_markdown
+from robotsoccer.experiments.report_cells import (
+    paper_table,
+    percent_cell,
+    versus_cell,
+    versus_paper,
+)
+from robotsoccer.experiments.report_differences import claims, differences, net_lead_line
+from robotsoccer.experiments.report_records import (
     OWN_SETTING,
     PAPER_SETTING,
     Counts,
     ModelSection,
     Row,
-    claims,
-    differences,
-    net_lead_line,
-    paper_table,
-    percent_cell,
-    report_markdown,
-    versus_cell,
-    versus_paper,
 )
 
 # ----------------------------------------------------------------------------- report writer
@@ -425,7 +423,8 @@ def test_rows_on_another_field_state_its_own_setting() -> None:
 
 def test_why_lines_come_from_this_runs_trials_and_facts() -> None:
     from field_models.registry import field_facts
-    from robotsoccer.experiments.report import paired_difference, why_lines
+    from robotsoccer.experiments.report_cells import paired_difference
+    from robotsoccer.experiments.report_differences import why_lines
     from robotsoccer.runs.runner import TrialResult
 
     def trial(i: int, label: str, travel: float) -> TrialResult:

@@ -14,7 +14,7 @@ from learning.datasets import Provenance
 from learning.pass_dataset import PassDataset
 from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
 from learning.pass_tree_file import load_pass_tree
-from robotsoccer.experiments.layer1 import seeds_for
+from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.layer2 import (
     Layer2Plan,
     Layer2Section,
@@ -23,7 +23,7 @@ from robotsoccer.experiments.layer2 import (
     run_layer2_model,
     table2_lines,
 )
-from robotsoccer.experiments.report import OWN_SETTING, PAPER_SETTING
+from robotsoccer.experiments.report_records import OWN_SETTING, PAPER_SETTING
 from robotsoccer.runs.runner import TrialResult
 
 PLAN = Layer2Plan("test", collect_trials=60, eval_trials=16, tree_depth_shown=2)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from learning.datasets import InterceptionDataset
 from learning.interception_file import read_net_file
-from robotsoccer.experiments.layer1 import seeds_for
+from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill, run_study
 
 TINY = LeadPlan("tiny", eval_trials=20, collect_saves=15, collect_batch=60, epochs=20)

@@ -5,7 +5,7 @@ from __future__ import annotations
 from math import isnan, nan
 
 from robotsoccer.experiments.plots import error_bars, measured_runs, plot_figure7, plot_figure8
-from robotsoccer.experiments.report import Counts, ModelSection
+from robotsoccer.experiments.report_records import Counts, ModelSection
 
 
 def section(model: str) -> ModelSection:

@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from robotsoccer.drills.setplay import SetPlayDrill
-from robotsoccer.experiments.layer1 import PipelineError
+from robotsoccer.experiments.layer1_plan import PipelineError
 from robotsoccer.experiments.setplay import (
     RECORDED_PLAYS,
     model_files,

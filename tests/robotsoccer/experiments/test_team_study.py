@@ -71,3 +71,19 @@ def test_the_study_writes_curves_table_and_both_series(tmp_path: Path) -> None:
     assert "Layer 3 against the layered team (2 games" in text
     assert "Layer 3 against the baseline team (2 games" in text
     assert (tmp_path / "study" / "series-vs-layered" / "layered_left" / "results.csv").exists()
+
+
+def test_every_ball_training_is_the_same_whatever_the_worker_count_and_says_its_rule(
+    tmp_path: Path,
+) -> None:
+    net, tree = files(tmp_path)
+    base = match_base("soccer_server", None, 5, net, tree)
+    plan = TeamPlan("tiny-every", 4, 2, 8.0, 0.5, 0.1, 2, 5.0, 2, True, 0.95)
+    one = train(base, plan, tmp_path / "one", workers=1, log=lambda _: None)
+    two = train(base, plan, tmp_path / "two", workers=2, log=lambda _: None)
+    assert one.table.n.sum() > 0, "the tiny plan must learn something to compare"
+    assert np.array_equal(one.table.q, two.table.q) and np.array_equal(one.table.n, two.table.n)
+    saved = load_table(one.path).provenance["plan"]
+    assert saved["every"] is True and saved["success"] == 0.95
+    with pytest.raises(ValueError, match="success"):
+        TeamPlan("bad", 4, 2, 8.0, 0.5, 0.1, 2, 5.0, 2, True, 1.5)

@@ -10,7 +10,7 @@ import numpy as np
 from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
 from learning.pass_tree_file import save_pass_tree
 from learning.pass_tree_grow import fit_pass_tree
-from robotsoccer.experiments.layer1 import plan_for, seeds_for
+from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
 from robotsoccer.experiments.layer2 import Layer2Plan
 from robotsoccer.experiments.transfer import (
     plot_transfer,

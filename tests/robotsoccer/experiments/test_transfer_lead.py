@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from robotsoccer.drills.intercept import InterceptDrill
-from robotsoccer.experiments.layer1 import seeds_for
+from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill
 from robotsoccer.experiments.transfer import (
     FLIGHT_SCALED,

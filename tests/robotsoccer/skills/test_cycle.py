@@ -17,12 +17,13 @@ from field_models.protocol import (
     Turn,
 )
 from field_models.registry import field_facts
-from robotsoccer.drills.intercept import DEFENDER, InterceptDrill
+from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.intercept_batch import batch_reason
+from robotsoccer.drills.intercept_plan import DEFENDER
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial, run_trial
 from robotsoccer.skills.cycle import CycleDefenderMind, TurnReversals, fit_ball
-from robotsoccer.skills.intercept import straight_policy
 from robotsoccer.skills.localise import Localiser
+from robotsoccer.skills.turn_policies import straight_policy
 
 ME = PlayerRef(RIGHT, 1)
 DEG = math.pi / 180.0

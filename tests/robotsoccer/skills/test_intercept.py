@@ -27,16 +27,18 @@ from learning.features import FeatureSchema, ModelFileError
 from learning.interception_file import MODEL_FORMAT, MODEL_FORMAT_VERSION, PARAM_NAMES
 from learning.lookup import LookupTable
 from robotsoccer.skills.intercept import (
-    RANDOM_TA_HALF_RANGE_RAD,
     AimedShooterMind,
-    AnalyticPolicy,
     DefenderMind,
-    LookupPolicy,
-    NetPolicy,
-    RandomPolicy,
     load_lookup_table,
     load_net_function,
     make_policy,
+)
+from robotsoccer.skills.turn_policies import (
+    RANDOM_TA_HALF_RANGE_RAD,
+    AnalyticPolicy,
+    LookupPolicy,
+    NetPolicy,
+    RandomPolicy,
     straight_policy,
 )
 

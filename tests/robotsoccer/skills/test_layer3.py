@@ -147,3 +147,91 @@ def test_the_mind_asks_its_ball_policy_only_where_it_would_pass_and_once_a_spell
         (kick,) = mind.act(team_percept(-20.0, 0.0, 0.0, ball=ball, players=(foe,), tick=tick))
         assert kick == Kick(42.0, 0.25) and mind.intent == "tpot test"
     assert blocked.asked == 1 and mind.passes == 1
+
+
+def every_policy(confidence: float, threshold: float = 0.5) -> TpotBallPolicy:
+    """A policy with TPOT-RL's own rule: shoot and keep among the destinations."""
+    return TpotBallPolicy(
+        TpotTable.empty(11),
+        attack_right=True,
+        half_length_m=HALF_L,
+        half_width_m=HALF_W,
+        unit_m=1.0,
+        pass_range_m=30.0,
+        pass_power=80.0,
+        dt_s=0.1,
+        evaluator=Fixed(confidence),
+        threshold=threshold,
+        rng=np.random.default_rng(0),
+        every_ball=True,
+        shoot_range_m=25.0,
+        blocked_m=8.0,
+        shot_power=100.0,
+        dribble_power=20.0,
+    )
+
+
+def test_with_every_ball_the_goal_is_a_shot_judged_by_range_and_path() -> None:
+    p = every_policy(0.9)
+    near_goal = Pose(35.0, 0.0, 0.0)  # 17.5 m from the goal, facing it
+    assert p.options(percept(), near_goal).features[0] == SUCCESS
+    foe = SeenPlayer(5.0, math.radians(10.0), RIGHT, 1)  # in the path, within 8 m
+    assert p.options(percept(foe), near_goal).features[0] == FAILURE
+    assert p.options(percept(), Pose(0.0, 0.0, 0.0)).features[0] == MISS  # 52.5 m: out of range
+    intent, kick = p.kick(0, p.options(percept(), near_goal))
+    assert intent == "tpot shoot" and kick == Kick(100.0, 0.0)
+
+
+def test_with_every_ball_a_destination_without_a_teammate_is_kept_and_the_cut_splits() -> None:
+    mate = SeenPlayer(10.0, math.radians(5.0), LEFT, 9)
+    options = every_policy(0.93, threshold=0.95).options(percept(mate), Pose(0.0, 0.0, 0.0))
+    assert options.features[5] == FAILURE  # 0.93 below the study's cut: FAILURE occurs
+    assert (
+        every_policy(0.97, threshold=0.95).options(percept(mate), Pose(0.0, 0.0, 0.0)).features[5]
+        == SUCCESS
+    )
+    p = every_policy(0.97, threshold=0.95)
+    intent, kick = p.kick(6, options)  # midfield left: nobody there, a dribble toward it
+    x, y = destination_xy(6, True, HALF_L, HALF_W)
+    assert intent == "tpot keep midfield left"
+    assert kick == Kick(20.0, pytest.approx(math.atan2(y, x)))
+    intent, kick = p.kick(5, options)  # the teammate's destination: the pass
+    assert intent == "tpot centre ahead" and kick.power == 80.0
+
+
+def test_a_policy_refuses_a_table_of_other_actions() -> None:
+    with pytest.raises(ValueError, match="3 actions"):
+        TpotBallPolicy(
+            TpotTable.empty(11, actions=3),
+            attack_right=True,
+            half_length_m=HALF_L,
+            half_width_m=HALF_W,
+            unit_m=1.0,
+            pass_range_m=30.0,
+            pass_power=80.0,
+            dt_s=0.1,
+            evaluator=Fixed(0.9),
+            threshold=0.5,
+            rng=np.random.default_rng(0),
+        )
+
+
+class EveryBall(Recording):
+    """A recording policy with TPOT-RL's own rule."""
+
+    every_ball = True
+
+
+def test_with_every_ball_the_mind_asks_on_every_spell_even_free_or_in_range() -> None:
+    from robotsoccer.skills.team import TeamMind
+    from tests.robotsoccer.skills.test_team import percept as team_percept
+    from tests.robotsoccer.skills.test_team import setup
+
+    ball = SeenBall(0.5, 0.0)
+    policy = EveryBall()
+    mind = TeamMind(7, setup(), ball_policy=policy)
+    mind.act(team_percept(-20.0, 0.0, 0.0, ball=ball))  # free: the layered rule would dribble
+    assert policy.asked == 1 and mind.intent == "tpot test"
+    mind = TeamMind(7, setup(), ball_policy=policy)
+    mind.act(team_percept(40.0, 0.0, 0.0, ball=ball))  # in range: the layered rule would shoot
+    assert policy.asked == 2 and mind.intent == "tpot test" and mind.shots == 0
