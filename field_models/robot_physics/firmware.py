@@ -26,6 +26,12 @@ Behaviour:
 :meth:`Firmware.due` says when :meth:`Firmware.update` could change its output, so the arena can
 skip quiet ticks: a new command, or an expiring duration or timeout.
 
+**Counters** (read by instrumentation, they change nothing; issue 28 item 5, "does a new camera
+frame ever replace a command that was not yet carried out?"): :attr:`Firmware.cut_short` counts
+drive commands with a duration that a newer drive command replaced before the duration ended,
+:attr:`Firmware.cut_turns` those of them that were TURN or ARC (a turn not turned in full), and
+:attr:`Firmware.stale` the commands dropped as not newer than the newest accepted one.
+
 Positioning requests are not modelled: no client mind asks for one (every skill steers with
 turns and dashes, as on the Soccer Server).
 """
@@ -77,6 +83,12 @@ class Firmware:
         self._left = 0.0  # wheel targets of the running command
         self._right = 0.0
         self._kick: float | None = None
+        self.cut_short = 0
+        """Drive commands with a duration replaced by a newer one before the duration ended."""
+        self.cut_turns = 0
+        """Of :attr:`cut_short`, the TURN and ARC commands (turns not carried out in full)."""
+        self.stale = 0
+        """Commands dropped because their `seq` was not newer than the newest accepted one."""
 
     # ------------------------------------------------------------------------ commands in
 
@@ -86,13 +98,26 @@ class Firmware:
         if robot is not None and robot is not self.ref and robot != self.ref:
             return False
         if self._newest_seq is not None and command.seq <= self._newest_seq:
+            self.stale += 1
             return False
         self._newest_seq = command.seq
+        timed_out = tick >= self._last_rx_tick + self.timeout_ticks
         self._last_rx_tick = tick
         self._fresh = True
         if command.primitive is Primitive.KICK:
             self._kick = min(max(command.value, 0.0), 100.0)
         else:
+            running = self._command
+            if (
+                running is not None
+                and not timed_out
+                and self._end_tick != _NEVER
+                and tick < self._end_tick
+            ):
+                # Replaced while its duration still ran (not stopped by the watchdog).
+                self.cut_short += 1
+                if running.primitive is Primitive.TURN or running.primitive is Primitive.ARC:
+                    self.cut_turns += 1
             self._start(command, tick)
         self._wake_tick = min(self._end_tick, tick + self.timeout_ticks)
         return True

@@ -160,6 +160,11 @@ class CentralHost:
         self._min_ticks = link.packet_period_ticks
         self._pending: list[list[Action]] = [[] for _ in refs]
         self._release_at = [NEVER] * len(refs)
+        self.dropped = 0
+        """Body actions still pending (not sent) when a new decision replaced them (issue 28
+        item 5: the robots' "lost dash"); counted only, nothing depends on it."""
+        self.dropped_dashes = 0
+        """Of :attr:`dropped`, the Dash actions."""
         self.next_release_tick = NEVER
         """Earliest tick at which a pending body action is due (:data:`NEVER` if none)."""
         half_length = 0.5 * preset.field.length_m
@@ -280,6 +285,10 @@ class CentralHost:
             else:
                 body.append(action)
         i = self._row_of(ref)
+        old = self._pending[i]
+        if old:
+            self.dropped += len(old)
+            self.dropped_dashes += sum(isinstance(a, Dash) for a in old)
         body.reverse()  # popped from the end, in order
         self._pending[i] = body
         if self._arcs and len(body) >= 2:

@@ -139,3 +139,24 @@ def test_wheels_set_each_wheel_capped_at_the_top_speed() -> None:
     vmax = ROBOT.max_wheel_speed_mps
     fw.receive(Command(2, ME, Primitive.WHEELS, 5.0, None, rate=-5.0), 20)
     assert fw.update(20) == (vmax, -vmax)
+
+
+def test_counters_of_commands_cut_short_and_stale() -> None:
+    """Issue 28's counters: a drive command with a duration replaced before it ended."""
+    fw = make_firmware()
+    fw.receive(Command(1, ME, Primitive.TURN, 2.0, 20), 0)
+    fw.update(0)
+    fw.receive(forward(2, duration=16), 10)  # the turn had 10 of 20 ticks left
+    assert (fw.cut_short, fw.cut_turns) == (1, 1)
+    fw.receive(forward(3), 40)  # the forward's 16 ticks ended at 26: carried out in full
+    assert (fw.cut_short, fw.cut_turns) == (1, 1)
+    fw.receive(forward(4, duration=5), 41)  # the forward without a duration: never cut short
+    assert (fw.cut_short, fw.cut_turns) == (1, 1)
+    fw.receive(Command(5, ME, Primitive.KICK, 50.0), 42)  # a kick keeps the motion: no cut
+    fw.receive(forward(6), 43)  # the forward of 5 ticks still ran: cut short, not a turn
+    assert (fw.cut_short, fw.cut_turns) == (2, 1)
+    assert not fw.receive(forward(6), 44)
+    assert fw.stale == 1
+    fw.receive(Command(7, ME, Primitive.ARC, 0.5, 200, rate=3.0), 50)
+    fw.receive(forward(8), 50 + TIMEOUT + 1)  # the watchdog stopped the arc: not cut short
+    assert (fw.cut_short, fw.cut_turns) == (2, 1)

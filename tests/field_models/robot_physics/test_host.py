@@ -321,6 +321,10 @@ def test_a_new_decision_replaces_the_pending_actions() -> None:
         host.release(tick)
     (c,) = sent(link, ticks)  # only B's dash: A's was replaced
     assert (c.robot, c.primitive) == (B, Primitive.FORWARD)
+    # Issue 28's counter: one pending action (A's dash) dropped by a new decision, no other.
+    assert (host.dropped, host.dropped_dashes) == (1, 1)
+    host.submit(B, (Kick(50.0, 0.0),), ticks + 1)
+    assert (host.dropped, host.dropped_dashes) == (1, 1)  # B's dash had gone: nothing dropped
 
 
 def test_zero_turn_then_dash_goes_out_at_once() -> None:

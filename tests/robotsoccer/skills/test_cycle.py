@@ -15,14 +15,13 @@ from field_models.protocol import (
     SeenBall,
     SeenLandmark,
     Turn,
-    wrap_angle,
 )
 from field_models.registry import field_facts
 from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.intercept_batch import batch_reason
 from robotsoccer.drills.intercept_plan import DEFENDER
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial, run_trial
-from robotsoccer.skills.cycle import CycleDefenderMind, fit_ball
+from robotsoccer.skills.cycle import CycleDefenderMind, TurnReversals, fit_ball
 from robotsoccer.skills.localise import Localiser
 from robotsoccer.skills.turn_policies import straight_policy
 
@@ -170,23 +169,16 @@ def _reversals(steady: bool) -> int:
     rngs, drill, arena = build_trial(spec, 0)
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
-    heading = {r: arena.player_state(r).heading for r in arena.players}
-    sign = dict.fromkeys(arena.players, 0)
-    count = 0
+    counter = TurnReversals()
+    for r in arena.players:
+        counter.sample(r, arena.player_state(r).heading)
 
     def observe(a: object, percepts: list[Percept]) -> None:
-        nonlocal count
         for r in arena.players:
-            h = arena.player_state(r).heading
-            turn = wrap_angle(h - heading[r])
-            heading[r] = h
-            if abs(turn) > 10.0 * DEG:
-                s = 1 if turn > 0 else -1
-                count += sign[r] == -s
-                sign[r] = s
+            counter.sample(r, arena.player_state(r).heading)
 
     TrialLoop(arena, drill, minds, observe).run()
-    return count
+    return counter.count
 
 
 def test_steady_turns_dither_less_in_a_server_match() -> None:
@@ -219,3 +211,17 @@ def test_the_cycle_client_saves_more_than_the_see_client_on_rcssserver_19() -> N
 
     see, cycle = saves("see"), saves("cycle")
     assert cycle > see + 20  # 2000 trials: 20.7% and 37.0%
+
+
+def test_turn_reversals_count_only_big_turns_the_other_way() -> None:
+    counter = TurnReversals()
+    for heading_deg in (0, 15, 20, 5, 4, -8, 30, 31, 350):
+        counter.sample("p", heading_deg * DEG)
+    # Turns: +15 (left), +5 (small), -15 (reversal 1), -1, -12 (same way), +38 (reversal 2),
+    # +1, -41 across the wrap (reversal 3).
+    assert counter.count == 3
+    counter.sample("q", 0.0)
+    counter.sample("q", -20 * DEG)
+    assert counter.count == 3  # another player's first big turn reverses nothing
+    with pytest.raises(ValueError, match="min_turn_rad"):
+        TurnReversals(-1.0)

@@ -1,0 +1,165 @@
+"""Issue 28: the 34-game Soccer Server series, layered against baseline, steady turns or not.
+
+``robotsoccer match --games N`` has no switch for the match drill's ``steady_turns`` option, so
+this script builds the same series (the CLI's base spec, :func:`robotsoccer.experiments.match.
+run_series` and its report) with the option set or not, and then counts turn reversals
+(:class:`~robotsoccer.skills.cycle.TurnReversals`: a turn of more than 10° the other way from the
+player's last such turn, every cycle, true headings) in the first `--reversal-games` games of
+each side through the trial runner's own loop, per team kind, per player-minute.
+
+    python scripts/server_series.py --preset soccer_server_1996 --games 34 --workers 2 \
+        --net NET --tree TREE [--steady-turns] --out runs/series-ss-default
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import time
+from pathlib import Path
+from typing import Any
+
+from field_models.arena import FieldOptions
+from field_models.protocol import Percept
+from robotsoccer.experiments.match import mean_interval, run_series, series_specs, write_report
+from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
+from robotsoccer.skills.cycle import TurnReversals
+
+
+def reversals(spec: TrialSpec, index: int) -> dict[str, Any]:
+    """Turn reversals by team kind in game `index` of `spec`, with the players' minutes."""
+    rngs, drill, arena = build_trial(spec, index)
+    drill.setup(arena, rngs)
+    minds = drill.minds(arena, rngs)
+    options = dict(spec.drill_options)
+    kind = {"left": str(options["left"]), "right": str(options["right"])}
+    counters = {side: TurnReversals() for side in kind}
+    side_of = {}
+    for ref in arena.players:
+        side_of[ref] = "left" if ref.team == arena.players[0].team else "right"
+        counters[side_of[ref]].sample(ref, arena.player_state(ref).heading)
+
+    def observe(a: object, percepts: list[Percept]) -> None:
+        for ref in arena.players:
+            counters[side_of[ref]].sample(ref, arena.player_state(ref).heading)
+
+    verdict = TrialLoop(arena, drill, minds, observe).run()
+    minutes = arena.tick * arena.facts.dt_s / 60.0
+    players = {side: sum(s == side for s in side_of.values()) for side in kind}
+    return {
+        "label": None if verdict is None else verdict.label,
+        "by_kind": {
+            kind[side]: {
+                "reversals": counters[side].count,
+                "player_minutes": players[side] * minutes,
+            }
+            for side in kind
+        },
+    }
+
+
+def goal_differences(folder: Path) -> dict[tuple[str, int], float]:
+    """Each game's goal difference (layered - baseline) of a series folder, by side and index."""
+    out = {}
+    for side, sign in (("layered_left", 1.0), ("layered_right", -1.0)):
+        with (folder / side / "results.csv").open() as f:
+            for game in csv.DictReader(f):
+                goals = dict(kv.split("=") for kv in game["measures"].split())
+                difference = float(goals["goals_l"]) - float(goals["goals_r"])
+                out[(side, int(game["index"]))] = sign * difference
+    return out
+
+
+def paired_change(before: Path, after: Path) -> str:
+    """The mean change of the layered team's goal difference, game by game on the same seeds."""
+    old, new = goal_differences(before), goal_differences(after)
+    if old.keys() != new.keys():
+        raise ValueError(f"{before} and {after} did not play the same games")
+    change = mean_interval([new[k] - old[k] for k in sorted(old)])
+    return f"{change.value:+.2f} [{change.low:+.2f}, {change.high:+.2f}] (n={len(old)} games)"
+
+
+def main() -> None:
+    """Run the series and the reversal count; write the report, the counts and the wall times."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--preset", default="soccer_server_1996")
+    parser.add_argument("--games", type=int, default=34)
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--half-time", type=float, default=None, help="one half [s] (300)")
+    parser.add_argument("--net", type=Path, required=True)
+    parser.add_argument("--tree", type=Path, required=True)
+    parser.add_argument("--steady-turns", action="store_true")
+    parser.add_argument(
+        "--transfer", action="store_true", help="net and tree trained on another preset"
+    )
+    parser.add_argument("--reversal-games", type=int, default=2, help="per side")
+    parser.add_argument("--out", type=Path, required=True)
+    parser.add_argument(
+        "--before", type=Path, help="a finished series folder: print the paired change and stop"
+    )
+    args = parser.parse_args()
+    if args.before is not None:
+        print(
+            f"goal difference, {args.out} - {args.before}: {paired_change(args.before, args.out)}"
+        )
+        return
+    if args.games < 2 or args.reversal_games < 0 or args.workers < 1:
+        parser.error("--games must be >= 2, --reversal-games >= 0, --workers >= 1")
+    for path in (args.net, args.tree):
+        if not path.is_file():
+            parser.error(f"no such file: {path}")
+    options: dict[str, Any] = {"players": 0, "net": str(args.net), "tree": str(args.tree)}
+    if args.half_time is not None:
+        options["half_time_s"] = args.half_time
+    if args.steady_turns:
+        options["steady_turns"] = True
+    if args.transfer:
+        options["transfer"] = True
+    base = TrialSpec(
+        drill="match",
+        field_model="soccer_server",
+        preset=args.preset,
+        seed=args.seed,
+        field=FieldOptions(),
+    ).with_options(**options)
+    args.out.mkdir(parents=True, exist_ok=True)
+    start = time.perf_counter()
+    games = run_series(base, args.games, args.out, workers=args.workers, progress=False)
+    series_s = time.perf_counter() - start
+    minds = "steady turns" if args.steady_turns else "default minds"
+    title = f"Layered vs baseline on soccer_server ({args.preset}), seed {args.seed}, {minds}"
+    write_report(games, args.out, title, print)
+    start = time.perf_counter()
+    counted = [
+        reversals(spec, index)
+        for spec in series_specs(base)
+        for index in range(args.reversal_games)
+    ]
+    totals: dict[str, dict[str, float]] = {}
+    for game in counted:
+        for name, c in game["by_kind"].items():
+            t = totals.setdefault(name, {"reversals": 0, "player_minutes": 0.0})
+            t["reversals"] += c["reversals"]
+            t["player_minutes"] += c["player_minutes"]
+    for name, t in totals.items():
+        t["per_player_minute"] = t["reversals"] / t["player_minutes"]
+        print(f"{name}: {t['per_player_minute']:.1f} reversals per player-minute "
+              f"({t['reversals']:.0f} in {t['player_minutes']:.0f} player-minutes)")  # fmt: skip
+    summary = {
+        "options": options,
+        "preset": args.preset,
+        "games": args.games,
+        "series_wall_s": series_s,
+        "reversal_games_per_side": args.reversal_games,
+        "reversal_wall_s": time.perf_counter() - start,
+        "reversals": totals,
+        "reversal_games": counted,
+    }
+    (args.out / "reversals.json").write_text(json.dumps(summary, indent=2) + "\n")
+    print(f"series {series_s:.0f} s; report: {args.out}")
+
+
+if __name__ == "__main__":
+    main()
