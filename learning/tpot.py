@@ -59,6 +59,16 @@ HORIZON_S = 30.0
 """t_lim: a reward is fixed at the latest this long after the action [s]."""
 Q_MAX = 1.0
 """Rewards lie in [-Q_MAX, +Q_MAX]: a goal at once is +-Q_MAX."""
+WINDOW_CHOICE = "choice"
+"""A reward closes at the horizon, a goal, game end, or the same player's next choice (the
+first studies' rule: it rewards an action by the ball's advance until its player next has the
+ball, so a kick that loses the ball for good looks as good as one that lands with a teammate)."""
+WINDOW_HORIZON = "horizon"
+"""A reward closes only at the horizon, a goal, play stopping or game end: the fixed window
+after the action of Stone & Veloso 1999's R (§4: the ball's average position over t_lim after
+the action, or a goal within it); the player's later choices do not cut it short."""
+REWARD_WINDOWS: tuple[str, ...] = (WINDOW_CHOICE, WINDOW_HORIZON)
+"""The reward windows a field side may close by (:mod:`robotsoccer.skills.layer3`)."""
 TABLE_FORMAT = "robotsoccer/tpot-table"
 TABLE_FORMAT_VERSION = 1
 
@@ -233,7 +243,8 @@ def reward(
     * **A goal** within the horizon (`goal` = +1 for, -1 against, `goal_after_s` after the
       action): ``+-Q_MAX * horizon / (horizon + t)``: the later the goal, the less it says about
       the action (a discount, as the paper scales by time); half at the horizon.
-    * **Otherwise** (the horizon passed, the player acted again, or play stopped): from the
+    * **Otherwise** (the horizon passed, or the window closed earlier: play stopped, the game
+      ended, or with :data:`WINDOW_CHOICE` the player acted again): from the
       ball's mean x over the player's own sightings `samples` since the action, x̄: the share
       of the way to the opponents' goal it advanced, ``Q_MAX (x̄ - x0) / (x_og - x0)``, or the
       share of the way back to its own goal, ``-Q_MAX (x0 - x̄) / (x0 - x_lg)``. No sighting:

@@ -157,6 +157,19 @@ def build_parser() -> argparse.ArgumentParser:
         help="TPOT-RL's own rule: the holder chooses a destination on every spell on the ball "
         "(shoot and keep included), not only where the layered team would ask the tree",
     )
+    team.add_argument(
+        "--window",
+        choices=("choice", "horizon"),
+        default="choice",
+        help="when a reward closes: choice (also at the player's next choice, the first "
+        "studies') or horizon (only at 30 s, a goal or play stopping: TPOT-RL's fixed window)",
+    )
+    team.add_argument(
+        "--training-games",
+        type=_positive_int,
+        default=None,
+        help="training games instead of the plan's (400 with --every, 240 without)",
+    )
     _experiment_options(team)
 
     reproduce = command(

@@ -12,7 +12,8 @@ layered team whose ball holder, where the layered team would ask the tree, asks 
 table instead (:mod:`robotsoccer.skills.layer3`, option ``tpot``: the table file; ``explore``:
 its exploration rate; ``learn``: record its rewards as the trial's data, for training;
 ``tpot_every``: it decides on every spell on the ball, shot and dribble included, TPOT-RL's own
-rule; ``tpot_success``: the tree's least confidence for e = SUCCESS).
+rule; ``tpot_success``: the tree's least confidence for e = SUCCESS; ``tpot_window``: when its
+rewards close, ``choice`` or ``horizon``).
 
 **Size.** ``players`` per side: by default 11 on an open field (the Soccer Server) and 5 on a
 walled table (the robots). Formation homes are in units (:data:`FORMATIONS`, ours: 4-4-2 and
@@ -36,10 +37,10 @@ from enum import StrEnum
 from field_models.arena import Arena, ArenaEvent, CountsCommands, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
-from learning.tpot import Experience, load_table
+from learning.tpot import REWARD_WINDOWS, WINDOW_CHOICE, Experience, load_table
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.passing import LayeredDrill, control_reach, load_evaluator
-from robotsoccer.drills.referee import SIDE, Referee
+from robotsoccer.drills.referee import PLAY_ON, SIDE, Referee
 from robotsoccer.options import bounded, choice, duration, flag
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.skills.intercept import (
@@ -139,6 +140,9 @@ class MatchDrill(LayeredDrill):
         tpot_every: Layer 3 decides on every spell on the ball (shoot and keep included),
             not only where the layered team would ask the tree.
         tpot_success: Layer 3's SUCCESS cut on the tree's confidence, in [0, 1].
+        tpot_window: When layer 3's rewards close (:data:`learning.tpot.REWARD_WINDOWS`):
+            ``choice`` (also at the player's next choice) or ``horizon`` (only at the horizon,
+            a goal, play stopping or full time).
         steady_turns: The minds reckon their turns into the heading between landmark fixes and
             do not turn back within a short hold (:attr:`~robotsoccer.skills.team.TeamSetup.
             steady_turns`); False (default): the 1996 client's turning.
@@ -166,6 +170,7 @@ class MatchDrill(LayeredDrill):
         learn: bool | str = False,
         tpot_every: bool | str = False,
         tpot_success: float | str = PASS_THRESHOLD,
+        tpot_window: str = WINDOW_CHOICE,
     ) -> None:
         self.steady_turns = flag("steady_turns", steady_turns)
         self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
@@ -180,6 +185,10 @@ class MatchDrill(LayeredDrill):
         self.learn = flag("learn", learn)
         self.tpot_every = flag("tpot_every", tpot_every)
         self.tpot_success = bounded("tpot_success", _number("tpot_success", tpot_success), 0.0, 1.0)
+        if tpot_window not in REWARD_WINDOWS:
+            known = ", ".join(REWARD_WINDOWS)
+            raise ValueError(f"tpot_window must be one of {known}, got {tpot_window!r}")
+        self.tpot_window = tpot_window
         self.policies: dict[str, TpotBallPolicy] = {}
         self._tick = 0
         self.net = net if layered else ""
@@ -339,6 +348,7 @@ class MatchDrill(LayeredDrill):
             blocked_m=setup.blocked_m,
             shot_power=setup.powers.shot,
             dribble_power=setup.powers.dribble,
+            window=self.tpot_window,
         )
 
     def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:
@@ -399,6 +409,7 @@ class MatchDrill(LayeredDrill):
             raise RuntimeError("judge() before setup()")
         before = referee.last_touch
         score = referee.score
+        mode = referee.play_mode
         referee.step(arena)
         self._tick = arena.tick
         if self.policies and referee.score != score:
@@ -406,6 +417,11 @@ class MatchDrill(LayeredDrill):
             scorer = LEFT if referee.score[0] > score[0] else RIGHT
             for team, ball_policy in self.policies.items():
                 ball_policy.goal(team == scorer, arena.tick)
+        if self.policies and mode == PLAY_ON and referee.play_mode != PLAY_ON:
+            # Any other stop (a restart's call, heard by every client) closes the horizon
+            # window's rewards; the choice window ignores it (TpotBallPolicy.stopped).
+            for ball_policy in self.policies.values():
+                ball_policy.stopped(arena.tick)
         holder = referee.last_touch
         if holder is not None:
             self._possession[holder.team] += 1

@@ -34,7 +34,7 @@ import signal
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -43,6 +43,8 @@ from learning.tpot import (
     ALPHA_MIN,
     FEATURE_VALUES,
     HORIZON_S,
+    REWARD_WINDOWS,
+    WINDOW_CHOICE,
     TpotTable,
     epsilon_at,
     load_table,
@@ -87,6 +89,9 @@ class TeamPlan:
             option ``tpot_every``; :mod:`robotsoccer.skills.layer3`); False: only where the
             layered team would ask the tree.
         success: The tree's least confidence for e = SUCCESS (drill option ``tpot_success``).
+        window: When a reward closes (drill option ``tpot_window``,
+            :data:`learning.tpot.REWARD_WINDOWS`): ``choice`` (the first studies') or
+            ``horizon`` (Stone & Veloso 1999's fixed window after the action).
     """
 
     name: str
@@ -100,6 +105,7 @@ class TeamPlan:
     curve_block: int
     every: bool = False
     success: float = 0.5
+    window: str = WINDOW_CHOICE
 
     def __post_init__(self) -> None:
         if self.training_games < 1 or self.games_per_round < 1 or self.series_games < 0:
@@ -108,10 +114,18 @@ class TeamPlan:
             raise ValueError("curve_block must be >= 1")
         if not 0.0 <= self.success <= 1.0:
             raise ValueError(f"success must be in [0, 1], got {self.success}")
+        if self.window not in REWARD_WINDOWS:
+            raise ValueError(
+                f"window must be one of {', '.join(REWARD_WINDOWS)}, got {self.window!r}"
+            )
 
     def drill_options(self) -> dict[str, Any]:
         """The match drill's layer-3 options this plan plays with."""
-        return {"tpot_every": self.every, "tpot_success": self.success}
+        return {
+            "tpot_every": self.every,
+            "tpot_success": self.success,
+            "tpot_window": self.window,
+        }
 
     @property
     def rounds(self) -> int:
@@ -141,11 +155,17 @@ EVERY_QUICK_PLAN = TeamPlan("every-quick", 8, 2, 60.0, 0.3, 0.05, 4, 60.0, 2, Tr
 """A smoke test of the ``every`` plan."""
 
 
-def plan_for(quick: bool, every: bool = False) -> TeamPlan:
-    """The quick or the full plan; `every`: layer 3 on every spell on the ball."""
+def plan_for(quick: bool, every: bool = False, window: str = WINDOW_CHOICE) -> TeamPlan:
+    """The quick or the full plan.
+
+    `every`: layer 3 on every spell on the ball; `window`: when its rewards close
+    (:data:`learning.tpot.REWARD_WINDOWS`).
+    """
     if every:
-        return EVERY_QUICK_PLAN if quick else EVERY_PLAN
-    return QUICK_PLAN if quick else FULL_PLAN
+        plan = EVERY_QUICK_PLAN if quick else EVERY_PLAN
+    else:
+        plan = QUICK_PLAN if quick else FULL_PLAN
+    return plan if window == plan.window else replace(plan, window=window)
 
 
 @dataclass(frozen=True, slots=True)
@@ -226,6 +246,7 @@ def train(
         "net_digest": file_digest(net),
         "alpha_min": ALPHA_MIN,
         "horizon_s": HORIZON_S,
+        "reward_window": plan.window,
         "feature_values": list(FEATURE_VALUES),
         "destinations": [d[0] for d in DESTINATIONS],
     }

@@ -45,11 +45,19 @@ the study sets it where FAILURE does occur (:mod:`robotsoccer.experiments.team_s
 x in the attack frame from its own sightings (its pose plus the ball's relative position).
 The reward is fixed by a goal (the referee's call, which rcssserver sends to every client as a
 ``hear`` message; here the match drill relays it: :meth:`TpotBallPolicy.goal`), by
-:data:`learning.tpot.HORIZON_S` passing, by the player's next layer-3 action, or by the end of
-the game (:meth:`TpotBallPolicy.finish`). While learning, each fixed reward becomes an
-:class:`~learning.tpot.Experience`; the table itself changes only between games (the training
-runner applies the games' experiences in a fixed order: results do not depend on how many
-workers played them).
+:data:`learning.tpot.HORIZON_S` passing, or by the end of the game
+(:meth:`TpotBallPolicy.finish`); and, by the ``window`` option:
+
+* :data:`~learning.tpot.WINDOW_CHOICE` (the first studies' rule): also by the player's next
+  layer-3 action, so each player has at most one open reward;
+* :data:`~learning.tpot.WINDOW_HORIZON` (Stone & Veloso 1999's fixed window after the action):
+  not by the player's next action (its earlier actions stay open, each with its own window), but
+  by play stopping (the referee's call of a restart: :meth:`TpotBallPolicy.stopped`), as the
+  ball's place after a restart says nothing about the kick before it.
+
+While learning, each fixed reward becomes an :class:`~learning.tpot.Experience`; the table
+itself changes only between games (the training runner applies the games' experiences in a
+fixed order: results do not depend on how many workers played them).
 """
 
 from __future__ import annotations
@@ -64,7 +72,9 @@ from learning.tpot import (
     HORIZON_S,
     MISS,
     N_ACTIONS,
+    REWARD_WINDOWS,
     SUCCESS,
+    WINDOW_CHOICE,
     Experience,
     TpotTable,
     UniformSource,
@@ -155,9 +165,10 @@ class TpotBallPolicy:
         blocked_m: An opponent this near in the path blocks a shot [m] (``every_ball``).
         shot_power: The shot's kick power (``every_ball``).
         dribble_power: The dribble's kick power (``every_ball``: keep).
+        window: When a reward closes (module docstring): ``choice`` or ``horizon``.
 
     Raises:
-        ValueError: A table whose actions are not the :data:`DESTINATIONS`.
+        ValueError: A table whose actions are not the :data:`DESTINATIONS`; an unknown window.
 
     Attributes:
         experiences: The fixed rewards, in the order fixed (when learning).
@@ -185,7 +196,10 @@ class TpotBallPolicy:
         blocked_m: float = 0.0,
         shot_power: float = 100.0,
         dribble_power: float = 0.0,
+        window: str = WINDOW_CHOICE,
     ) -> None:
+        if window not in REWARD_WINDOWS:
+            raise ValueError(f"window must be one of {', '.join(REWARD_WINDOWS)}, got {window!r}")
         if table.actions != N_ACTIONS:
             raise ValueError(
                 f"a table of {table.actions} actions, not the field's {N_ACTIONS} destinations"
@@ -208,9 +222,11 @@ class TpotBallPolicy:
         self.blocked_m = blocked_m
         self.shot_power = shot_power
         self.dribble_power = dribble_power
+        self.window = window
         self.experiences: list[Experience] = []
         self.choices = [0] * N_ACTIONS
-        self._pending: dict[int, _Pending] = {}
+        # Open rewards per player, oldest first (more than one only with the horizon window).
+        self._pending: dict[int, list[_Pending]] = {}
 
     # ------------------------------------------------------------------ deciding
 
@@ -286,9 +302,12 @@ class TpotBallPolicy:
         action = choose(self.table, number, options.features, self.rng, self.epsilon)
         self.choices[action] += 1
         if self.learn:
-            self._fix(number, percept.tick)
-            self._pending[number] = _Pending(
-                number, options.features[action], action, percept.tick, self._along(ball_xy)
+            if self.window == WINDOW_CHOICE:
+                self._fix(number, percept.tick)
+            self._pending.setdefault(number, []).append(
+                _Pending(
+                    number, options.features[action], action, percept.tick, self._along(ball_xy)
+                )
             )
         intent, kick = self.kick(action, options)
         return (intent, (kick,))
@@ -297,21 +316,38 @@ class TpotBallPolicy:
 
     def observe(self, number: int, tick: int, ball_xy: tuple[float, float] | None) -> None:
         """A sighting of the ball by player `number` (None: not seen): a reward sample."""
-        pending = self._pending.get(number)
-        if pending is None:
+        open_ = self._pending.get(number)
+        if not open_:
             return
-        if (tick - pending.tick) * self.dt_s >= HORIZON_S:
-            self._fix(number, tick)
-            return
-        if ball_xy is not None:
-            pending.samples.append(self._along(ball_xy))
+        along = None if ball_xy is None else self._along(ball_xy)
+        keep: list[_Pending] = []
+        for pending in open_:
+            if (tick - pending.tick) * self.dt_s >= HORIZON_S:
+                self._record(pending, 0, (tick - pending.tick) * self.dt_s)
+                continue
+            if along is not None:
+                pending.samples.append(along)
+            keep.append(pending)
+        if keep:
+            self._pending[number] = keep
+        else:
+            del self._pending[number]
 
     def goal(self, scored: bool, tick: int) -> None:
         """The referee's call: this team scored (True) or conceded; fixes every pending reward."""
         for number in sorted(self._pending):
-            pending = self._pending.pop(number)
-            after = (tick - pending.tick) * self.dt_s
-            self._record(pending, 1 if scored else -1, after)
+            for pending in self._pending.pop(number):
+                after = (tick - pending.tick) * self.dt_s
+                self._record(pending, 1 if scored else -1, after)
+
+    def stopped(self, tick: int) -> None:
+        """The referee stopped play (a restart); closes every reward with the horizon window.
+
+        With the ``choice`` window a stop closes nothing (the first studies' rule, kept so their
+        tables are reproduced).
+        """
+        if self.window != WINDOW_CHOICE:
+            self.finish(tick)
 
     def finish(self, tick: int) -> None:
         """The game is over: fix every pending reward from what was seen."""
@@ -319,8 +355,7 @@ class TpotBallPolicy:
             self._fix(number, tick)
 
     def _fix(self, number: int, tick: int) -> None:
-        pending = self._pending.pop(number, None)
-        if pending is not None:
+        for pending in self._pending.pop(number, []):
             self._record(pending, 0, (tick - pending.tick) * self.dt_s)
 
     def _record(self, pending: _Pending, goal: int, after_s: float) -> None:

@@ -168,3 +168,13 @@ def test_match_plays_layer3_with_its_table_and_refuses_a_missing_or_corrupt_one(
     assert "layer3" in text and "goals_l" in text
     options = dict(json.loads((out / "results.json").read_text())["spec"]["drill_options"])
     assert options["tpot_every"] is True and options["tpot_success"] == 0.95  # the table's plan
+    assert options["tpot_window"] == "choice"  # a table from before the window option
+    table = save_table(
+        TpotTable.empty(11, {"plan": {"every": True, "success": 0.95, "window": "horizon"}}),
+        tmp_path / "h.npz",
+    )
+    out = tmp_path / "mh"
+    assert main([*args, "--tpot", str(table), "--out", str(out)]) == 0
+    capsys.readouterr()
+    options = dict(json.loads((out / "results.json").read_text())["spec"]["drill_options"])
+    assert options["tpot_window"] == "horizon"  # it plays with the window it learned with

@@ -7,6 +7,7 @@ import json
 import sys
 import time
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -95,7 +96,9 @@ def cmd_learn_team(args: argparse.Namespace) -> int:
 
     preset = args.field_preset or default_preset(args.field)
     net, tree = find_layers(args)
-    plan = plan_for(args.quick, args.every)
+    plan = plan_for(args.quick, args.every, args.window)
+    if args.training_games is not None:
+        plan = replace(plan, training_games=args.training_games)
     base = match_base(args.field, args.field_preset, args.seed, net, tree)
     check_spec(base.with_options(left="layered", right="baseline"))
     if args.table is not None:
@@ -103,6 +106,7 @@ def cmd_learn_team(args: argparse.Namespace) -> int:
 
         load_table(args.table)  # a corrupt or foreign table fails here, in one line
     tag = f"learn-team-{args.field}-{Path(preset).stem}" + ("-every" if args.every else "")
+    tag += "-horizon" if args.window == "horizon" else ""
     tag += "-quick" if args.quick else ""
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)

@@ -56,7 +56,7 @@ def layer3_options(table: Path | None) -> dict[str, Any]:
     """The match drill's options for a layer3 team playing `table`.
 
     The table's provenance says how it learned (every spell on the ball or only where blocked,
-    and its SUCCESS cut); it plays the same way.
+    its SUCCESS cut, its reward window); it plays the same way.
 
     Raises:
         UsageError: No table given.
@@ -81,6 +81,7 @@ def layer3_options(table: Path | None) -> dict[str, Any]:
         "tpot": str(table),
         "tpot_every": bool(plan.get("every", False)),
         "tpot_success": float(plan.get("success", PASS_THRESHOLD)),
+        "tpot_window": str(plan.get("window", "choice")),
     }
 
 

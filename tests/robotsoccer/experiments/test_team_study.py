@@ -9,7 +9,14 @@ import pytest
 
 from learning.tpot import TpotTable, load_table, save_table
 from robotsoccer.drills.match import MatchDrill, layer3_experiences
-from robotsoccer.experiments.team_study import TeamPlan, match_base, run_team_study, train
+from robotsoccer.experiments.team_study import (
+    EVERY_PLAN,
+    TeamPlan,
+    match_base,
+    plan_for,
+    run_team_study,
+    train,
+)
 from robotsoccer.runs.runner import TrialSpec, run_trial
 from tests.robotsoccer.drills.test_passing import _tree_file
 from tests.robotsoccer.skills.test_intercept import net_file
@@ -87,3 +94,33 @@ def test_every_ball_training_is_the_same_whatever_the_worker_count_and_says_its_
     assert saved["every"] is True and saved["success"] == 0.95
     with pytest.raises(ValueError, match="success"):
         TeamPlan("bad", 4, 2, 8.0, 0.5, 0.1, 2, 5.0, 2, True, 1.5)
+
+
+def test_the_horizon_window_trains_the_same_whatever_the_worker_count_and_is_recorded(
+    tmp_path: Path,
+) -> None:
+    net, tree = files(tmp_path)
+    base = match_base("soccer_server", None, 5, net, tree)
+    choice = TeamPlan("tiny-every", 4, 2, 8.0, 0.5, 0.1, 2, 5.0, 2, True, 0.95)
+    horizon = TeamPlan("tiny-every", 4, 2, 8.0, 0.5, 0.1, 2, 5.0, 2, True, 0.95, "horizon")
+    one = train(base, horizon, tmp_path / "one", workers=1, log=lambda _: None)
+    two = train(base, horizon, tmp_path / "two", workers=2, log=lambda _: None)
+    assert one.table.n.sum() > 0, "the tiny plan must learn something to compare"
+    assert np.array_equal(one.table.q, two.table.q) and np.array_equal(one.table.n, two.table.n)
+    saved = load_table(one.path).provenance
+    assert saved["plan"]["window"] == "horizon" and saved["reward_window"] == "horizon"
+    old = train(base, choice, tmp_path / "old", workers=1, log=lambda _: None)
+    assert load_table(old.path).provenance["plan"]["window"] == "choice"
+    # the same games' first round, rewards closed differently: the tables differ
+    assert not np.array_equal(old.table.q, one.table.q)
+
+
+def test_plan_for_takes_the_window_and_refuses_an_unknown_one() -> None:
+    assert plan_for(False, True) is EVERY_PLAN  # the default keeps the earlier study's plan
+    plan = plan_for(False, True, "horizon")
+    assert plan.window == "horizon" and plan.training_games == EVERY_PLAN.training_games
+    assert plan.drill_options()["tpot_window"] == "horizon"
+    with pytest.raises(ValueError, match="window must be one of choice, horizon"):
+        plan_for(True, True, "episode")
+    with pytest.raises(ValueError, match="tpot_window must be one of"):
+        MatchDrill(left="baseline", tpot_window="episode")

@@ -26,7 +26,9 @@ class Fixed:
         return self.confidence
 
 
-def policy(confidence: float, *, attack_right: bool = True, learn: bool = False) -> TpotBallPolicy:
+def policy(
+    confidence: float, *, attack_right: bool = True, learn: bool = False, window: str = "choice"
+) -> TpotBallPolicy:
     return TpotBallPolicy(
         TpotTable.empty(11),
         attack_right=attack_right,
@@ -40,6 +42,7 @@ def policy(confidence: float, *, attack_right: bool = True, learn: bool = False)
         threshold=0.5,
         rng=np.random.default_rng(0),
         learn=learn,
+        window=window,
     )
 
 
@@ -106,6 +109,48 @@ def test_a_goal_fixes_every_pending_reward_and_the_horizon_fixes_one() -> None:
     assert p.experiences[-1].reward == pytest.approx(1.0)
     p.finish(600)
     assert len(p.experiences) == 3
+
+
+def _two_choices_then_the_ball_lost(window: str) -> list[float]:
+    """Player 7 kicks at tick 0 (ball at the centre spot), sees the ball half way to the
+    opponents' goal, has it again at tick 20 and kicks, then sees it at its own goal line."""
+    p = policy(0.9, learn=True, window=window)
+    p.decide(7, percept(tick=0), Pose(0.0, 0.0, 0.0), (0.0, 0.0))
+    p.observe(7, 10, (26.25, 0.0))
+    p.decide(7, percept(tick=20), Pose(26.25, 0.0, 0.0), (26.25, 0.0))
+    p.observe(7, 30, (-52.5, 0.0))
+    p.finish(40)
+    assert [e.number for e in p.experiences] == [7, 7]
+    return [e.reward for e in p.experiences]
+
+
+def test_the_choice_window_closes_at_the_next_choice_the_horizon_window_does_not() -> None:
+    # The first kick's ball went half way up; after the second kick it was lost to the own goal
+    # line. Closed at the next choice the first kick earns +0.5 (only the half-way sighting);
+    # over the fixed window it also sees the loss: mean x (26.25 - 52.5) / 2 = -13.125 m, a
+    # quarter of the way back to the own goal line.
+    assert _two_choices_then_the_ball_lost("choice") == pytest.approx([0.5, -1.0])
+    # horizon: fixed at full time in order of the actions; the second kick's reward is the same
+    assert _two_choices_then_the_ball_lost("horizon") == pytest.approx([-0.25, -1.0])
+
+
+def test_a_stop_closes_only_the_horizon_window_s_rewards_and_the_horizon_each_its_own() -> None:
+    for window, fixed in (("choice", 0), ("horizon", 1)):
+        p = policy(0.9, learn=True, window=window)
+        p.decide(7, percept(tick=0), Pose(0.0, 0.0, 0.0), (0.0, 0.0))
+        p.observe(7, 10, (26.25, 0.0))
+        p.stopped(15)  # the referee's restart call
+        assert len(p.experiences) == fixed
+    p = policy(0.9, learn=True, window="horizon")
+    p.decide(7, percept(tick=0), Pose(0.0, 0.0, 0.0), (0.0, 0.0))
+    p.decide(7, percept(tick=100), Pose(0.0, 0.0, 0.0), (0.0, 0.0))
+    p.observe(7, 300, (52.5, 0.0))  # 30 s after the first kick: it closes, the second does not
+    assert len(p.experiences) == 1 and p.experiences[0].reward == 0.0
+    p.observe(7, 350, (52.5, 0.0))
+    p.goal(True, 360)  # 26 s after the second kick: a goal within its window
+    assert p.experiences[1].reward == pytest.approx(30.0 / 56.0)
+    with pytest.raises(ValueError, match="window must be one of choice, horizon"):
+        policy(0.9, window="episode")
 
 
 def test_without_a_pose_the_policy_leaves_the_decision_to_the_layered_rule() -> None:
