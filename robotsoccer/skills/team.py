@@ -56,6 +56,12 @@ for both teams except τ; on a field with an aimable kick none of it applies.
 
 What a team may not do is read truth: the coach places players for kick-offs (as clients'
 ``move`` commands would) and the referee restarts play.
+
+Where it lives: :class:`TeamSetup`, :class:`BallPolicy` and the constants named here in
+:mod:`robotsoccer.skills.team_setup`; a mind's state and its reading of a rolling ball in
+:mod:`robotsoccer.skills.team_base`; steps 4-5 in :mod:`robotsoccer.skills.team_chase`; step 3
+and "Pushing" in :mod:`robotsoccer.skills.team_ball`; :class:`TeamMind` here: steps 1-2 and
+the decision with its turn holds.
 """
 
 from __future__ import annotations
