@@ -54,7 +54,8 @@ from robotsoccer.skills.layer3 import TpotBallPolicy
 from robotsoccer.skills.lead import VELOCITY_SPAN_S
 from robotsoccer.skills.passing import Chooser, PassEvaluator
 from robotsoccer.skills.setplay import KickPowers
-from robotsoccer.skills.team import TeamMind, TeamSetup
+from robotsoccer.skills.team import TeamMind
+from robotsoccer.skills.team_setup import TeamSetup
 
 HALF_TIME_S = 300.0
 """One half [s]: rcssserver's ``half_time`` (3000 cycles)."""

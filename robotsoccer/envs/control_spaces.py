@@ -58,7 +58,7 @@ from gymnasium import spaces
 
 from field_models.arena import FieldFacts
 from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Truth, Turn, wrap_angle
-from robotsoccer.skills.team import Localiser
+from robotsoccer.skills.localise import Localiser
 
 ACTION_KINDS = ("wheels", "primitives", "commands")
 """The action kinds (module docstring)."""

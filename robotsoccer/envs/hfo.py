@@ -61,7 +61,8 @@ from robotsoccer.drills.passing import control_reach
 from robotsoccer.drills.referee import TOUCH_PERIOD_S
 from robotsoccer.envs.agents import controlled_players
 from robotsoccer.envs.play import PlayParallelEnv
-from robotsoccer.skills.team import TeamMind, TeamSetup
+from robotsoccer.skills.team import TeamMind
+from robotsoccer.skills.team_setup import TeamSetup
 
 GOAL = "GOAL"
 CAPTURED = "CAPTURED_BY_DEFENSE"

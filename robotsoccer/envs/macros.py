@@ -40,7 +40,8 @@ import numpy.typing as npt
 
 from field_models.protocol import Action, Kick, Percept, SeenPlayer, Turn
 from robotsoccer.skills.localise import Pose
-from robotsoccer.skills.team import SEARCH_TURN_RAD, TeamMind, TeamSetup
+from robotsoccer.skills.team import TeamMind
+from robotsoccer.skills.team_setup import SEARCH_TURN_RAD, TeamSetup
 
 
 class Macro(IntEnum):

@@ -20,8 +20,10 @@ from field_models.protocol import (
     Turn,
     wrap_angle,
 )
+from robotsoccer.skills.localise import Localiser
 from robotsoccer.skills.setplay import KickPowers
-from robotsoccer.skills.team import Localiser, TeamMind, TeamSetup
+from robotsoccer.skills.team import TeamMind
+from robotsoccer.skills.team_setup import TeamSetup
 
 MARKS = (("g l", -52.5, 0.0), ("g r", 52.5, 0.0), ("f c t", 0.0, 34.0))
 ME = PlayerRef(LEFT, 7)
