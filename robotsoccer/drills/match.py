@@ -145,7 +145,7 @@ class MatchDrill(LayeredDrill):
             ``choice`` (also at the player's next choice) or ``horizon`` (only at the horizon,
             a goal, play stopping or full time).
         steady_turns: The minds reckon their turns into the heading between landmark fixes and
-            do not turn back within a short hold (:attr:`~robotsoccer.skills.team.TeamSetup.
+            do not turn back within a short hold (:attr:`~robotsoccer.skills.team_setup.TeamSetup.
             steady_turns`); False (default): the 1996 client's turning.
 
     Raises:

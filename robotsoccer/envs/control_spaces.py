@@ -33,7 +33,7 @@ latency, noise and misses included), egocentric, distances over the pitch length
 * ``ball_motion``: change of the ball's egocentric x and y since the previous percept that saw
   it, in L per second (zeros when either percept missed it);
 * ``self``: localised (0/1), x / (L/2), y / (W/2), cos and sin of the heading, from the seen
-  landmarks (:class:`~robotsoccer.skills.team.Localiser`; zeros until it is localised);
+  landmarks (:class:`~robotsoccer.skills.localise.Localiser`; zeros until it is localised);
 * ``target``: known (0/1), distance / L, cos and sin of its angle: the point to face (go to
   the ball) or the opponents' goal (score), from the localised pose;
 * ``teammate_i`` / ``opponent_i``: seen, distance / L, cos, sin, nearest first (players of an

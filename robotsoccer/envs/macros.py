@@ -16,7 +16,7 @@ what the hand-written team does when its rule picks that skill (no second copy o
 
 **Masks** (:func:`macro_mask`, from the percept the agent decides on): ``AUTO`` and ``GO_HOME``
 always; ``INTERCEPT`` when the ball is seen out of the mind's reach
-(:attr:`~robotsoccer.skills.team.TeamSetup.reach_m`); the kicks (``SHOOT``, ``DRIBBLE``,
+(:attr:`~robotsoccer.skills.team_setup.TeamSetup.reach_m`); the kicks (``SHOOT``, ``DRIBBLE``,
 ``PASS_k``) when it is seen within that reach, the very test the mind makes before it kicks,
 and ``PASS_k`` only for a teammate k the percept shows with its number (never the player
 itself). So the ball holder chooses among ``{AUTO, GO_HOME, SHOOT, DRIBBLE, PASS_k …}``: the
