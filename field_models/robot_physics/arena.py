@@ -17,7 +17,7 @@ The coach side (`place_*`, `*_state`, `truth`) reads and writes the world direct
 
 Events (``keep_events``): the client's actions as command text (``"command"``), the primitives
 the host sent (``"link"``); with ``trace`` also every percept delivered, written in the Soccer
-Server's see form (``"see"``, :func:`~field_models.robot_physics.host.percept_text`).
+Server's see form (``"see"``, :func:`~field_models.robot_physics.trace_text.percept_text`).
 """
 
 from __future__ import annotations
@@ -31,8 +31,9 @@ from field_models.protocol import Action, BodyState, Percept, PlayerRef, Truth
 from field_models.robot_physics.camera import OverheadCamera
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.firmware import Firmware
-from field_models.robot_physics.host import CentralHost, percept_text
+from field_models.robot_physics.host import CentralHost
 from field_models.robot_physics.link import Link
+from field_models.robot_physics.trace_text import percept_text
 from field_models.robot_physics.world import RobotWorld
 from field_models.seeding import TrialRngs
 

@@ -73,7 +73,6 @@ from __future__ import annotations
 import math
 
 from field_models.arena import ArenaEvent
-from field_models.commands import server_degrees
 from field_models.protocol import (
     TWO_PI,
     Action,
@@ -93,6 +92,7 @@ from field_models.robot_physics.camera import Frame
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.link import Command, Link, Primitive
 from field_models.robot_physics.records import positional_maker
+from field_models.robot_physics.trace_text import describe
 
 _make_percept = positional_maker(Percept)
 _make_ball = positional_maker(SeenBall)
@@ -475,43 +475,3 @@ class CentralHost:
                     math.atan2(source[1] - listener[1], source[0] - listener[0]) - listener[2]
                 )
             self._heard[i].append(Heard(text, sender, direction, tick))
-
-
-def describe(command: Command) -> str:
-    """A command as text, e.g. ``FORWARD 0.84 m/s for 16 ticks`` (without the addressee)."""
-    primitive = command.primitive
-    if primitive is Primitive.FORWARD or primitive is Primitive.BACKWARD:
-        text = f"{primitive.name} {command.value:.2f} m/s"
-    elif primitive is Primitive.TURN:
-        text = f"TURN {command.value:+.2f} rad/s"
-    elif primitive is Primitive.ARC:
-        text = f"ARC {command.value:.2f} m/s {command.rate:+.2f} rad/s"
-    elif primitive is Primitive.KICK:
-        return f"KICK {command.value:.0f}"
-    elif primitive is Primitive.WHEELS:
-        text = f"WHEELS {command.value:+.2f} {command.rate:+.2f} m/s"
-    else:
-        return "STOP"
-    if command.duration_ticks is not None:
-        text += f" for {command.duration_ticks} ticks"
-    return text
-
-
-def percept_text(percept: Percept) -> str:
-    """A robot's percept in the Soccer Server's see form, for traces.
-
-    ``(see T ((goal r) D A) ((ball) D A) ((player left 2) D A))``: distances in metres to the
-    millimetre, directions in the server's degrees (clockwise positive), so a robot trace reads
-    like the paper's Figure 4.
-    """
-    parts = []
-    for mark in percept.landmarks:
-        name = {"g l": "goal l", "g r": "goal r"}.get(mark.name, mark.name)
-        parts.append(f"(({name}) {mark.distance_m:.3f} {server_degrees(mark.angle_rad):g})")
-    if percept.ball is not None:
-        ball = percept.ball
-        parts.append(f"((ball) {ball.distance_m:.3f} {server_degrees(ball.angle_rad):g})")
-    for seen in percept.players:
-        who = "player" if seen.team is None else f"player {seen.team} {seen.number}"
-        parts.append(f"(({who}) {seen.distance_m:.3f} {server_degrees(seen.angle_rad):g})")
-    return f"(see {percept.tick} {' '.join(parts)})"
