@@ -16,8 +16,9 @@ rule; ``tpot_success``: the tree's least confidence for e = SUCCESS; ``tpot_wind
 rewards close, ``choice`` or ``horizon``).
 
 **Size.** ``players`` per side: by default 11 on an open field (the Soccer Server) and 5 on a
-walled table (the robots). Formation homes are in units (:data:`FORMATIONS`, ours: 4-4-2 and
-1-2-2; 1-1-1 and 1-1 for small-sided games), mirrored for the right team.
+walled table (the robots). Formation homes are in units
+(:data:`~robotsoccer.drills.match_setup.FORMATIONS`, ours: 4-4-2 and 1-2-2; 1-1-1 and 1-1 for
+small-sided games), mirrored for the right team.
 
 **Referee** (:mod:`robotsoccer.drills.referee`): the Soccer Server's play modes on an open
 field, the table's restart rules on a walled one. The match lasts two halves of
@@ -39,6 +40,7 @@ from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
 from learning.tpot import REWARD_WINDOWS, WINDOW_CHOICE, Experience, load_table
 from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.match_setup import FORMATIONS, GOALIE, KICKER, team_setup
 from robotsoccer.drills.passing import LayeredDrill, control_reach, load_evaluator
 from robotsoccer.drills.referee import PLAY_ON, SIDE, Referee
 from robotsoccer.options import bounded, choice, duration, flag
@@ -51,61 +53,12 @@ from robotsoccer.skills.intercept import (
     transfer_distance_factor,
 )
 from robotsoccer.skills.layer3 import TpotBallPolicy
-from robotsoccer.skills.lead import VELOCITY_SPAN_S
 from robotsoccer.skills.passing import Chooser, PassEvaluator
-from robotsoccer.skills.setplay import KickPowers
 from robotsoccer.skills.team import TeamMind
 from robotsoccer.skills.team_setup import TeamSetup
 
 HALF_TIME_S = 300.0
 """One half [s]: rcssserver's ``half_time`` (3000 cycles)."""
-FORMATIONS: dict[int, dict[int, tuple[float, float]]] = {
-    11: {
-        1: (-50.0, 0.0),
-        2: (-36.0, 20.0),
-        3: (-38.0, 7.0),
-        4: (-38.0, -7.0),
-        5: (-36.0, -20.0),
-        6: (-16.0, 22.0),
-        7: (-19.0, 8.0),
-        8: (-19.0, -8.0),
-        9: (-16.0, -22.0),
-        10: (2.0, 10.0),
-        11: (2.0, -10.0),
-    },
-    5: {
-        1: (-50.0, 0.0),
-        2: (-30.0, 14.0),
-        3: (-30.0, -14.0),
-        4: (-2.0, 12.0),
-        5: (-2.0, -12.0),
-    },
-    3: {1: (-50.0, 0.0), 2: (-25.0, 12.0), 3: (-5.0, -10.0)},
-    2: {1: (-50.0, 0.0), 2: (-5.0, 0.0)},
-}
-"""Formation homes of the left team [units] (module docstring); number 1 keeps goal. The 3- and
-2-a-side ones are for small-sided games (the VSS table's 3 v 3, ``robotsoccer/Score-v0``)."""
-KICKER = {11: 10, 5: 4, 3: 3, 2: 2}
-"""Who kicks off."""
-GOALIE = 1
-"""Who keeps goal: number 1 of every formation."""
-BLOCKED_UNITS = 8.0
-"""An opponent this close in the path ends a dribble [units]."""
-SHOOT_RANGE_UNITS = 25.0
-PASS_RANGE_UNITS = 30.0
-"""Longest shot and pass [units], or less where the field's kick cannot carry the ball."""
-GOALIE_ZONE_UNITS = 16.5
-"""The goalie goes for a ball this close to its goal (the penalty area's depth) [units]."""
-HOME_TOLERANCE_UNITS = 2.0
-GOALIE_DEPTH_UNITS = 2.0
-"""The goalie's stance in front of its goal line on a field with an aimable kick [units]."""
-DRIBBLE_UNITS = 4.0
-DRIBBLE_TIME_S = 2.0
-"""A dribble kick sends the ball this far in this time (on a field with an aimable kick)."""
-SAFE_REACH_SHARE = 0.85
-"""Minds kick when the ball seems within this share of their reach (sensor noise)."""
-CARRY_SHARE = 0.6
-"""Shots and passes are aimed at most this share of how far a kick carries the ball."""
 EXPERIENCE_FIELDS = 5
 """Numbers per layer-3 experience in a match's data: side (0 left), number, e, a, reward."""
 PASS_THRESHOLD = 0.5
@@ -354,52 +307,7 @@ class MatchDrill(LayeredDrill):
 
     def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:
         """One team's plan on this field (module docstring)."""
-        unit = facts.unit_m
-        sign = 1.0 if team == LEFT else -1.0
-        plan = self.plan(facts)
-        powers = kick_powers(facts, plan.kick_power)
-        carry = CARRY_SHARE * _carry_m(facts, powers.shot)
-        pass_carry = CARRY_SHARE * _carry_m(facts, powers.passing)
-        push = facts.kick is None or not facts.kick.aimable
-        return TeamSetup(
-            attack_right=team == LEFT,
-            home={k: (sign * x * unit, sign * y * unit) for k, (x, y) in FORMATIONS[n].items()},
-            goalie=GOALIE,
-            landmarks=facts.landmarks,
-            unit_m=unit,
-            reach_m=SAFE_REACH_SHARE * control_reach(facts),
-            blocked_m=BLOCKED_UNITS * unit,
-            shoot_range_m=min(SHOOT_RANGE_UNITS * unit, carry),
-            pass_range_m=min(PASS_RANGE_UNITS * unit, pass_carry),
-            trigger_distance_m=plan.trigger_distance_m,
-            goalie_zone_m=GOALIE_ZONE_UNITS * unit,
-            home_tolerance_m=HOME_TOLERANCE_UNITS * unit,
-            powers=powers,
-            half_length_m=facts.pitch.half_length_m,
-            half_width_m=facts.pitch.half_width_m,
-            dt_s=facts.dt_s,
-            latency_s=facts.sensor_latency_s or 0.0,
-            spin_accel_radps2=facts.player_accel_mps2 / facts.pitch.player_radius_m,
-            sensor_period_s=facts.sensor_period_s,
-            ball_law=facts.ball,
-            steady_turns=self.steady_turns,
-            push_kick=push,
-            # The nearest a shot of layer 1's goal-mouth drill is at its trigger: the nearest
-            # start, less the flight at the players' top speed (its fastest shot) during the
-            # velocity fit (robotsoccer.experiments.lead_study).
-            lead_from_m=plan.min_distance_m - VELOCITY_SPAN_S * facts.player_top_speed_mps,
-            lead_trigger_m=plan.max_distance_m,
-            # A pushing goalie stands where layer 1's goal-mouth drill put its defender (it
-            # meets shots as it learned there); elsewhere two units out, as before.
-            goalie_depth_m=(
-                facts.pitch.half_length_m - plan.defender_x_m if push else GOALIE_DEPTH_UNITS * unit
-            ),
-            # The walled table is seen by an overhead camera (specs/robot_physics.md §2).
-            sees_all_round=facts.walled,
-            player_radius_m=facts.pitch.player_radius_m,
-            goal_width_m=facts.pitch.goal_width_m,
-            turn_tolerance_rad=plan.turn_tolerance_rad,
-        )
+        return team_setup(facts, self.plan(facts), n, team, self.steady_turns)
 
     # ------------------------------------------------------------------ the coach
 
@@ -504,7 +412,7 @@ class MatchDrill(LayeredDrill):
         return (left, right)
 
     def goalies(self) -> tuple[PlayerRef, ...]:
-        """Each team's goalkeeper (number :data:`GOALIE`), left then right."""
+        """Each team's goalkeeper (:data:`~robotsoccer.drills.match_setup.GOALIE`), left, right."""
         return (PlayerRef(LEFT, GOALIE), PlayerRef(RIGHT, GOALIE))
 
 
@@ -525,22 +433,3 @@ def layer3_experiences(data: tuple[float, ...]) -> list[tuple[str, Experience]]:
         team = RIGHT if side else LEFT
         out.append((team, Experience(int(number), int(feature), int(action), float(r))))
     return out
-
-
-def kick_powers(facts: FieldFacts, pass_power: float) -> KickPowers:
-    """Dribble, pass and shot powers on this field (pass: layer 1's launch power)."""
-    kick = facts.kick
-    if kick is None or not kick.aimable:
-        return KickPowers(dribble=40.0, passing=100.0, shot=100.0)
-    speed = facts.ball.speed_to_cover(DRIBBLE_UNITS * facts.unit_m, DRIBBLE_TIME_S)
-    power = kick.power_for(speed) if speed is not None else None
-    if power is None:
-        raise ValueError(f"{facts.preset}: no kick sends the ball {DRIBBLE_UNITS:g} units")
-    return KickPowers(dribble=power, passing=pass_power, shot=100.0)
-
-
-def _carry_m(facts: FieldFacts, power: float) -> float:
-    """How far a kick of `power` carries the ball before it stops (or in 10 s) [m]."""
-    kick = facts.kick
-    speed = kick.speed(power) if kick is not None else facts.player_top_speed_mps
-    return facts.ball.distance_in(speed, 10.0)

@@ -14,8 +14,8 @@ into one macro.
 
 **Features e(s, a)** from the observation vector (the attacker's percept,
 :func:`~robotsoccer.envs.control_spaces.observation_names`), with the match team's own
-distances (:data:`~robotsoccer.drills.match.SHOOT_RANGE_UNITS`,
-:data:`~robotsoccer.drills.match.BLOCKED_UNITS`,
+distances (:data:`~robotsoccer.drills.match_setup.SHOOT_RANGE_UNITS`,
+:data:`~robotsoccer.drills.match_setup.BLOCKED_UNITS`,
 :data:`~robotsoccer.skills.setplay.PATH_HALF_ANGLE_RAD`):
 
 * SHOOT: MISS when the goal is unknown or beyond the shooting range (the shot reaches no one);
@@ -67,7 +67,7 @@ from learning.tpot import (
     reward,
     update,
 )
-from robotsoccer.drills.match import BLOCKED_UNITS, SHOOT_RANGE_UNITS
+from robotsoccer.drills.match_setup import BLOCKED_UNITS, SHOOT_RANGE_UNITS
 from robotsoccer.envs.control_spaces import observation_names
 from robotsoccer.envs.hfo import GOAL, OUT_OF_TIME, HalfFieldOffenseEnv
 from robotsoccer.envs.hfo_eval import TABLE_HEAD, RandomHolder, goal_rate, handwritten, table_row

@@ -15,7 +15,8 @@ from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, Mind, PlayerRef
 from field_models.registry import FIELD_MODELS, has_preset
 from field_models.seeding import TrialRngs
-from robotsoccer.drills.match import KICKER, MatchDrill
+from robotsoccer.drills.match import MatchDrill
+from robotsoccer.drills.match_setup import KICKER
 from robotsoccer.envs.control import ControlEnv
 
 SCORE_PRESET = "vss"

@@ -51,7 +51,8 @@ from learning.tpot import (
     save_table,
     update,
 )
-from robotsoccer.drills.match import FORMATIONS, layer3_experiences
+from robotsoccer.drills.match import layer3_experiences
+from robotsoccer.drills.match_setup import FORMATIONS
 from robotsoccer.experiments.match import (
     Game,
     game_from,
