@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 from field_models.registry import default_preset
 from robotsoccer.cli.commands.transfer import transfer_section
 from robotsoccer.cli.options import EXIT_INTERRUPTED, LEAD_DRILLS, PAPER_MODELS, TEAM_FIELD
-from robotsoccer.cli.running import check_spec, clock_log, fail
+from robotsoccer.cli.running import check_spec, clock_log, fail, run_context
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec
@@ -41,7 +41,7 @@ def cmd_learn(args: argparse.Namespace) -> int:
 def cmd_learn_pass(args: argparse.Namespace) -> int:
     """``learn pass``: layer 2 on one field model (collect → train → evaluate → report)."""
     from robotsoccer.experiments.layer1 import train_main_net
-    from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
+    from robotsoccer.experiments.layer1_plan import plan_for
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
     from robotsoccer.experiments.plots_layer2 import layer2_plots
 
@@ -57,20 +57,14 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
         )
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     plan = layer2_plan(args.quick)
-    workers = args.workers or default_workers()
-    seeds = seeds_for(args.seed)
-    log = clock_log()
-    progress = sys.stderr.isatty()
+    ctx = run_context(args, out, "robotsoccer learn pass")
+    workers = ctx.workers
     start = time.perf_counter()
     try:
         net = args.net
         if net is None:
-            net = train_main_net(
-                args.field, preset, plan_for(args.quick), out, seeds, workers, log, progress
-            )
-        section = run_layer2_model(
-            args.field, preset, net, plan, out, seeds, workers, log, progress
-        )
+            net = train_main_net((args.field, preset), plan_for(args.quick), ctx)
+        section = run_layer2_model((args.field, preset), net, plan, ctx)
     except KeyboardInterrupt:
         return fail(
             EXIT_INTERRUPTED,
@@ -149,13 +143,14 @@ def _lead_section(
     args: argparse.Namespace, out: Path, workers: int, log: Callable[[str], None]
 ) -> str:
     """The lead study (:mod:`robotsoccer.experiments.lead_study`) on the chosen fields."""
-    from robotsoccer.experiments.layer1_plan import seeds_for
+    from robotsoccer.experiments.context import RunContext, seeds_for
     from robotsoccer.experiments.lead_study import StudyDrill, plan_for, run_study
 
     field = getattr(args, "field", None)
     fields = [field] if field else list(LEAD_DRILLS)
     drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in fields]
-    text, _ = run_study(drills, plan_for(args.quick), out, seeds_for(args.seed), workers, log)
+    ctx = RunContext(out, seeds_for(args.seed), workers, log)
+    text, _ = run_study(drills, plan_for(args.quick), ctx)
     return text
 
 
@@ -238,7 +233,7 @@ def _run_layer1(
     with_layer2: bool = False,
 ) -> int:
     from robotsoccer.experiments.layer1 import run_layer1
-    from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
+    from robotsoccer.experiments.layer1_plan import plan_for
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
     from robotsoccer.experiments.plots_layer2 import layer2_plots
 
@@ -246,34 +241,19 @@ def _run_layer1(
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     plan = plan_for(args.quick)
-    workers = args.workers or default_workers()
     start = time.perf_counter()
-    log = clock_log()
+    ctx = run_context(args, out, created_by)
+    workers, log = ctx.workers or default_workers(), ctx.log
     try:
-        report, sections = run_layer1(
-            models,
-            plan,
-            out,
-            args.seed,
-            workers,
-            log,
-            title=title,
-            created_by=created_by,
-            progress=sys.stderr.isatty(),
-        )
+        report, sections = run_layer1(models, plan, ctx, title=title)
         if with_layer2:
             plan2 = layer2_plan(args.quick)
             layer2 = [
                 run_layer2_model(
-                    s.field_model,
-                    s.preset,
-                    out / "models" / s.field_model / f"net_{s.net_examples}.npz",
+                    (s.field_model, s.preset),
+                    ctx.models_dir(s.field_model) / f"net_{s.net_examples}.npz",
                     plan2,
-                    out,
-                    seeds_for(args.seed),
-                    workers,
-                    log,
-                    sys.stderr.isatty(),
+                    ctx,
                 )
                 for s in sections
             ]

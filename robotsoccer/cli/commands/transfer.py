@@ -95,8 +95,8 @@ def transfer_section(
     created_by: str = "robotsoccer transfer",
 ) -> str:
     """Run the transfer study into `out` (the options say which parts) and return its text."""
+    from robotsoccer.experiments.context import RunContext, seeds_for
     from robotsoccer.experiments.gap_variants import Randomisation
-    from robotsoccer.experiments.layer1_plan import seeds_for
     from robotsoccer.experiments.lead_study import StudyDrill
     from robotsoccer.experiments.transfer_study import StudyParts, run_transfer_study
 
@@ -113,17 +113,12 @@ def transfer_section(
         calibration=not getattr(args, "no_calibration", False),
     )
     lead_drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in LEAD_DRILLS]
-    return run_transfer_study(
-        reference,
-        target,
-        randomisation,
-        args.quick,
+    ctx = RunContext(
         out,
         seeds_for(args.seed),
         workers,
         clock_log(),
-        parts,
-        created_by,
-        sys.stderr.isatty(),
-        lead_drills,
+        progress=sys.stderr.isatty(),
+        created_by=created_by,
     )
+    return run_transfer_study(reference, target, randomisation, args.quick, ctx, parts, lead_drills)
