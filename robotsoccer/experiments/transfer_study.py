@@ -69,22 +69,34 @@ class StudyParts:
     calibration: bool = True
 
 
-def run_transfer_study(
-    reference: Field,
-    target: Field,
-    randomisation: Randomisation,
-    quick: bool,
-    ctx: RunContext,
-    parts: StudyParts = StudyParts(),
-    lead_drills: Sequence[StudyDrill] = (),
-) -> str:
+@dataclass(frozen=True)
+class TransferSetup:
+    """What the transfer study compares.
+
+    Attributes:
+        reference: The field the nets are trained on first (the Soccer Server).
+        target: The field they are moved to (the robots).
+        randomisation: The reference's parameter ranges for domain randomisation.
+        parts: Which parts run beside the layer-1 matrix.
+        lead_drills: The lead study's drill on the reference and the target field
+            (:func:`run_lead_study`); none: no lead matrix.
+    """
+
+    reference: Field
+    target: Field
+    randomisation: Randomisation
+    parts: StudyParts = StudyParts()
+    lead_drills: tuple[StudyDrill, ...] = ()
+
+
+def run_transfer_study(setup: TransferSetup, quick: bool, ctx: RunContext) -> str:
     """Run the study into the run's folder (resumable) and return its report section (markdown).
 
     The context's `created_by` names the command in the files' provenance: ``reproduce`` passes
     its own, so the collections and nets it wrote before are the same files, not rewritten.
-    `lead_drills`: the lead study's drill on the reference and the target field
-    (:func:`run_lead_study`).
     """
+    reference, target, randomisation = setup.reference, setup.target, setup.randomisation
+    parts, lead_drills = setup.parts, setup.lead_drills
     models = [reference, target]
     plan = plan_for(quick)
     log = ctx.log
