@@ -21,6 +21,7 @@ import time
 from pathlib import Path
 
 from robotsoccer.cli.running import clock_log
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.layer2 import Layer2Plan, layer2_markdown, run_layer2_model
 from robotsoccer.experiments.plots_layer2 import layer2_plots
@@ -42,17 +43,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     plan = Layer2Plan("mid", collect_trials=args.collect, eval_trials=args.trials)
     start = time.perf_counter()
-    section = run_layer2_model(
-        "robot_physics",
-        args.preset,
-        args.net,
-        plan,
-        args.out,
-        seeds_for(args.seed),
-        args.workers,
-        clock_log(),
-        False,
-    )
+    ctx = RunContext(args.out, seeds_for(args.seed), args.workers, clock_log())
+    section = run_layer2_model(("robot_physics", args.preset), args.net, plan, ctx)
     plots = layer2_plots([section], args.out)
     title = f"# Layer 2 on robot_physics ({args.preset}), {args.collect} / {args.trials} plan\n\n"
     (args.out / "report.md").write_text(title + layer2_markdown([section], plan, plots))

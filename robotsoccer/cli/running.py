@@ -12,6 +12,7 @@ import sys
 import time
 from collections import Counter
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from field_models.arena import FieldOptions
@@ -19,7 +20,7 @@ from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial
 from robotsoccer.stats import wilson_interval
 
 if TYPE_CHECKING:
-    pass
+    from robotsoccer.experiments.context import RunContext
 
 
 def fail(status: int, message: str) -> int:
@@ -91,3 +92,27 @@ def clock_log() -> Callable[[str], None]:
         print(f"[{time.perf_counter() - start:6.1f} s] {line}", flush=True)
 
     return log
+
+
+def run_context(
+    args: argparse.Namespace,
+    out: Path,
+    created_by: str,
+    *,
+    log: Callable[[str], None] | None = None,
+) -> RunContext:
+    """The experiment context of a command: `out`, ``--seed``, ``--workers``, a clock log.
+
+    Progress bars show when stderr is a terminal.
+    """
+    from robotsoccer.experiments.context import RunContext, seeds_for
+    from robotsoccer.runs.pool import default_workers
+
+    return RunContext(
+        out,
+        seeds_for(args.seed),
+        args.workers or default_workers(),
+        log or clock_log(),
+        progress=sys.stderr.isatty(),
+        created_by=created_by,
+    )

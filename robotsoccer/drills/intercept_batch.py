@@ -50,15 +50,14 @@ from field_models.arena import FieldFacts
 from field_models.batch_arena import BatchArena
 from field_models.protocol import Pitch, wrap_angle
 from field_models.registry import batch_reason as field_batch_reason
-from field_models.registry import field_facts, make_batch_arena
+from field_models.registry import make_batch_arena
 from field_models.seeding import StreamBatch
 from learning.interception_file import BatchTurnFunction, load_batch_turn_function
-from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.intercept_batch_coach import DEFENDER_ROW, SHOOTER_ROW, BatchCoach
 from robotsoccer.drills.intercept_options import ClientKind, Decision, Launch, Shot
 from robotsoccer.drills.intercept_plan import DEFENDER, SHOOTER, LaunchPlan
-from robotsoccer.runs.runner import TrialResult, TrialSpec, field_options
+from robotsoccer.runs.runner import TrialResult, TrialSpec, resolve
 from robotsoccer.skills.intercept import (
     DASH_POWER,
     TA_CLIP_RAD,
@@ -89,7 +88,8 @@ def batch_reason(spec: TrialSpec) -> str | None:
     """
     if spec.drill != "intercept":
         return f"the batch engine runs the intercept drill, not {spec.drill!r}"
-    drill = make_drill(spec.drill, dict(spec.drill_options))
+    resolved = resolve(spec)
+    drill = resolved.new_drill()
     assert isinstance(drill, InterceptDrill)
     if drill.defender_kick:
         return "the defender's clearing kick reads landmarks, which the batch does not see"
@@ -99,11 +99,10 @@ def batch_reason(spec: TrialSpec) -> str | None:
         return "the batch plays the paper's turn-angle decision, not the lead"
     if drill.shot is not Shot.DEFENDER:
         return "the batch aims every shot at the defender"
-    options = field_options(spec, drill)
-    reason = field_batch_reason(spec.field_model, spec.preset, options)
+    reason = field_batch_reason(spec.field_model, spec.preset, resolved.options)
     if reason is not None:
         return reason
-    if drill.plan_for(field_facts(spec.field_model, spec.preset, options)).decision_period_s:
+    if drill.plan_for(resolved.facts).decision_period_s:
         return "the batch decides at every percept; this plan sets a longer decision period"
     return None
 
@@ -188,10 +187,10 @@ class _InterceptBatch:
             turn_angles: An external TA per trial, used instead of the behaviour's rule
                 (:func:`play_batch`); None: the behaviour decides.
         """
-        drill = make_drill(spec.drill, dict(spec.drill_options))
+        resolved = resolve(spec)
+        drill = resolved.new_drill()
         assert isinstance(drill, InterceptDrill)
-        options = field_options(spec, drill)
-        facts = field_facts(spec.field_model, spec.preset, options)
+        options, facts = resolved.options, resolved.facts
         plan = drill.checked_plan(facts)
         self.setting = _Setting(
             drill=drill,

@@ -42,7 +42,7 @@ import functools
 import math
 import os
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
@@ -198,6 +198,15 @@ def control_reach(facts: FieldFacts) -> float:
     return facts.touch_distance_m + CONTROL_MARGIN_UNITS * facts.unit_m
 
 
+class _Spacing(NamedTuple):
+    """How a placed player keeps clear: of the players placed so far and of the ball [m]."""
+
+    taken: list[tuple[float, float]]
+    separation: float
+    ball: tuple[float, float]
+    clear: float
+
+
 class PassDrill(LayeredDrill):
     """The paper's Figure 9–13 trial (module docstring).
 
@@ -282,11 +291,11 @@ class PassDrill(LayeredDrill):
         )
         half = REGION_HALF_WIDTH_UNITS * unit
         region_y = (max(by - half, -y_lim), min(by + half, y_lim))
+        spacing = _Spacing(taken, separation, (bx, by), clear)
         for ref in (*RECEIVERS, *DEFENDERS):
-            self._place(arena, rng, ref, region_x, region_y, taken, separation, (bx, by), clear)
+            self._place(arena, rng, ref, (region_x, region_y), spacing)
         for ref in ELSEWHERE:
-            self._place(arena, rng, ref, (-x_lim, x_lim), (-y_lim, y_lim), taken, separation,
-                        (bx, by), clear)  # fmt: skip
+            self._place(arena, rng, ref, ((-x_lim, x_lim), (-y_lim, y_lim)), spacing)
         self._judge = _PassJudge(arena, plan)
         self.passer = None
 
@@ -295,14 +304,11 @@ class PassDrill(LayeredDrill):
         arena: Arena,
         rng: Rng,
         ref: PlayerRef,
-        xs: tuple[float, float],
-        ys: tuple[float, float],
-        taken: list[tuple[float, float]],
-        separation: float,
-        ball: tuple[float, float],
-        clear: float,
+        box: tuple[tuple[float, float], tuple[float, float]],
+        spacing: _Spacing,
     ) -> None:
-        """Place `ref` uniformly in the box, away from the others and the ball."""
+        """Place `ref` uniformly in the box ((x low, x high), (y low, y high)), spaced out."""
+        (xs, ys), (taken, separation, ball, clear) = box, spacing
         for _ in range(1000):
             x, y = float(rng.uniform(*xs)), float(rng.uniform(*ys))
             if math.hypot(x - ball[0], y - ball[1]) < clear:

@@ -24,11 +24,11 @@ from __future__ import annotations
 import statistics
 from collections.abc import Sequence
 from dataclasses import dataclass
-from pathlib import Path
 
+from robotsoccer.experiments.context import Field, RunContext
 from robotsoccer.experiments.layer1_collect import collect
 from robotsoccer.experiments.layer1_evaluate import evaluate
-from robotsoccer.experiments.layer1_plan import Field, Layer1Plan, Log, Seeds, base_spec, condition
+from robotsoccer.experiments.layer1_plan import Layer1Plan, base_spec, condition
 from robotsoccer.experiments.layer1_train import train_series
 from robotsoccer.experiments.report_cells import paired_cell, percent_cell
 from robotsoccer.runs.runner import DrillOption, TrialResult, TrialSpec
@@ -132,17 +132,9 @@ class AblationRow:
     trials: dict[str, list[TrialResult]]
 
 
-def run_ablation(
-    ablation: Ablation,
-    plan: AblationPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
-) -> AblationRow:
+def run_ablation(ablation: Ablation, plan: AblationPlan, ctx: RunContext) -> AblationRow:
     """Collect, train and evaluate one row into ``out/ablations/<key>/`` (resumable)."""
-    folder = out / "ablations" / ablation.key
+    folder = ctx.out / "ablations" / ablation.key
     layer1 = Layer1Plan(
         name="ablation",
         eval_trials=plan.eval_trials,
@@ -156,19 +148,19 @@ def run_ablation(
         base = base_spec(ablation.field_model, ablation.preset, seed, "hold")
         return base.with_options(**dict(ablation.options))
 
-    collect_base = spec_for(seeds.collection)
+    collect_base = spec_for(ctx.seeds.collection)
     dataset, _, _ = collect(
         collect_base,
         layer1,
         folder / "results",
         folder / "train.npz",
-        workers,
+        ctx.workers,
         "robotsoccer transfer (ablations)",
-        progress,
+        ctx.progress,
     )
     size = min(plan.net_examples, len(dataset))
-    net = train_series(dataset, [size], plan.epochs, folder, log)[size]
-    base = spec_for(seeds.evaluation)
+    net = train_series(dataset, [size], plan.epochs, folder, ctx.log)[size]
+    base = spec_for(ctx.seeds.evaluation)
     trials: dict[str, list[TrialResult]] = {}
     for behaviour in ("still", "straight", "net"):
         cond = condition(
@@ -179,24 +171,18 @@ def run_ablation(
             model=net if behaviour == "net" else None,
             camera_latency_s=ablation.latency_s,
         )
-        results, _, _ = evaluate(cond, folder / "results", workers, progress)
+        results, _, _ = evaluate(cond, folder / "results", ctx.workers, ctx.progress)
         trials[behaviour] = results
     row = AblationRow(ablation, trials)
-    log(f"  [ablation] {ablation.label}: {row_summary(row)}")
+    ctx.log(f"  [ablation] {ablation.label}: {row_summary(row)}")
     return row
 
 
 def run_ablations(
-    rows: Sequence[Ablation],
-    plan: AblationPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
+    rows: Sequence[Ablation], plan: AblationPlan, ctx: RunContext
 ) -> list[AblationRow]:
     """Every row (:func:`ablations`), in order."""
-    return [run_ablation(a, plan, out, seeds, workers, log, progress) for a in rows]
+    return [run_ablation(a, plan, ctx) for a in rows]
 
 
 def _share(results: Sequence[TrialResult]) -> str:

@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from learning.datasets import InterceptionDataset, Provenance
+from robotsoccer.experiments.context import Field, RunContext
 from robotsoccer.experiments.gap_variants import (
     PresetValue,
     Randomisation,
@@ -39,15 +40,7 @@ from robotsoccer.experiments.gap_variants import (
 )
 from robotsoccer.experiments.layer1_collect import collect
 from robotsoccer.experiments.layer1_evaluate import evaluate
-from robotsoccer.experiments.layer1_plan import (
-    Condition,
-    Field,
-    Layer1Plan,
-    Log,
-    Seeds,
-    base_spec,
-    condition,
-)
+from robotsoccer.experiments.layer1_plan import Condition, Layer1Plan, base_spec, condition
 from robotsoccer.experiments.layer1_train import prefix, train_series
 from robotsoccer.experiments.report_cells import percent_cell
 from robotsoccer.runs.runner import TrialResult
@@ -109,11 +102,7 @@ def fine_tuning_curve(
     dataset: InterceptionDataset,
     unit_m: float,
     plan: GapPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
+    ctx: RunContext,
 ) -> list[CurvePoint]:
     """Scratch and fine-tuned nets on the first n target saves, each tested on the target.
 
@@ -123,17 +112,14 @@ def fine_tuning_curve(
         dataset: The target's training saves, in trial order.
         unit_m: One drill unit of the target [m] (the pre-trained net reads drill units).
         plan: The study's plan.
-        out: The run folder (files under ``gap/`` and ``results/gap/``).
-        seeds: The evaluation seed is shared with the transfer matrix (paired trials).
-        workers: Processes.
-        log: Progress lines.
-        progress: Progress bars.
+        ctx: The run (files under ``gap/`` and ``results/gap/`` of its folder); its evaluation
+            seed is shared with the transfer matrix (paired trials).
     """
     from learning.interception import InterceptionModel  # torch loads only when training
 
-    folder = out / "gap" / "fine_tuning"
+    folder = ctx.out / "gap" / "fine_tuning"
     sizes = [n for n in plan.sizes if n <= len(dataset)]
-    scratch = train_series(dataset, sizes, plan.epochs, folder / "scratch", log)
+    scratch = train_series(dataset, sizes, plan.epochs, folder / "scratch", ctx.log)
     source = InterceptionModel.load(pretrained)
     (folder / "tuned").mkdir(parents=True, exist_ok=True)
     points = []
@@ -153,11 +139,10 @@ def fine_tuning_curve(
         )
         nets = {"scratch": scratch[n], "tuned": path}
         results = {
-            kind: _tested(target, net, f"_{kind}{n}", plan, out, seeds, workers, progress)
-            for kind, net in nets.items()
+            kind: _tested(target, net, f"_{kind}{n}", plan, ctx) for kind, net in nets.items()
         }
         point = CurvePoint(n, tuple(results["scratch"]), tuple(results["tuned"]))
-        log(
+        ctx.log(
             f"  [fine-tuning] {n} saves: scratch {save_share(point.scratch)}, "
             f"fine-tuned {save_share(point.tuned)}"
         )
@@ -170,18 +155,16 @@ def _tested(
     net: Path,
     tag: str,
     plan: GapPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    progress: bool,
+    ctx: RunContext,
     *,
     transfer: bool = False,
 ) -> list[TrialResult]:
-    base = base_spec(*field, seeds.evaluation, "hold")
+    base = base_spec(*field, ctx.seeds.evaluation, "hold")
     cond = condition(base, plan.eval_trials, "net", noise=plan.noise, model=net, tag=tag)
     if transfer:
         cond = Condition(cond.name, cond.spec.with_options(transfer=True), cond.n_trials)
-    results, _, _ = evaluate(cond, out / "results" / "gap" / field[0], workers, progress)
+    results_dir = ctx.results_dir("gap") / field[0]
+    results, _, _ = evaluate(cond, results_dir, ctx.workers, ctx.progress)
     return results
 
 
@@ -207,11 +190,7 @@ def domain_randomised_net(
     target: Field,
     randomisation: Randomisation,
     plan: GapPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
+    ctx: RunContext,
 ) -> RandomisedNet:
     """Collect on every variant, train one net on the pooled saves, test it on both fields.
 
@@ -220,7 +199,8 @@ def domain_randomised_net(
     """
     from learning.interception import InterceptionModel  # torch loads only when training
 
-    folder = out / "gap" / "randomised"
+    folder = ctx.out / "gap" / "randomised"
+    seeds = ctx.seeds
     presets = write_variants(randomisation, folder / "presets", seeds.collection)
     share = math.ceil(plan.net_examples / randomisation.variants)
     collect_plan = Layer1Plan(
@@ -239,27 +219,22 @@ def domain_randomised_net(
             collect_plan,
             folder / f"variant_{k}" / "results",
             folder / f"variant_{k}" / "train.npz",
-            workers,
+            ctx.workers,
             "robotsoccer transfer (domain randomisation)",
-            progress,
+            ctx.progress,
         )
         parts.append(prefix(dataset, min(share, len(dataset))))
     variants = tuple(draw_variants(randomisation, seeds.collection))
     pooled = _pooled(parts, reference, randomisation, variants, seeds.collection, plan.noise)
     model = InterceptionModel(epochs=plan.epochs).fit(pooled.x.copy(), pooled.y.copy())
     path = model.save(folder / f"net_{len(pooled)}.npz", pooled.provenance)
-    log(f"  [randomised] net on {len(pooled)} saves of {len(presets)} variants")
+    ctx.log(f"  [randomised] net on {len(pooled)} saves of {len(presets)} variants")
     results = {
-        target[0]: tuple(
-            _tested(target, path, "_randomised", plan, out, seeds, workers, progress,
-                    transfer=True)
-        ),
-        reference[0]: tuple(
-            _tested(reference, path, "_randomised", plan, out, seeds, workers, progress)
-        ),
-    }  # fmt: skip
+        target[0]: tuple(_tested(target, path, "_randomised", plan, ctx, transfer=True)),
+        reference[0]: tuple(_tested(reference, path, "_randomised", plan, ctx)),
+    }
     for field, trials in results.items():
-        log(f"  [randomised] on {field}: {save_share(trials)}")
+        ctx.log(f"  [randomised] on {field}: {save_share(trials)}")
     return RandomisedNet(path, variants, share, results)
 
 

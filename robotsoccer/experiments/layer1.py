@@ -43,6 +43,7 @@ from typing import Any
 
 from field_models.registry import default_preset, field_facts
 from robotsoccer.drills.intercept_plan import launch_plan
+from robotsoccer.experiments.context import Field, RunContext
 from robotsoccer.experiments.layer1_collect import collect_into
 from robotsoccer.experiments.layer1_evaluate import (
     counts_of,
@@ -54,11 +55,8 @@ from robotsoccer.experiments.layer1_evaluate import (
 from robotsoccer.experiments.layer1_plan import (
     Condition,
     Layer1Plan,
-    Log,
     PipelineError,
-    Seeds,
     base_spec,
-    seeds_for,
 )
 from robotsoccer.experiments.layer1_report import fill_section, intro_lines, scaling_notes
 from robotsoccer.experiments.layer1_train import (
@@ -74,22 +72,16 @@ from robotsoccer.runs.runner import TrialResult
 
 
 def run_model(
-    field_model: str,
-    preset: str,
-    plan: Layer1Plan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    created_by: str = "robotsoccer reproduce",
-    progress: bool = False,
+    field: Field, plan: Layer1Plan, ctx: RunContext
 ) -> tuple[ModelSection, dict[str, Condition]]:
     """Collect, train and evaluate layer 1 on one field model; record a few trials.
 
     Returns:
         The report section and the conditions that ran (for ``config.json``).
     """
-    results_dir = out / "results" / field_model
+    field_model, preset = field
+    out, log = ctx.out, ctx.log
+    results_dir = ctx.results_dir(field_model)
     facts = field_facts(field_model, preset)
     section = ModelSection(
         field_model,
@@ -100,20 +92,18 @@ def run_model(
     )
     section.notes = scaling_notes(field_model, preset)
 
-    dataset, collected, timing = collect_into(
-        field_model, preset, plan, out, seeds, workers, log, created_by, progress
-    )
+    dataset, collected, timing = collect_into(field, plan, ctx)
     section.checks["random"] = collected
     section.stages.append(timing)
 
     log(f"[{field_model}] train")
     start = time.perf_counter()
-    trained = train(plan, dataset, out / "models" / field_model, log)
+    trained = train(plan, dataset, ctx.models_dir(field_model), log)
     section.stages.append(StageTiming("train nets + lookup", 0, time.perf_counter() - start))
     section.net_examples = trained.main_examples
     section.train_seconds = trained.seconds
 
-    base = base_spec(field_model, preset, seeds.evaluation, plan.ta_mode)
+    base = base_spec(field_model, preset, ctx.seeds.evaluation, plan.ta_mode)
     plan_of = experiments(plan, base, trained, facts.sensor_latency_s)
     done: dict[str, list[TrialResult]] = {}
     for experiment, keyed in plan_of.items():
@@ -122,7 +112,7 @@ def run_model(
         for _, cond in keyed:
             if cond.name in done:
                 continue
-            done[cond.name], n_run, seconds = evaluate(cond, results_dir, workers, progress)
+            done[cond.name], n_run, seconds = evaluate(cond, results_dir, ctx.workers, ctx.progress)
             ran, wall = ran + n_run, wall + seconds
             c = counts_of(done[cond.name])
             log(f"  {cond.name}: {c.saves} SAVE, {c.goals} GOAL, {c.misses} MISS ({seconds:.1f} s)")
@@ -143,13 +133,8 @@ def run_model(
 def run_layer1(
     models: Sequence[tuple[str, str | None]],
     plan: Layer1Plan,
-    out: Path,
-    seed: int,
-    workers: int | None,
-    log: Log,
+    ctx: RunContext,
     title: str = "Layer 1 reproduction",
-    created_by: str = "robotsoccer reproduce",
-    progress: bool = False,
 ) -> tuple[Path, list[ModelSection]]:
     """Run layer 1 on each (field model, preset) and write one folder.
 
@@ -167,10 +152,10 @@ def run_layer1(
     from robotsoccer.experiments.report import report_markdown
 
     named = [(m, p or default_preset(m)) for m, p in models]
-    seeds = seeds_for(seed)
+    out, seeds = ctx.out, ctx.seeds
     header = {
         "plan": plan.to_dict(),
-        "seed": seed,
+        "seed": seeds.evaluation,
         "seeds": dataclasses.asdict(seeds),
         "models": [list(m) for m in named],
         "code_version": code_version(),
@@ -179,9 +164,7 @@ def run_layer1(
     start = time.perf_counter()
     sections, conditions = [], {}
     for field_model, preset in named:
-        section, conds = run_model(
-            field_model, preset, plan, out, seeds, workers, log, created_by, progress
-        )
+        section, conds = run_model((field_model, preset), plan, ctx)
         sections.append(section)
         conditions[field_model] = {
             name: {"n_trials": c.n_trials, "spec": dataclasses.asdict(c.spec)}
@@ -195,7 +178,7 @@ def run_layer1(
         if draw(sections, out / "plots" / name) is not None:
             plots.append((caption, f"plots/{name}"))
     wall = time.perf_counter() - start
-    intro = intro_lines(plan, seeds, named, wall, workers, sections)
+    intro = intro_lines(plan, seeds, named, wall, ctx.workers, sections)
     report = out / "report.md"
     report.write_text(report_markdown(title, intro, sections, plots))
     config = {**header, "wall_s": round(wall, 1), "conditions": conditions}
@@ -232,24 +215,12 @@ def claim_folder(out: Path, header: dict[str, Any]) -> None:
     path.write_text(json.dumps(header, indent=2) + "\n")
 
 
-def train_main_net(
-    field_model: str,
-    preset: str,
-    plan: Layer1Plan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
-    created_by: str = "robotsoccer learn pass",
-) -> Path:
+def train_main_net(field: Field, plan: Layer1Plan, ctx: RunContext) -> Path:
     """Layer 1's collection and its main net only (no evaluations), for a layer-2 run.
 
     The same collection and training as :func:`run_model` (same seeds, same files), so a later
     ``reproduce`` into the same folder resumes them. Returns the net's file.
     """
-    dataset, _, _ = collect_into(
-        field_model, preset, plan, out, seeds, workers, log, created_by, progress
-    )
+    dataset, _, _ = collect_into(field, plan, ctx)
     main = net_for_figures(plan, training_sizes(plan, len(dataset)))
-    return train_series(dataset, [main], plan.epochs, out / "models" / field_model, log)[main]
+    return train_series(dataset, [main], plan.epochs, ctx.models_dir(field[0]), ctx.log)[main]

@@ -19,14 +19,13 @@ from field_models.registry import field_facts
 from learning.datasets import InterceptionDataset, Provenance
 from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.experiments.context import Field, RunContext
 from robotsoccer.experiments.layer1_evaluate import counts_of, evaluate
 from robotsoccer.experiments.layer1_plan import (
     COLLECT_BEHAVIOUR,
     DRILL,
     Layer1Plan,
-    Log,
     PipelineError,
-    Seeds,
     base_spec,
     condition,
 )
@@ -126,26 +125,19 @@ COLLECT_LIMIT_PER_SAVE = 50
 
 
 def collect_into(
-    field_model: str,
-    preset: str,
-    plan: Layer1Plan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    created_by: str,
-    progress: bool = False,
+    field: Field, plan: Layer1Plan, ctx: RunContext
 ) -> tuple[InterceptionDataset, Counts, StageTiming]:
     """:func:`collect` for one field model into the run folder's usual places, logged."""
-    log(f"[{field_model}] collect: random TA until {plan.collect_saves} saves")
+    field_model, preset = field
+    ctx.log(f"[{field_model}] collect: random TA until {plan.collect_saves} saves")
     dataset, collected, timing = collect(
-        base_spec(field_model, preset, seeds.collection, plan.ta_mode),
+        base_spec(field_model, preset, ctx.seeds.collection, plan.ta_mode),
         plan,
-        out / "results" / field_model,
-        out / "datasets" / field_model / "train.npz",
-        workers,
-        created_by,
-        progress,
+        ctx.results_dir(field_model),
+        ctx.out / "datasets" / field_model / "train.npz",
+        ctx.workers,
+        ctx.created_by,
+        ctx.progress,
     )
-    log(f"  {collected.saves} saves of {collected.n} trials ({timing.wall_s:.1f} s)")
+    ctx.log(f"  {collected.saves} saves of {collected.n} trials ({timing.wall_s:.1f} s)")
     return dataset, collected, timing

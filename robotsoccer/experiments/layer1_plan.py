@@ -11,22 +11,19 @@ A :class:`Condition` is one named thing to evaluate (:func:`condition`).
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from robotsoccer.experiments import paper
+
+# Re-exported: the experiments imported these from here before the context had a module.
+from robotsoccer.experiments.context import Field as Field
+from robotsoccer.experiments.context import Log as Log
+from robotsoccer.experiments.context import Seeds as Seeds
+from robotsoccer.experiments.context import seeds_for as seeds_for
 from robotsoccer.runs.runner import TrialSpec
 from robotsoccer.skills.intercept import TaMode
-
-Log = Callable[[str], None]
-"""Where progress lines go (the CLI prints them)."""
-
-Field = tuple[str, str]
-"""A field model and its preset."""
 
 DRILL = "intercept"
 """The registered name of the interception drill (paper Figure 6)."""
@@ -105,25 +102,6 @@ def full_plan() -> Layer1Plan:
 def plan_for(quick: bool) -> Layer1Plan:
     """The quick or the full plan."""
     return quick_plan() if quick else full_plan()
-
-
-@dataclass(frozen=True)
-class Seeds:
-    """The experiment seeds of one run: evaluation (shared by all conditions) and collection."""
-
-    evaluation: int
-    collection: int
-
-
-def seeds_for(seed: int) -> Seeds:
-    """Evaluation uses `seed`; collection a 32-bit seed derived from it, never `seed` itself.
-
-    The derived seed is the first word of ``SeedSequence([seed, 1])`` that differs from `seed`,
-    so a run's nets are never tested on the placements they were trained on.
-    """
-    words = np.random.SeedSequence([seed, 1]).generate_state(2).tolist()
-    derived = next(int(w) for w in words if w != seed)
-    return Seeds(evaluation=seed, collection=derived)
 
 
 @dataclass(frozen=True)

@@ -41,8 +41,9 @@ import numpy as np
 from learning.pass_dataset import PassDataset
 from learning.pass_tree import LABELS, PassTree
 from robotsoccer.experiments import paper
+from robotsoccer.experiments.context import Field, RunContext
 from robotsoccer.experiments.layer1_evaluate import evaluate
-from robotsoccer.experiments.layer1_plan import Condition, Log, Seeds
+from robotsoccer.experiments.layer1_plan import Condition
 from robotsoccer.experiments.layer2_training import (
     dataset_from,
     passer_half_only,
@@ -188,50 +189,34 @@ class MainTree:
     train_s: float
 
 
-def train_main_tree(
-    field_model: str,
-    preset: str,
-    net: Path,
-    plan: Layer2Plan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
-) -> MainTree:
+def train_main_tree(field: Field, net: Path, plan: Layer2Plan, ctx: RunContext) -> MainTree:
     """Layer 2's collection and its tree only (no tests), into the run folder's usual places.
 
     The same files and seeds as :func:`run_layer2_model`, so either resumes the other's work.
     """
-    log(f"[{field_model}] layer 2: collect {plan.collect_trials} passes to a random receiver")
+    field_model, preset = field
+    out, seeds = ctx.out, ctx.seeds
+    ctx.log(f"[{field_model}] layer 2: collect {plan.collect_trials} passes to a random receiver")
     base = pass_spec(field_model, preset, seeds.collection, net)
     dataset, collected, timing = collect_passes(
         base, plan, out / "results" / field_model / "layer2",
-        out / "datasets" / field_model / "passes.npz", workers, progress,
+        out / "datasets" / field_model / "passes.npz", ctx.workers, ctx.progress,
     )  # fmt: skip
     labels = Counter(r.label for r in collected)
-    log(f"  {len(dataset)} passes: {dict(labels)} ({timing.wall_s:.1f} s)")
+    ctx.log(f"  {len(dataset)} passes: {dict(labels)} ({timing.wall_s:.1f} s)")
     start = time.perf_counter()
     path = out / "models" / field_model / "pass_tree.json"
     tree, holdout = train_tree(dataset, path, seeds.collection)
     return MainTree(dataset, labels, timing, path, tree, holdout, time.perf_counter() - start)
 
 
-def run_layer2_model(
-    field_model: str,
-    preset: str,
-    net: Path,
-    plan: Layer2Plan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
-) -> Layer2Section:
+def run_layer2_model(field: Field, net: Path, plan: Layer2Plan, ctx: RunContext) -> Layer2Section:
     """Collect, train and test layer 2 on one field model (module docstring)."""
-    results_dir = out / "results" / field_model / "layer2"
+    field_model, preset = field
+    seeds, log = ctx.seeds, ctx.log
+    results_dir = ctx.results_dir(field_model) / "layer2"
     section = Layer2Section(field_model, preset, net.name)
-    main = train_main_tree(field_model, preset, net, plan, out, seeds, workers, log, progress)
+    main = train_main_tree(field, net, plan, ctx)
     dataset, tree, tree_path = main.dataset, main.tree, main.path
     section.stages.append(main.collection)
     section.collected = main.collected
@@ -258,7 +243,7 @@ def run_layer2_model(
     test_base = pass_spec(field_model, preset, seeds.evaluation, net)
     conditions = layer2_conditions(test_base, plan.eval_trials, tree_path, own_path, boost_path)
     for name, cond in conditions.items():
-        results, ran, wall = evaluate(cond, results_dir, workers, progress)
+        results, ran, wall = evaluate(cond, results_dir, ctx.workers, ctx.progress)
         section.results[name] = results
         section.stages.append(StageTiming(name, ran, wall))
         counts = Counter(r.label for r in results)

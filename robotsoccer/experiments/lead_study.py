@@ -40,7 +40,7 @@ import dataclasses
 import math
 import statistics
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -48,15 +48,13 @@ from typing import Any
 import numpy as np
 
 from learning.datasets import InterceptionDataset, Provenance
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1_collect import decided_saves
 from robotsoccer.experiments.layer1_evaluate import counts_of, evaluate
 from robotsoccer.experiments.layer1_plan import Condition as EvalCondition
-from robotsoccer.experiments.layer1_plan import Seeds
 from robotsoccer.experiments.report_cells import paired_cell, percent_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.stats import wilson_interval
-
-Log = Callable[[str], None]
 
 DECISIONS = ("turn", "lead")
 """The paper's TA and the robot-native lead (:mod:`robotsoccer.skills.lead`)."""
@@ -146,44 +144,36 @@ class FieldSection:
         raise KeyError((decision, behaviour))
 
 
-def run_field(
-    drill: StudyDrill, plan: LeadPlan, out: Path, seeds: Seeds, workers: int | None, log: Log
-) -> FieldSection:
+def run_field(drill: StudyDrill, plan: LeadPlan, ctx: RunContext) -> FieldSection:
     """Collect, train and evaluate both decisions on one field (module docstring)."""
-    results_dir = out / "results" / drill.field_model
     trained: dict[str, int] = {}
-    rows = [_evaluated(drill, plan, seeds, "turn", "still", None, results_dir, workers, log)]
+    rows = [_evaluated(drill, plan, ("turn", "still"), None, ctx)]
     for decision in DECISIONS:
-        net = train_net(drill, decision, plan, out, seeds, workers, log)
+        net = train_net(drill, decision, plan, ctx)
         trained[decision] = net[1]
         for behaviour in BEHAVIOURS:
             model = net[0] if behaviour == "net" else None
-            rows.append(
-                _evaluated(
-                    drill, plan, seeds, decision, behaviour, model, results_dir, workers, log
-                )
-            )
+            rows.append(_evaluated(drill, plan, (decision, behaviour), model, ctx))
     return FieldSection(drill, trained, tuple(rows))
 
 
 def _evaluated(
     drill: StudyDrill,
     plan: LeadPlan,
-    seeds: Seeds,
-    decision: str,
-    behaviour: str,
+    row: tuple[str, str],
     model: Path | None,
-    results_dir: Path,
-    workers: int | None,
-    log: Log,
+    ctx: RunContext,
 ) -> StudyRow:
+    """One row: `row` is its (decision, behaviour); `model` the net of a ``net`` row."""
+    decision, behaviour = row
     options: dict[str, str] = {"behaviour": behaviour}
     if model is not None:
         options["model"] = str(model.resolve())
-    spec = drill.spec(seeds.evaluation, decision, plan.noise).with_options(**options)
+    spec = drill.spec(ctx.seeds.evaluation, decision, plan.noise).with_options(**options)
     name = "still" if behaviour == "still" else f"{decision}_{behaviour}"
-    results, ran, wall = evaluate(EvalCondition(name, spec, plan.eval_trials), results_dir, workers)
-    log(
+    cond = EvalCondition(name, spec, plan.eval_trials)
+    results, ran, wall = evaluate(cond, ctx.results_dir(drill.field_model), ctx.workers)
+    ctx.log(
         f"{drill.field_model}: {name}: {percent_cell(counts_of(results).saves, len(results))} "
         f"saves ({ran} trials run, {wall:.0f} s)"
     )
@@ -191,24 +181,19 @@ def _evaluated(
 
 
 def train_net(
-    drill: StudyDrill,
-    decision: str,
-    plan: LeadPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
+    drill: StudyDrill, decision: str, plan: LeadPlan, ctx: RunContext
 ) -> tuple[Path, int]:
     """§5's recipe for one decision: random saves, then the 3-4-1 net. Returns (file, rows)."""
     from learning.interception import InterceptionModel  # torch: only when training
 
-    results_dir = out / "results" / drill.field_model
+    out, seeds = ctx.out, ctx.seeds
+    results_dir = ctx.results_dir(drill.field_model)
     spec = drill.spec(seeds.collection, decision, plan.noise).with_options(behaviour="random")
     n = plan.collect_batch
     limit = COLLECT_LIMIT_PER_SAVE * plan.collect_saves
     while True:
         cond = EvalCondition(f"collect_{decision}", spec, n)
-        results, _, _ = evaluate(cond, results_dir, workers)
+        results, _, _ = evaluate(cond, results_dir, ctx.workers)
         saves = decided_saves(results)
         if len(saves) >= plan.collect_saves or n >= limit:
             break
@@ -234,7 +219,7 @@ def train_net(
         start = time.perf_counter()
         model = InterceptionModel(epochs=plan.epochs, random_state=seeds.evaluation)
         model.fit(dataset.x, dataset.y, decision=decision).save(path, provenance)
-        log(
+        ctx.log(
             f"{drill.field_model}: {decision} net on {len(dataset)} saves "
             f"({time.perf_counter() - start:.0f} s)"
         )
@@ -329,13 +314,8 @@ def study_markdown(sections: Sequence[FieldSection], plan: LeadPlan) -> str:
 
 
 def run_study(
-    drills: Sequence[StudyDrill],
-    plan: LeadPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
+    drills: Sequence[StudyDrill], plan: LeadPlan, ctx: RunContext
 ) -> tuple[str, list[FieldSection]]:
     """The study on each field's drill; returns its markdown and sections."""
-    sections = [run_field(drill, plan, out, seeds, workers, log) for drill in drills]
+    sections = [run_field(drill, plan, ctx) for drill in drills]
     return study_markdown(sections, plan), sections

@@ -40,8 +40,9 @@ from pathlib import Path
 from typing import Any
 
 from robotsoccer.drills.setplay import SetPlayDrill
+from robotsoccer.experiments.context import Field, Log, RunContext
 from robotsoccer.experiments.layer1 import claim_folder
-from robotsoccer.experiments.layer1_plan import Field, Log, PipelineError
+from robotsoccer.experiments.layer1_plan import PipelineError
 from robotsoccer.experiments.report_cells import paired_difference, percent_cell
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.provenance import code_version
@@ -120,30 +121,23 @@ def play_conditions(field: Field, models: Path | None, seed: int) -> list[PlayCo
 
 
 def run_setplay_study(
-    out: Path,
+    ctx: RunContext,
     *,
     fields: Sequence[Field],
     models: Path | None,
     plays: int = 1000,
-    seed: int = 0,
-    workers: int | None = None,
     quick: bool = False,
-    log: Log = print,
-    progress: bool = False,
 ) -> Path:
-    """Run the set play on each field with both sets of minds; write `out`; return the report.
+    """Run the set play on each field with both sets of minds; write the run; return the report.
 
     Args:
-        out: The run folder (made ready by the caller; rerunning resumes it).
+        ctx: The run: its folder (made ready by the caller; rerunning resumes it), its
+            evaluation seed (shared by the conditions: paired plays), workers, log, progress.
         fields: (field model, preset) pairs, in report order.
         models: The folder holding ``<field model>/pass_tree.json`` and ``net_750.npz`` for
             every field; None runs the baseline only.
         plays: Plays per field and condition.
-        seed: The experiment seed (shared by the conditions: paired plays).
-        workers: Processes (None: all cores).
         quick: At most :data:`QUICK_PLAYS` plays per condition.
-        log: Where progress lines go.
-        progress: Show a progress bar per condition.
 
     Raises:
         PipelineError: A model file is missing, or `out` holds another study's run.
@@ -152,6 +146,7 @@ def run_setplay_study(
     if plays <= 0:
         raise ValueError(f"plays must be > 0, got {plays!r}")
     n = min(plays, QUICK_PLAYS) if quick else plays
+    out, seed, workers, log = ctx.out, ctx.seeds.evaluation, ctx.workers, ctx.log
     conditions = {field: play_conditions(field, models, seed) for field in fields}
     header = study_header(conditions, n, seed, quick)
     claim_folder(out, header)
@@ -164,8 +159,9 @@ def run_setplay_study(
             began = time.perf_counter()
             path = out / "results" / model / f"{cond.name}.csv"
             section.plays[cond.name] = run_trials(
-                cond.spec, n, workers=workers, results_path=path, resume=True, progress=progress
-            )
+                cond.spec, n, workers=workers, results_path=path, resume=True,
+                progress=ctx.progress,
+            )  # fmt: skip
             section.wall_s[cond.name] = time.perf_counter() - began
             section.recordings += record_plays(cond, out / "recordings" / model, log)
         sections.append(section)

@@ -35,15 +35,9 @@ from field_models.registry import field_facts
 from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.intercept_plan import LaunchPlan
+from robotsoccer.experiments.context import RunContext, Seeds
 from robotsoccer.experiments.layer1_evaluate import evaluate
-from robotsoccer.experiments.layer1_plan import (
-    Condition,
-    Layer1Plan,
-    Log,
-    Seeds,
-    base_spec,
-    condition,
-)
+from robotsoccer.experiments.layer1_plan import Condition, Layer1Plan, base_spec, condition
 from robotsoccer.experiments.layer2 import Layer2Plan, pass_spec
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill
 from robotsoccer.experiments.report_cells import paired_cell
@@ -111,11 +105,7 @@ def run_transfer(
     models: Sequence[tuple[str, str]],
     nets: dict[str, Path],
     plan: Layer1Plan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
+    ctx: RunContext,
 ) -> list[Cell]:
     """Layer 1's matrix: run every cell into ``out/results/transfer``.
 
@@ -123,19 +113,14 @@ def run_transfer(
         models: (field model, preset) pairs, each trained on and tested on.
         nets: Each field's net (:func:`~robotsoccer.experiments.layer1.train_main_net`).
         plan: Layer 1's plan (trials per condition, noise).
-        out: The run folder.
-        seeds: Evaluation seeds (shared by the cells of a test field).
-        workers: Processes.
-        log: Progress lines.
-        progress: Progress bars.
+        ctx: The run; its evaluation seed is shared by the cells of a test field.
     """
     cells = []
-    for tested, defender, trained, cond in transfer_conditions(models, nets, plan, seeds):
-        results, _, seconds = evaluate(
-            cond, out / "results" / "transfer" / tested, workers, progress
-        )
+    for tested, defender, trained, cond in transfer_conditions(models, nets, plan, ctx.seeds):
+        folder = ctx.results_dir("transfer") / tested
+        results, _, seconds = evaluate(cond, folder, ctx.workers, ctx.progress)
         cell = Cell(tested, defender, trained, tuple(results))
-        log(f"  [{tested}] {cell.name}: {cell.saves} saves of {len(results)} ({seconds:.1f} s)")
+        ctx.log(f"  [{tested}] {cell.name}: {cell.saves} saves of {len(results)} ({seconds:.1f} s)")
         cells.append(cell)
     return cells
 
@@ -145,11 +130,7 @@ def run_transfer_layer2(
     nets: dict[str, Path],
     trees: dict[str, Path],
     plan: Layer2Plan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
+    ctx: RunContext,
 ) -> list[Cell]:
     """Layer 2's matrix: each field's pass tree chooses the receiver on every field.
 
@@ -162,15 +143,11 @@ def run_transfer_layer2(
         trees: Each field's pass tree (:func:`~robotsoccer.experiments.layer2.
             train_main_tree`).
         plan: Layer 2's plan (trials per condition).
-        out: The run folder.
-        seeds: Evaluation seeds.
-        workers: Processes.
-        log: Progress lines.
-        progress: Progress bars.
+        ctx: The run (its evaluation seed).
     """
     cells = []
     for tested, preset in models:
-        base = pass_spec(tested, preset, seeds.evaluation, nets[tested])
+        base = pass_spec(tested, preset, ctx.seeds.evaluation, nets[tested])
         choosers: list[tuple[str, str, TrialSpec]] = [
             ("random", "", base.with_options(chooser="random")),
             ("closest", "", base.with_options(chooser="closest")),
@@ -183,12 +160,11 @@ def run_transfer_layer2(
         for kind, trained, spec in choosers:
             name = f"layer2_{kind}" + (f"_{trained}" if trained else "")
             cond = Condition(name, spec, plan.eval_trials)
-            results, _, seconds = evaluate(
-                cond, out / "results" / "transfer" / tested, workers, progress
-            )
+            folder = ctx.results_dir("transfer") / tested
+            results, _, seconds = evaluate(cond, folder, ctx.workers, ctx.progress)
             cell = Cell(tested, kind, trained, tuple(results), success="SUCCESS")
             done = f"{cell.saves} passes of {len(results)}"
-            log(f"  [{tested}] {cell.name}: {done} ({seconds:.1f} s)")
+            ctx.log(f"  [{tested}] {cell.name}: {done} ({seconds:.1f} s)")
             cells.append(cell)
     return cells
 
@@ -377,19 +353,16 @@ def run_lead_transfer(
     drills: Sequence[tuple[str, StudyDrill]],
     nets: Sequence[LeadNet],
     plan: LeadPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    progress: bool = False,
+    ctx: RunContext,
 ) -> list[Cell]:
     """The lead matrix: run every cell into ``out/results/transfer_lead/<test drill>``."""
     cells = []
-    for tested, defender, trained, cond in lead_transfer_conditions(drills, nets, plan, seeds):
-        folder = out / "results" / "transfer_lead" / _slug(tested)
-        results, _, seconds = evaluate(cond, folder, workers, progress)
+    conditions = lead_transfer_conditions(drills, nets, plan, ctx.seeds)
+    for tested, defender, trained, cond in conditions:
+        folder = ctx.results_dir("transfer_lead") / _slug(tested)
+        results, _, seconds = evaluate(cond, folder, ctx.workers, ctx.progress)
         cell = Cell(tested, defender, trained, tuple(results))
-        log(f"  [{tested}] {cell.name}: {cell.saves} saves of {len(results)} ({seconds:.1f} s)")
+        ctx.log(f"  [{tested}] {cell.name}: {cell.saves} saves of {len(results)} ({seconds:.1f} s)")
         cells.append(cell)
     return cells
 

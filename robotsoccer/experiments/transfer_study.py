@@ -24,13 +24,14 @@ from robotsoccer.experiments.calibration import recovered_markdown
 from robotsoccer.experiments.calibration_fit import calibrate as calibration_fit
 from robotsoccer.experiments.calibration_preset import calibrated_drill, write_preset
 from robotsoccer.experiments.calibration_traces import record_traces
+from robotsoccer.experiments.context import Field, RunContext
 from robotsoccer.experiments.gap_closing import domain_randomised_net, fine_tuning_curve, gap_plan
 from robotsoccer.experiments.gap_report import References, gap_markdown, plot_curve
 from robotsoccer.experiments.gap_variants import Randomisation
 from robotsoccer.experiments.layer1 import train_main_net
 from robotsoccer.experiments.layer1_collect import collect_into
 from robotsoccer.experiments.layer1_evaluate import evaluate
-from robotsoccer.experiments.layer1_plan import Condition, Field, Log, Seeds, plan_for
+from robotsoccer.experiments.layer1_plan import Condition, plan_for
 from robotsoccer.experiments.layer2 import layer2_plan, train_main_tree
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill, train_net
 from robotsoccer.experiments.transfer import (
@@ -68,46 +69,50 @@ class StudyParts:
     calibration: bool = True
 
 
-def run_transfer_study(
-    reference: Field,
-    target: Field,
-    randomisation: Randomisation,
-    quick: bool,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    parts: StudyParts = StudyParts(),
-    created_by: str = "robotsoccer transfer",
-    progress: bool = False,
-    lead_drills: Sequence[StudyDrill] = (),
-) -> str:
-    """Run the study into `out` (resumable) and return its report section (markdown).
+@dataclass(frozen=True)
+class TransferSetup:
+    """What the transfer study compares.
 
-    `created_by` names the command in the files' provenance: ``reproduce`` passes its own, so
-    the collections and nets it wrote before are the same files, not rewritten. `lead_drills`:
-    the lead study's drill on the reference and the target field (:func:`run_lead_study`).
+    Attributes:
+        reference: The field the nets are trained on first (the Soccer Server).
+        target: The field they are moved to (the robots).
+        randomisation: The reference's parameter ranges for domain randomisation.
+        parts: Which parts run beside the layer-1 matrix.
+        lead_drills: The lead study's drill on the reference and the target field
+            (:func:`run_lead_study`); none: no lead matrix.
     """
+
+    reference: Field
+    target: Field
+    randomisation: Randomisation
+    parts: StudyParts = StudyParts()
+    lead_drills: tuple[StudyDrill, ...] = ()
+
+
+def run_transfer_study(setup: TransferSetup, quick: bool, ctx: RunContext) -> str:
+    """Run the study into the run's folder (resumable) and return its report section (markdown).
+
+    The context's `created_by` names the command in the files' provenance: ``reproduce`` passes
+    its own, so the collections and nets it wrote before are the same files, not rewritten.
+    """
+    reference, target, randomisation = setup.reference, setup.target, setup.randomisation
+    parts, lead_drills = setup.parts, setup.lead_drills
     models = [reference, target]
     plan = plan_for(quick)
-    nets = {
-        model: train_main_net(model, preset, plan, out, seeds, workers, log, progress, created_by)
-        for model, preset in models
-    }
+    log = ctx.log
+    nets = {model: train_main_net((model, preset), plan, ctx) for model, preset in models}
     log("[transfer] layer 1")
-    cells = run_transfer(models, nets, plan, out, seeds, workers, log, progress)
+    cells = run_transfer(models, nets, plan, ctx)
     cells2: list[Cell] = []
     if parts.layer2:
         plan2 = layer2_plan(quick)
         trees = {
-            model: train_main_tree(
-                model, preset, nets[model], plan2, out, seeds, workers, log, progress
-            ).path
+            model: train_main_tree((model, preset), nets[model], plan2, ctx).path
             for model, preset in models
         }
         log("[transfer] layer 2")
-        cells2 = run_transfer_layer2(models, nets, trees, plan2, out, seeds, workers, log, progress)
-    plots = out / "plots"
+        cells2 = run_transfer_layer2(models, nets, trees, plan2, ctx)
+    plots = ctx.out / "plots"
     heatmaps = [
         plot_transfer(cells, plots / "transfer_layer1.png", "Layer 1 transfer: saves (%)"),
         plot_transfer(cells2, plots / "transfer_layer2.png", "Layer 2 transfer: passes (%)"),
@@ -118,20 +123,15 @@ def run_transfer_study(
         log("[transfer] layer 1 with the lead decision")
         sizes = lead_study.plan_for(quick)
         text += "\n" + run_lead_study(
-            lead_drills, reference[0], target[0], sizes, out, seeds, workers, log,
-            created_by, calibrate=parts.calibration, progress=progress,
-        )  # fmt: skip
+            lead_drills, reference[0], target[0], sizes, ctx, calibrate=parts.calibration
+        )
     if parts.gap_closing:
         log("[transfer] closing the gap")
         gplan = gap_plan(plan, quick)
-        dataset, _, _ = collect_into(*target, plan, out, seeds, workers, log, created_by, progress)
+        dataset, _, _ = collect_into(target, plan, ctx)
         unit_m = field_facts(*target).unit_m
-        curve = fine_tuning_curve(
-            nets[reference[0]], target, dataset, unit_m, gplan, out, seeds, workers, log, progress
-        )
-        randomised = domain_randomised_net(
-            reference, target, randomisation, gplan, out, seeds, workers, log, progress
-        )
+        curve = fine_tuning_curve(nets[reference[0]], target, dataset, unit_m, gplan, ctx)
+        randomised = domain_randomised_net(reference, target, randomisation, gplan, ctx)
         refs = references(cells, reference[0], target[0])
         plot = plot_curve(refs, curve, plots / "fine_tuning.png")
         text += "\n" + gap_markdown(refs, curve, randomised, randomisation, gplan, plot)
@@ -139,7 +139,7 @@ def run_transfer_study(
         log("[transfer] ablations")
         plan3 = ablation_plan(quick)
         study = ablations(reference, target)
-        rows = run_ablations(study, plan3, out, seeds, workers, log, progress)
+        rows = run_ablations(study, plan3, ctx)
         text += "\n" + ablation_markdown(rows, plan3)
     return text
 
@@ -154,14 +154,9 @@ def run_lead_study(
     reference: str,
     target: str,
     plan: LeadPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    log: Log,
-    created_by: str,
+    ctx: RunContext,
     *,
     calibrate: bool = True,
-    progress: bool = False,
 ) -> str:
     """The lead matrix, and with `calibrate` the calibrated server beside it; its markdown.
 
@@ -180,10 +175,9 @@ def run_lead_study(
     if missing:
         raise ValueError(f"the lead transfer needs a lead drill on {', '.join(missing)}")
     named = [(target, by_field[target]), (reference, by_field[reference])]
-    nets = [
-        LeadNet(train_net(d, "lead", plan, out / "lead", seeds, workers, log)[0], d, label)
-        for label, d in named
-    ]
+    out, seeds, log = ctx.out, ctx.seeds, ctx.log
+    lead, calibration = ctx.at(out / "lead"), ctx.at(out / "calibration")
+    nets = [LeadNet(train_net(d, "lead", plan, lead)[0], d, label) for label, d in named]
     cal = None
     if calibrate:
         robot = by_field[target]
@@ -194,14 +188,17 @@ def run_lead_study(
         cal = calibration_fit(traces, facts)
         server = by_field[reference]
         preset = write_preset(
-            cal, out / "calibration" / f"{reference}_calibrated.toml", server.preset, created_by
+            cal,
+            calibration.out / f"{reference}_calibrated.toml",
+            server.preset,
+            ctx.created_by,
         )
         drill = calibrated_drill(robot, reference, preset, facts.unit_m)
-        path, _ = train_net(drill, "lead", plan, out / "calibration", seeds, workers, log)
+        path, _ = train_net(drill, "lead", plan, calibration)
         named.append((calibrated_label(reference), drill))
         nets.append(LeadNet(path, drill, calibrated_label(reference)))
         log(f"  [calibration] preset {preset}")
-    cells = run_lead_transfer(named, nets, plan, out, seeds, workers, log, progress)
+    cells = run_lead_transfer(named, nets, plan, ctx)
     text = lead_markdown(cells, named, plan)
     if cal is not None:
         at = {(c.tested_on, c.defender, c.trained_on): c.results for c in cells}
@@ -213,17 +210,13 @@ def run_lead_study(
             "analytic": at[(target, "lead analytic", "")],
         }
         turn_nets = {
-            "native": train_net(by_field[target], "turn", plan, out / "lead", seeds, workers, log),
-            "uncalibrated": train_net(
-                by_field[reference], "turn", plan, out / "lead", seeds, workers, log
-            ),
-            "calibrated": train_net(named[-1][1], "turn", plan, out / "calibration", seeds,
-                                    workers, log),
-        }  # fmt: skip
+            "native": train_net(by_field[target], "turn", plan, lead),
+            "uncalibrated": train_net(by_field[reference], "turn", plan, lead),
+            "calibrated": train_net(named[-1][1], "turn", plan, calibration),
+        }
         turn = turn_rows(
-            by_field[target], {role: net[0] for role, net in turn_nets.items()}, plan, out,
-            seeds, workers, progress,
-        )  # fmt: skip
+            by_field[target], {role: net[0] for role, net in turn_nets.items()}, plan, ctx
+        )
         paper = field_facts(reference, by_field[reference].preset)
         where = f"calibration/{reference}_calibrated.toml"
         tables = {"lead": rows, "turn (the paper's TA)": turn}
@@ -235,18 +228,15 @@ def turn_rows(
     drill: StudyDrill,
     nets: dict[str, Path],
     plan: LeadPlan,
-    out: Path,
-    seeds: Seeds,
-    workers: int | None,
-    progress: bool = False,
+    ctx: RunContext,
 ) -> dict[str, tuple[TrialResult, ...]]:
     """The paper's TA decision on `drill`: straight and each net (by role), paired placements.
 
     The ``native`` net runs as it is; every other with ``transfer=true`` (its distances in
     drill units; a TA is an angle, which needs no other scale).
     """
-    base = drill.spec(seeds.evaluation, "turn", plan.noise)
-    folder = out / "results" / "transfer_lead" / drill.field_model
+    base = drill.spec(ctx.seeds.evaluation, "turn", plan.noise)
+    folder = ctx.results_dir("transfer_lead") / drill.field_model
     specs = {"straight": base.with_options(behaviour="straight")}
     for role, path in nets.items():
         spec = base.with_options(behaviour="net", model=str(path.resolve()))
@@ -254,7 +244,7 @@ def turn_rows(
     rows = {}
     for role, spec in specs.items():
         cond = Condition(f"turn_{role}", spec, plan.eval_trials)
-        rows[role] = tuple(evaluate(cond, folder, workers, progress)[0])
+        rows[role] = tuple(evaluate(cond, folder, ctx.workers, ctx.progress)[0])
     return rows
 
 

@@ -37,11 +37,10 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from field_models.registry import preload_modules
-from robotsoccer.drills import make_drill
 from robotsoccer.drills.intercept_batch import DEFAULT_BATCH, batch_reason, run_intercept_batch
 from robotsoccer.runs.folders import holding
 from robotsoccer.runs.provenance import code_version, file_digest, machine
-from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
+from robotsoccer.runs.runner import TrialResult, TrialSpec, resolve, run_trial
 from robotsoccer.runs.table import ResumeError, TableWriter, iter_results
 from robotsoccer.runs.table import read_results as read_results  # where callers found it
 
@@ -184,7 +183,7 @@ def manifest(spec: TrialSpec, root: Path | None = None) -> dict[str, Any]:
     compare it, since results do not depend on it.
     """
     root = root.resolve() if root is not None else None
-    inputs = make_drill(spec.drill, dict(spec.drill_options)).inputs()
+    inputs = resolve(spec).new_drill().inputs()
     recorded = dataclasses.replace(spec, record_dir=None, record_trials=0)
     return {
         "spec": _relative(json.loads(json.dumps(dataclasses.asdict(recorded), default=str)), root),

@@ -8,27 +8,31 @@ how many workers ran or in which order.
 from __future__ import annotations
 
 import csv
-import dataclasses
 import io
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Protocol, runtime_checkable
+from typing import Protocol, runtime_checkable
 
-from field_models.arena import Arena, ArenaEvent, FieldOptions
+from field_models.arena import Arena, ArenaEvent
 from field_models.commands import render_command
 from field_models.protocol import Action, Mind, Percept, PlayerRef
-from field_models.registry import DEFAULT_OPTIONS, default_preset, field_facts, make_arena
+from field_models.registry import make_arena
 from field_models.seeding import TrialRngs
-from robotsoccer.drills import Drill, Verdict, make_drill
+from robotsoccer.drills import Drill, Verdict
 from robotsoccer.replay.frames import GameFrame
+
+# TrialSpec and its resolution live in robotsoccer.runs.spec; re-exported here, where every
+# caller has always found them.
+from robotsoccer.runs.spec import DrillOption as DrillOption
+from robotsoccer.runs.spec import ResolvedSpec as ResolvedSpec
+from robotsoccer.runs.spec import TrialSpec as TrialSpec
+from robotsoccer.runs.spec import field_options as field_options
+from robotsoccer.runs.spec import resolve as resolve
 
 Observer = Callable[[Arena, list[Percept]], None]
 """Called after every tick with the arena and the percepts of that tick (recordings, traces)."""
-
-DrillOption = str | float | int | bool
-"""A drill option's value (kept to plain types so a TrialSpec pickles and prints)."""
 
 DecisionLog = Callable[[Percept, tuple[Action, ...]], None]
 """Called with every percept a mind acted on and the actions it chose."""
@@ -48,55 +52,6 @@ def csv_record(fields: Sequence[str]) -> str:
     else:
         csv.writer(text, lineterminator="\n", quoting=csv.QUOTE_MINIMAL).writerow(fields)
     return text.getvalue()
-
-
-@dataclass(frozen=True, slots=True)
-class TrialSpec:
-    """Everything that defines the trials of one run, except the trial index.
-
-    Attributes:
-        drill: Registered drill name.
-        field_model: Registered field model name (:data:`field_models.registry.FIELD_MODELS`).
-        preset: Preset name or path for that field model; None: the model's default.
-        seed: Experiment seed; trial i uses the seed sequence (seed, i).
-        field: Settings changed on the field model (perfect perception, ball noise, sensor
-            latency, ball-noise period); the drill may add its own where these leave None.
-        drill_options: Keyword arguments for the drill, as (name, value) pairs.
-        record_dir: Folder for rerun recordings, or None.
-        record_trials: Record the trials whose index is below this.
-    """
-
-    drill: str
-    field_model: str
-    preset: str | None = None
-    seed: int = 0
-    field: FieldOptions = DEFAULT_OPTIONS
-    drill_options: tuple[tuple[str, DrillOption], ...] = ()
-    record_dir: str | None = None
-    record_trials: int = 0
-
-    def __post_init__(self) -> None:
-        if self.preset is None:
-            object.__setattr__(self, "preset", default_preset(self.field_model))
-
-    @property
-    def preset_name(self) -> str:
-        """The preset (resolved: never None)."""
-        assert self.preset is not None
-        return self.preset
-
-    def records(self, index: int) -> bool:
-        """Whether trial `index` is recorded (a record folder, and among the first trials)."""
-        return self.record_dir is not None and index < self.record_trials
-
-    def with_options(self, **options: DrillOption) -> TrialSpec:
-        """A copy with these drill options added (replacing any of the same name)."""
-        merged = dict(self.drill_options) | options
-        return dataclasses.replace(self, drill_options=tuple(sorted(merged.items())))
-
-    def with_field(self, **settings: Any) -> TrialSpec:
-        """A copy with these field settings changed (names of :class:`FieldOptions`)."""
-        return dataclasses.replace(self, field=dataclasses.replace(self.field, **settings))
 
 
 @dataclass(frozen=True, slots=True)
@@ -260,14 +215,6 @@ class TrialLoop:
         return self.verdict
 
 
-def field_options(spec: TrialSpec, drill: Drill) -> FieldOptions:
-    """The spec's field settings, plus the drill's own where the spec leaves one unset."""
-    facts = field_facts(spec.field_model, spec.preset, spec.field)
-    wanted = drill.field_settings(facts)
-    unset: dict[str, Any] = {k: v for k, v in wanted.items() if getattr(spec.field, k) is None}
-    return dataclasses.replace(spec.field, **unset) if unset else spec.field
-
-
 def build_trial(
     spec: TrialSpec, index: int, *, keep_events: bool = False, trace: bool = False
 ) -> tuple[TrialRngs, Drill, Arena]:
@@ -276,23 +223,18 @@ def build_trial(
     The one place a trial is put together, so that a run, a recording and a trace of the same
     spec and index are the same trial.
     """
+    resolved = resolve(spec)
     rngs = TrialRngs.for_trial(spec.seed, index)
-    drill = make_drill(spec.drill, dict(spec.drill_options))
-    options = field_options(spec, drill)
-    players = drill.players()
-    sized = getattr(drill, "players_for", None)  # a drill whose team size follows the field
-    if sized is not None:
-        players = sized(field_facts(spec.field_model, spec.preset, options))
     arena = make_arena(
         spec.field_model,
         spec.preset,
-        players,
+        resolved.players,
         rngs,
-        options,
+        resolved.options,
         keep_events=keep_events,
         trace=trace,
     )
-    return rngs, drill, arena
+    return rngs, resolved.new_drill(), arena
 
 
 def run_trial(spec: TrialSpec, index: int) -> TrialResult:

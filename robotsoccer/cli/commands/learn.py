@@ -6,21 +6,20 @@ import argparse
 import json
 import sys
 import time
-from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
-from robotsoccer.cli.commands.transfer import transfer_section
+from robotsoccer.cli.commands.transfer import transfer_setup
 from robotsoccer.cli.options import EXIT_INTERRUPTED, LEAD_DRILLS, PAPER_MODELS, TEAM_FIELD
-from robotsoccer.cli.running import check_spec, clock_log, fail
+from robotsoccer.cli.running import check_spec, clock_log, fail, run_context
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
-    from robotsoccer.experiments.report_records import ModelSection
+    from robotsoccer.experiments.reproduce import ReproduceParts
 
 
 def cmd_learn(args: argparse.Namespace) -> int:
@@ -31,17 +30,21 @@ def cmd_learn(args: argparse.Namespace) -> int:
         return cmd_learn_lead(args)
     if args.target == "team":
         return cmd_learn_team(args)
+    from robotsoccer.experiments.reproduce import ReproduceParts
+
     preset = args.field_preset or default_preset(args.field)
     tag = f"learn-intercept-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     title = f"Layer 1 (interception) on {args.field}" + (" — quick plan" if args.quick else "")
-    return _run_layer1(args, [(args.field, preset)], out, title, "robotsoccer learn intercept")
+    return _run_pipeline(
+        args, [(args.field, preset)], out, title, "robotsoccer learn intercept", ReproduceParts()
+    )
 
 
 def cmd_learn_pass(args: argparse.Namespace) -> int:
     """``learn pass``: layer 2 on one field model (collect → train → evaluate → report)."""
     from robotsoccer.experiments.layer1 import train_main_net
-    from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
+    from robotsoccer.experiments.layer1_plan import plan_for
     from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
     from robotsoccer.experiments.plots_layer2 import layer2_plots
 
@@ -57,20 +60,14 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
         )
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     plan = layer2_plan(args.quick)
-    workers = args.workers or default_workers()
-    seeds = seeds_for(args.seed)
-    log = clock_log()
-    progress = sys.stderr.isatty()
+    ctx = run_context(args, out, "robotsoccer learn pass")
+    workers = ctx.workers
     start = time.perf_counter()
     try:
         net = args.net
         if net is None:
-            net = train_main_net(
-                args.field, preset, plan_for(args.quick), out, seeds, workers, log, progress
-            )
-        section = run_layer2_model(
-            args.field, preset, net, plan, out, seeds, workers, log, progress
-        )
+            net = train_main_net((args.field, preset), plan_for(args.quick), ctx)
+        section = run_layer2_model((args.field, preset), net, plan, ctx)
     except KeyboardInterrupt:
         return fail(
             EXIT_INTERRUPTED,
@@ -145,52 +142,13 @@ def cmd_learn_team(args: argparse.Namespace) -> int:
     return 0
 
 
-def _lead_section(
-    args: argparse.Namespace, out: Path, workers: int, log: Callable[[str], None]
-) -> str:
-    """The lead study (:mod:`robotsoccer.experiments.lead_study`) on the chosen fields."""
-    from robotsoccer.experiments.layer1_plan import seeds_for
-    from robotsoccer.experiments.lead_study import StudyDrill, plan_for, run_study
-
-    field = getattr(args, "field", None)
-    fields = [field] if field else list(LEAD_DRILLS)
-    drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in fields]
-    text, _ = run_study(drills, plan_for(args.quick), out, seeds_for(args.seed), workers, log)
-    return text
-
-
-def _team_section(
-    args: argparse.Namespace,
-    out: Path,
-    sections: Sequence[ModelSection],
-    workers: int,
-    log: Callable[[str], None],
-) -> str:
-    """Layer 3 on the Soccer Server's new layers: a quick ``learn team --every`` (its report).
-
-    The quick plan (8 training games, 4-game series) shows every step runs on this run's net
-    and tree; the measured study is ``robotsoccer learn team --every``.
-    """
-    from robotsoccer.experiments import team_study
-
-    field = TEAM_FIELD
-    found = [s for s in sections if s.field_model == field]
-    if not found:
-        return ""
-    models = out / "models" / field
-    net, tree = models / f"net_{found[0].net_examples}.npz", models / "pass_tree.json"
-    base = team_study.match_base(field, found[0].preset, args.seed, net, tree)
-    plan = team_study.plan_for(True, True)
-    report = team_study.run_team_study(base, plan, out / "team", workers=workers, log=log)
-    text = report.read_text().replace("## Layer 3", "## Layer 3 (quick: a smoke-size run)", 1)
-    return text
-
-
 def cmd_learn_lead(args: argparse.Namespace) -> int:
     """``learn lead``: layer 1's two decisions on one or both field models, with a report."""
-    from robotsoccer.experiments.lead_study import plan_for
+    from robotsoccer.experiments.lead_study import StudyDrill, plan_for
+    from robotsoccer.experiments.reproduce import lead_step
 
     fields = [args.field] if args.field else list(LEAD_DRILLS)
+    drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in fields]
     tag = "learn-lead" + (f"-{args.field}" if args.field else "") + ("-quick" if args.quick else "")
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
@@ -198,7 +156,7 @@ def cmd_learn_lead(args: argparse.Namespace) -> int:
     workers = args.workers or default_workers()
     start = time.perf_counter()
     try:
-        text = _lead_section(args, out, workers, clock_log())
+        text = lead_step(drills, args.quick, run_context(args, out, "robotsoccer learn lead"))
     except KeyboardInterrupt:
         return fail(
             EXIT_INTERRUPTED,
@@ -218,80 +176,49 @@ def cmd_learn_lead(args: argparse.Namespace) -> int:
 
 
 def cmd_reproduce(args: argparse.Namespace) -> int:
-    """``reproduce``: all of layer 1 on both field models into one folder."""
+    """``reproduce``: the pipeline of :func:`~robotsoccer.experiments.reproduce.run_reproduce`.
+
+    Layers 1 and 2 on both field models, the lead study, a quick layer 3 and the transfer
+    study, into one folder; ``--no-lead``, ``--no-team``, ``--no-transfer`` leave steps out.
+    """
+    from robotsoccer.experiments.lead_study import StudyDrill
+    from robotsoccer.experiments.reproduce import ReproduceParts
+
     name = f"reproduce-quick-seed{args.seed}" if args.quick else f"reproduce-seed{args.seed}"
     out = args.out or Path("runs") / name
     models = [(model, default_preset(model)) for model in PAPER_MODELS]
     title = "Layers 1 and 2 reproduced (Stone & Veloso 1996, §5 and §6)" + (
         " — quick plan" if args.quick else ""
     )
-    return _run_layer1(args, models, out, title, "robotsoccer reproduce", with_layer2=True)
+    parts = ReproduceParts(
+        layer2=True,
+        lead_drills=()
+        if args.no_lead
+        else tuple(StudyDrill(f, *LEAD_DRILLS[f]) for f in LEAD_DRILLS),
+        team_field=None if args.no_team else TEAM_FIELD,
+        transfer=None if args.no_transfer else transfer_setup(args, models),
+    )
+    return _run_pipeline(args, models, out, title, "robotsoccer reproduce", parts)
 
 
-def _run_layer1(
+def _run_pipeline(
     args: argparse.Namespace,
     models: list[tuple[str, str]],
     out: Path,
     title: str,
     created_by: str,
-    *,
-    with_layer2: bool = False,
+    parts: ReproduceParts,
 ) -> int:
-    from robotsoccer.experiments.layer1 import run_layer1
-    from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
-    from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
-    from robotsoccer.experiments.plots_layer2 import layer2_plots
+    """Check the presets, prepare the folder and run the pipeline; one line on an interrupt."""
+    from robotsoccer.experiments.reproduce import run_reproduce
 
     for model, preset in models:  # a bad preset fails here with one line, not in a worker
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    plan = plan_for(args.quick)
-    workers = args.workers or default_workers()
     start = time.perf_counter()
-    log = clock_log()
+    ctx = run_context(args, out, created_by)
     try:
-        report, sections = run_layer1(
-            models,
-            plan,
-            out,
-            args.seed,
-            workers,
-            log,
-            title=title,
-            created_by=created_by,
-            progress=sys.stderr.isatty(),
-        )
-        if with_layer2:
-            plan2 = layer2_plan(args.quick)
-            layer2 = [
-                run_layer2_model(
-                    s.field_model,
-                    s.preset,
-                    out / "models" / s.field_model / f"net_{s.net_examples}.npz",
-                    plan2,
-                    out,
-                    seeds_for(args.seed),
-                    workers,
-                    log,
-                    sys.stderr.isatty(),
-                )
-                for s in sections
-            ]
-            plots = layer2_plots(layer2, out)
-            with report.open("a") as f:
-                f.write("\n" + layer2_markdown(layer2, plan2, plots))
-        if with_layer2 and not args.no_lead:
-            section = _lead_section(args, out / "lead", workers, log)
-            with report.open("a") as f:
-                f.write("\n" + section)
-        if with_layer2 and not args.no_team:
-            section = _team_section(args, out, sections, workers, log)
-            with report.open("a") as f:
-                f.write("\n" + section)
-        if with_layer2 and not args.no_transfer:
-            section = transfer_section(args, models, out, workers, created_by)
-            with report.open("a") as f:
-                f.write("\n" + section)
+        report = run_reproduce(models, args.quick, ctx, parts, title)
     except KeyboardInterrupt:
         return fail(
             EXIT_INTERRUPTED,
@@ -299,5 +226,5 @@ def _run_layer1(
         )
     print()
     print(report.read_text())
-    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
+    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {ctx.workers} worker(s))")
     return 0

@@ -156,6 +156,7 @@ def cmd_match(args: argparse.Namespace) -> int:
 
 def cmd_setplay(args: argparse.Namespace) -> int:
     """The set play on both field models, layered and baseline minds, with its report."""
+    from robotsoccer.experiments.context import RunContext, seeds_for
     from robotsoccer.experiments.setplay import run_setplay_study
 
     folder = args.models or Path("runs") / f"transfer-seed{args.seed}"
@@ -172,9 +173,9 @@ def cmd_setplay(args: argparse.Namespace) -> int:
     out = args.out or Path("runs") / f"setplay{'-quick' if args.quick else ''}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     fields = [(m, default_preset(m)) for m in PAPER_MODELS]
+    ctx = RunContext(out, seeds_for(args.seed), args.workers or default_workers(), print, True)
     report = run_setplay_study(
-        out, fields=fields, models=models, plays=args.plays, seed=args.seed,
-        workers=args.workers or default_workers(), quick=args.quick, progress=True,
-    )  # fmt: skip
+        ctx, fields=fields, models=models, plays=args.plays, quick=args.quick
+    )
     print(f"report: {report}")
     return 0

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import sys
 import time
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -16,13 +15,13 @@ from robotsoccer.cli.options import (
     REFERENCE_FIELD,
     TARGET_FIELD,
 )
-from robotsoccer.cli.running import check_spec, clock_log, fail
+from robotsoccer.cli.running import check_spec, fail, run_context
 from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
     from robotsoccer.experiments.gap_variants import ParameterRange
+    from robotsoccer.experiments.transfer_study import TransferSetup
 
 
 def cmd_transfer(args: argparse.Namespace) -> int:
@@ -33,10 +32,13 @@ def cmd_transfer(args: argparse.Namespace) -> int:
     for model, preset in models:
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    workers = args.workers or default_workers()
+    from robotsoccer.experiments.transfer_study import run_transfer_study
+
+    ctx = run_context(args, out, "robotsoccer transfer")
+    workers = ctx.workers
     start = time.perf_counter()
     try:
-        section = transfer_section(args, models, out, workers)
+        section = run_transfer_study(transfer_setup(args, models), args.quick, ctx)
     except KeyboardInterrupt:
         return fail(
             EXIT_INTERRUPTED,
@@ -87,22 +89,14 @@ def server_ranges_covering_robots() -> tuple[ParameterRange, ...]:
     )  # fmt: skip
 
 
-def transfer_section(
-    args: argparse.Namespace,
-    models: list[tuple[str, str]],
-    out: Path,
-    workers: int,
-    created_by: str = "robotsoccer transfer",
-) -> str:
-    """Run the transfer study into `out` (the options say which parts) and return its text."""
+def transfer_setup(args: argparse.Namespace, models: list[tuple[str, str]]) -> TransferSetup:
+    """The transfer study's setting from the command's options (which parts, quick or not)."""
     from robotsoccer.experiments.gap_variants import Randomisation
-    from robotsoccer.experiments.layer1_plan import seeds_for
     from robotsoccer.experiments.lead_study import StudyDrill
-    from robotsoccer.experiments.transfer_study import StudyParts, run_transfer_study
+    from robotsoccer.experiments.transfer_study import StudyParts, TransferSetup
 
     fields = dict(models)
     reference = (REFERENCE_FIELD, fields[REFERENCE_FIELD])
-    target = (TARGET_FIELD, fields[TARGET_FIELD])
     randomisation = Randomisation(
         reference[1], server_ranges_covering_robots(), variants=4 if args.quick else 10
     )
@@ -112,18 +106,6 @@ def transfer_section(
         lead=not getattr(args, "no_lead_transfer", False),
         calibration=not getattr(args, "no_calibration", False),
     )
-    lead_drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in LEAD_DRILLS]
-    return run_transfer_study(
-        reference,
-        target,
-        randomisation,
-        args.quick,
-        out,
-        seeds_for(args.seed),
-        workers,
-        clock_log(),
-        parts,
-        created_by,
-        sys.stderr.isatty(),
-        lead_drills,
-    )
+    lead_drills = tuple(StudyDrill(f, *LEAD_DRILLS[f]) for f in LEAD_DRILLS)
+    target = (TARGET_FIELD, fields[TARGET_FIELD])
+    return TransferSetup(reference, target, randomisation, parts, lead_drills)

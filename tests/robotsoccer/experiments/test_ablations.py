@@ -12,6 +12,7 @@ from robotsoccer.experiments.ablations import (
     median_travel,
     run_ablations,
 )
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1_plan import seeds_for
 
 
@@ -31,7 +32,7 @@ def test_a_row_learns_and_reports_its_defenders(tmp_path: Path) -> None:
         (("scaling", "task"), ("trigger_scale", 1.5)),
     )  # fmt: skip
     lines: list[str] = []
-    (result,) = run_ablations([row], plan, tmp_path, seeds_for(0), 1, lines.append)
+    (result,) = run_ablations([row], plan, RunContext(tmp_path, seeds_for(0), 1, lines.append))
     assert {k: len(v) for k, v in result.trials.items()} == {"still": 30, "straight": 30, "net": 30}
     # Same placements for every defender: the still defender never moves.
     assert median_travel(result.trials["still"]) in (None, 0.0)
@@ -39,5 +40,5 @@ def test_a_row_learns_and_reports_its_defenders(tmp_path: Path) -> None:
     assert (tmp_path / "ablations" / "trigger" / "net_10.npz").is_file()
     text = ablation_markdown([result], plan)
     assert "| trigger x1.5 |" in text and "net - straight" in text
-    again = run_ablations([row], plan, tmp_path, seeds_for(0), 1, lines.append)
+    again = run_ablations([row], plan, RunContext(tmp_path, seeds_for(0), 1, lines.append))
     assert again[0].trials == result.trials  # resumed from the files, the same trials

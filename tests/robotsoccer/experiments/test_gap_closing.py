@@ -13,6 +13,7 @@ from field_models.presets import PresetError
 from field_models.registry import field_facts
 from learning.interception import InterceptionModel
 from robotsoccer.cli import server_ranges_covering_robots
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.gap_closing import (
     GapPlan,
     domain_randomised_net,
@@ -107,7 +108,7 @@ def matrix(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict[str, Pa
     folder = tmp_path_factory.mktemp("gap")
     plan = dataclasses.replace(plan_for(True), eval_trials=16)
     trained = nets(folder)
-    cells = run_transfer(MODELS, trained, plan, folder, seeds_for(0), 1, lambda _: None)
+    cells = run_transfer(MODELS, trained, plan, RunContext(folder, seeds_for(0), 1))
     return folder, trained, cells
 
 
@@ -126,9 +127,8 @@ def test_the_curve_pairs_scratch_and_tuned_nets_with_the_matrix(matrix) -> None:
     plan = GapPlan(sizes=(5, 10), fine_tune_epochs=5, epochs=20, eval_trials=16)
     unit_m = field_facts(*ROBOTS).unit_m
     lines: list[str] = []
-    curve = fine_tuning_curve(
-        trained["soccer_server"], ROBOTS, dataset, unit_m, plan, folder, seeds, 1, lines.append
-    )
+    ctx = RunContext(folder, seeds, 1, lines.append)
+    curve = fine_tuning_curve(trained["soccer_server"], ROBOTS, dataset, unit_m, plan, ctx)
     assert [p.examples for p in curve] == [5, 10]
     refs = references(cells, "soccer_server", "robot_physics")
     for p in curve:
@@ -149,9 +149,8 @@ def test_the_randomised_net_pools_every_variant_and_is_tested_on_both_fields(mat
     ranges = server_ranges_covering_robots()
     randomisation = Randomisation("soccer_server_1996", ranges, variants=2)
     plan = GapPlan(epochs=20, net_examples=8, eval_trials=16)
-    net = domain_randomised_net(
-        SERVER, ROBOTS, randomisation, plan, folder, seeds_for(0), 1, lambda _: None
-    )
+    ctx = RunContext(folder, seeds_for(0), 1)
+    net = domain_randomised_net(SERVER, ROBOTS, randomisation, plan, ctx)
     assert net.saves_per_variant == 4 and len(net.variants) == 2
     assert {k: len(v) for k, v in net.results.items()} == {"robot_physics": 16, "soccer_server": 16}
     model = InterceptionModel.load(net.path)

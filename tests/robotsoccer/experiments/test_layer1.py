@@ -12,6 +12,7 @@ import pytest
 from learning.datasets import InterceptionDataset
 from learning.lookup import LookupTable
 from robotsoccer.experiments import paper
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1 import run_layer1
 from robotsoccer.experiments.layer1_evaluate import experiments, unique_conditions
 from robotsoccer.experiments.layer1_plan import (
@@ -316,9 +317,8 @@ TINY = Layer1Plan(
 def test_tiny_pipeline_writes_report_plots_models_and_results(tmp_path) -> None:
     out = tmp_path / "run"
     lines: list[str] = []
-    report, sections = run_layer1(
-        [("soccer_server", None)], TINY, out, seed=3, workers=1, log=lines.append
-    )
+    ctx = RunContext.for_seed(out, 3, 1, lines.append)
+    report, sections = run_layer1([("soccer_server", None)], TINY, ctx)
     assert report == out / "report.md"
     text = report.read_text()
     assert "### Figure 7" in text and "### Table 1" in text and "## Where we differ" in text
@@ -346,15 +346,13 @@ def test_tiny_pipeline_writes_report_plots_models_and_results(tmp_path) -> None:
     assert len(list((out / "recordings" / "soccer_server").glob("*.rrd"))) >= 1
 
     # A second run resumes: nothing new to run, the same counts.
-    _, sections2 = run_layer1(
-        [("soccer_server", None)], TINY, out, seed=3, workers=1, log=lines.append
-    )
+    _, sections2 = run_layer1([("soccer_server", None)], TINY, ctx)
     assert sections2[0].figure8 == section.figure8
     assert all(stage.trials == 0 for stage in sections2[0].stages if stage.name != "record")
 
     # Another seed into the same folder is refused.
     with pytest.raises(PipelineError, match="another seed"):
-        run_layer1([("soccer_server", None)], TINY, out, seed=4, workers=1, log=lines.append)
+        run_layer1([("soccer_server", None)], TINY, RunContext.for_seed(out, 4, 1, lines.append))
 
 
 def test_cli_learn_and_reproduce_refuse_bad_input_in_one_line() -> None:

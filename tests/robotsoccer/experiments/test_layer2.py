@@ -14,6 +14,7 @@ from learning.datasets import Provenance
 from learning.pass_dataset import PassDataset
 from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
 from learning.pass_tree_file import load_pass_tree
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.layer2 import (
     Layer2Plan,
@@ -44,9 +45,8 @@ def net(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def run(net: Path, tmp_path_factory: pytest.TempPathFactory):
     out = tmp_path_factory.mktemp("layer2")
     lines: list[str] = []
-    section = run_layer2_model(
-        "soccer_server", "soccer_server_1996", net, PLAN, out, seeds_for(0), 2, lines.append
-    )
+    ctx = RunContext(out, seeds_for(0), 2, lines.append)
+    section = run_layer2_model(("soccer_server", "soccer_server_1996"), net, PLAN, ctx)
     return out, section, lines
 
 
@@ -105,9 +105,8 @@ def test_the_plots_are_drawn(run) -> None:
 
 def test_a_second_run_resumes_without_running_trials(run, net: Path) -> None:
     out, first, _ = run
-    again = run_layer2_model(
-        "soccer_server", "soccer_server_1996", net, PLAN, out, seeds_for(0), 1, lambda _: None
-    )
+    ctx = RunContext(out, seeds_for(0), 1)
+    again = run_layer2_model(("soccer_server", "soccer_server_1996"), net, PLAN, ctx)
     assert all(stage.trials == 0 for stage in again.stages)
     for name, results in first.results.items():
         assert [r.label for r in results] == [r.label for r in again.results[name]]

@@ -6,6 +6,7 @@ from pathlib import Path
 
 from learning.datasets import InterceptionDataset
 from learning.interception_file import read_net_file
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill, run_study
 
@@ -23,7 +24,7 @@ DRILLS = (
 
 def test_the_study_trains_both_decisions_and_reports_every_row(tmp_path: Path) -> None:
     lines: list[str] = []
-    text, sections = run_study(DRILLS, TINY, tmp_path, seeds_for(5), 1, lines.append)
+    text, sections = run_study(DRILLS, TINY, RunContext(tmp_path, seeds_for(5), 1, lines.append))
     for section in sections:
         field = section.drill.field_model
         for decision in ("turn", "lead"):
@@ -35,5 +36,5 @@ def test_the_study_trains_both_decisions_and_reports_every_row(tmp_path: Path) -
     assert text.count("| lead | net |") == 2 and text.count("| — | still |") == 2
     assert "Learned lead" in text and "points" in text
     # Run again: everything is on disk, nothing runs, the same numbers come back.
-    again, _ = run_study(DRILLS, TINY, tmp_path, seeds_for(5), 1, lines.append)
+    again, _ = run_study(DRILLS, TINY, RunContext(tmp_path, seeds_for(5), 1, lines.append))
     assert again == text

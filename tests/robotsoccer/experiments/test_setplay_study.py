@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from robotsoccer.drills.setplay import SetPlayDrill
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1_plan import PipelineError
 from robotsoccer.experiments.setplay import (
     RECORDED_PLAYS,
@@ -27,9 +28,8 @@ PLAYS = 4
 def study(tmp_path_factory: pytest.TempPathFactory) -> Study:
     out = tmp_path_factory.mktemp("setplay")
     lines: list[str] = []
-    report = run_setplay_study(
-        out, fields=FIELDS, models=None, plays=PLAYS, seed=0, workers=1, log=lines.append
-    )
+    ctx = RunContext.for_seed(out, 0, 1, lines.append)
+    report = run_setplay_study(ctx, fields=FIELDS, models=None, plays=PLAYS)
     return out, report, lines
 
 
@@ -78,12 +78,13 @@ def test_the_report_has_every_row_and_its_counts_add_up(study: Study) -> None:
 def test_a_rerun_resumes_and_another_study_is_refused(study: Study) -> None:
     out, report, _ = study
     before = report.read_text()
-    again = run_setplay_study(out, fields=FIELDS, models=None, plays=PLAYS, workers=1, log=print)
+    ctx = RunContext.for_seed(out, 0, 1, print)
+    again = run_setplay_study(ctx, fields=FIELDS, models=None, plays=PLAYS)
     after = again.read_text()
     strip = re.compile(r"\d+ s( of wall time)?")  # timings differ; the numbers may not
     assert strip.sub("", after) == strip.sub("", before)
     with pytest.raises(PipelineError, match="another plays"):
-        run_setplay_study(out, fields=FIELDS, models=None, plays=PLAYS + 1, workers=1)
+        run_setplay_study(ctx, fields=FIELDS, models=None, plays=PLAYS + 1)
 
 
 def test_the_layered_minds_need_each_fields_tree_and_net(tmp_path: Path) -> None:
@@ -102,4 +103,6 @@ def test_the_layered_minds_need_each_fields_tree_and_net(tmp_path: Path) -> None
     assert specs["layered_fixed"] == {**specs["layered"], "defenders": "straight"}
     assert specs["baseline"] == {"chooser": "closest", "interceptor": "straight"}
     with pytest.raises(ValueError, match="plays"):
-        run_setplay_study(tmp_path / "x", fields=FIELDS, models=None, plays=0)
+        run_setplay_study(
+            RunContext.for_seed(tmp_path / "x", 0), fields=FIELDS, models=None, plays=0
+        )

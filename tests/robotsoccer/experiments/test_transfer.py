@@ -10,6 +10,7 @@ import numpy as np
 from learning.pass_features import ATTRIBUTE_NAMES, PASS_SCHEMA
 from learning.pass_tree_file import save_pass_tree
 from learning.pass_tree_grow import fit_pass_tree
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1_plan import plan_for, seeds_for
 from robotsoccer.experiments.layer2 import Layer2Plan
 from robotsoccer.experiments.transfer import (
@@ -46,7 +47,9 @@ def test_only_the_cross_field_cells_are_transfer_runs(tmp_path: Path) -> None:
 def test_the_matrix_runs_and_reports_paired_cells(tmp_path: Path) -> None:
     plan = dataclasses.replace(plan_for(True), eval_trials=12)
     lines: list[str] = []
-    cells = run_transfer(MODELS, nets(tmp_path), plan, tmp_path, seeds_for(0), 1, lines.append)
+    cells = run_transfer(
+        MODELS, nets(tmp_path), plan, RunContext(tmp_path, seeds_for(0), 1, lines.append)
+    )
     assert len(cells) == 8 and all(len(c.results) == 12 for c in cells)
     for tested, _ in MODELS:  # every cell of a test field ran the same placements
         indices = {tuple(r.index for r in c.results) for c in cells if c.tested_on == tested}
@@ -57,7 +60,9 @@ def test_the_matrix_runs_and_reports_paired_cells(tmp_path: Path) -> None:
     assert "| net trained on soccer_server |" in text and "| straight |" in text
     assert text.count("minus the native net") == 2 and "n = 12 trials per cell" in text
     assert (tmp_path / "results" / "transfer" / "robot_physics").is_dir()
-    again = run_transfer(MODELS, nets(tmp_path), plan, tmp_path, seeds_for(0), 1, lines.append)
+    again = run_transfer(
+        MODELS, nets(tmp_path), plan, RunContext(tmp_path, seeds_for(0), 1, lines.append)
+    )
     assert [c.results for c in again] == [c.results for c in cells]  # resumed from the tables
 
 
@@ -71,9 +76,8 @@ def test_the_layer2_matrix_moves_only_the_passer_tree(tmp_path: Path) -> None:
         for model, p in MODELS
     }
     plan = Layer2Plan("test", collect_trials=0, eval_trials=6)
-    cells = run_transfer_layer2(
-        MODELS, nets(tmp_path), trees, plan, tmp_path, seeds_for(0), 1, lambda _: None
-    )
+    ctx = RunContext(tmp_path, seeds_for(0), 1)
+    cells = run_transfer_layer2(MODELS, nets(tmp_path), trees, plan, ctx)
     assert len(cells) == 2 * 4 and all(c.success == "SUCCESS" for c in cells)
     for cell in cells:
         assert {r.label for r in cell.results} <= {"SUCCESS", "FAILURE", "MISS"}

@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 from robotsoccer.drills.intercept import InterceptDrill
+from robotsoccer.experiments.context import RunContext
 from robotsoccer.experiments.layer1_plan import seeds_for
 from robotsoccer.experiments.lead_study import LeadPlan, StudyDrill
 from robotsoccer.experiments.transfer import (
@@ -75,10 +76,8 @@ def test_the_lead_matrix_and_calibration_run_alike_on_any_worker_count(tmp_path:
     runs = []
     for workers in (1, 2):
         out = tmp_path / f"w{workers}"
-        text = run_lead_study(
-            [ROBOT, SERVER], "soccer_server", "robot_physics", TINY, out, seeds_for(2),
-            workers, lambda _: None, "a test",
-        )  # fmt: skip
+        ctx = RunContext(out, seeds_for(2), workers, created_by="a test")
+        text = run_lead_study([ROBOT, SERVER], "soccer_server", "robot_physics", TINY, ctx)
         texts.append(text)
         tables = sorted((out / "results" / "transfer_lead").rglob("*.csv"))
         runs.append({p.relative_to(out): sorted(p.read_text().splitlines()) for p in tables})

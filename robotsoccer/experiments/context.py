@@ -1,0 +1,101 @@
+"""What every experiment step passes on: the run folder, seeds, workers, log and progress.
+
+Layer 1, layer 2, the transfer study, gap closing, the lead study and the set play all run as
+steps (collect, train, evaluate, report) inside one run folder, with one pair of experiment
+seeds, one worker count, one log and one progress setting. :class:`RunContext` carries those
+together, so a step's signature names only what is its own (the field, the plan, its inputs).
+
+Where trials run (a process pool or Ray) is not in the context: the CLI chooses it once per
+command with :func:`robotsoccer.runs.pool.using_backend`, and every run of that command uses
+it. Results do not depend on it, nor on the worker count.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+Log = Callable[[str], None]
+"""Where progress lines go (the CLI prints them)."""
+
+Field = tuple[str, str]
+"""A field model and its preset."""
+
+
+@dataclass(frozen=True)
+class Seeds:
+    """The experiment seeds of one run: evaluation (shared by all conditions) and collection."""
+
+    evaluation: int
+    collection: int
+
+
+def seeds_for(seed: int) -> Seeds:
+    """Evaluation uses `seed`; collection a 32-bit seed derived from it, never `seed` itself.
+
+    The derived seed is the first word of ``SeedSequence([seed, 1])`` that differs from `seed`,
+    so a run's nets are never tested on the placements they were trained on.
+    """
+    words = np.random.SeedSequence([seed, 1]).generate_state(2).tolist()
+    derived = next(int(w) for w in words if w != seed)
+    return Seeds(evaluation=seed, collection=derived)
+
+
+def _quiet(line: str) -> None:
+    """A log that drops every line."""
+
+
+@dataclass(frozen=True)
+class RunContext:
+    """The run folder and settings shared by every step of one experiment.
+
+    Attributes:
+        out: The run folder (datasets, models, results, recordings, plots and the report go
+            under it).
+        seeds: The experiment seeds (:func:`seeds_for`).
+        workers: Processes for the trials (None: all cores; 1: in this process).
+        log: Where progress lines go.
+        progress: Show a progress bar or lines for each batch of trials.
+        created_by: The command named in the provenance of the files the run writes.
+    """
+
+    out: Path
+    seeds: Seeds
+    workers: int | None = None
+    log: Log = _quiet
+    progress: bool = False
+    created_by: str = "robotsoccer reproduce"
+
+    @classmethod
+    def for_seed(
+        cls,
+        out: Path,
+        seed: int,
+        workers: int | None = None,
+        log: Log = _quiet,
+        *,
+        progress: bool = False,
+        created_by: str = "robotsoccer reproduce",
+    ) -> RunContext:
+        """The context of a run from one experiment seed (both seeds follow from it)."""
+        return cls(out, seeds_for(seed), workers, log, progress, created_by)
+
+    def made_by(self, created_by: str) -> RunContext:
+        """The same context, naming another command in the files' provenance."""
+        return dataclasses.replace(self, created_by=created_by)
+
+    def at(self, out: Path) -> RunContext:
+        """The same context writing into another folder (a study's own part of a run)."""
+        return dataclasses.replace(self, out=out)
+
+    def results_dir(self, field_model: str) -> Path:
+        """Where a field model's result tables go."""
+        return self.out / "results" / field_model
+
+    def models_dir(self, field_model: str) -> Path:
+        """Where a field model's trained models go."""
+        return self.out / "models" / field_model
