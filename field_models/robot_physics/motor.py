@@ -123,6 +123,7 @@ class MotorWorld(RobotWorld):
     ) -> None:
         super().__init__(preset, refs, noise_rng)
         self._segment = max(1, round(SEGMENT_S / self.dt_s))
+        self._inv_track = 1.0 / preset.robot.track_m
         pivots = [
             c
             for c in self.space.constraints
@@ -130,7 +131,9 @@ class MotorWorld(RobotWorld):
         ]
         by_control = {id(p.a): p for p in pivots}
         self._plans = [_Plan(d.body, d.control, by_control[id(d.control)]) for d in self._drives]
-        self._next_event = _NEVER
+        # The plans with an event at each coming tick (a plan re-planned earlier stays listed
+        # under its old tick too; its next_tick tells).
+        self._due: dict[int, list[_Plan]] = {}
 
     # ------------------------------------------------------------------ actuation
 
@@ -149,10 +152,7 @@ class MotorWorld(RobotWorld):
         plan = self._plans[index]
         if left == plan.left_target and right == plan.right_target:
             return  # the running plan already drives to these targets
-        self._advance(plan, self.tick)
-        plan.left_target, plan.right_target = left, right
-        plan.settled = False
-        self._plan(plan)
+        self._replan(plan, self.tick, left, right)
 
     def wheel_speeds(self, index: int) -> tuple[float, float]:
         """Robot `index`'s ramped wheel speeds [m/s] now (the ramp in closed form)."""
@@ -172,29 +172,32 @@ class MotorWorld(RobotWorld):
         if tick == self._noise_tick:
             self._noise_tick += self._noise_ticks
             self._perturb_ball()
-        if tick >= self._next_event:
+        if tick in self._due:
             self._run_events(tick)
 
     def _run_events(self, tick: int) -> None:
-        """Re-plan each robot whose event is due; find the next event."""
-        for plan in self._plans:
-            if plan.next_tick <= tick:
-                self._advance(plan, tick)
-                self._plan(plan)
-        self._next_event = min(plan.next_tick for plan in self._plans)
+        """Re-plan each robot whose event is due now (each reads and sets only its own bodies)."""
+        for plan in self._due.pop(tick):
+            if plan.next_tick == tick:
+                self._replan(plan, tick, plan.left_target, plan.right_target)
 
-    def _advance(self, plan: _Plan, tick: int) -> None:
-        """Bring `plan`'s wheel speeds forward to `tick` along the ramp."""
-        step = (tick - plan.tick) * self._ramp_step
-        plan.left = _ramped(plan.left, plan.left_target, step)
-        plan.right = _ramped(plan.right, plan.right_target, step)
-        plan.tick = tick
+    def _replan(self, plan: _Plan, tick: int, left_target: float, right_target: float) -> None:
+        """Bring `plan`'s wheels to `tick` along the ramp, then plan the segment from there.
 
-    def _plan(self, plan: _Plan) -> None:
-        """Aim `plan`'s control body for the segment from now and schedule its next event."""
+        New targets (``settled`` reset) or the same; aims the control body for the segment and
+        schedules the robot's next event. One method, the ramps written out: it runs at every
+        event (speed).
+        """
         ramp = self._ramp_step
-        left, right = plan.left, plan.right
-        left_target, right_target = plan.left_target, plan.right_target
+        step = (tick - plan.tick) * ramp
+        left, right = (
+            _ramped(plan.left, plan.left_target, step),
+            _ramped(plan.right, plan.right_target, step),
+        )
+        plan.left, plan.right, plan.tick = left, right, tick
+        if left_target != plan.left_target or right_target != plan.right_target:
+            plan.left_target, plan.right_target = left_target, right_target
+            plan.settled = False
         # Ticks to the segment's end: at most a segment, and no wheel reaches its target inside.
         n = _NEVER
         if left != left_target:
@@ -202,22 +205,26 @@ class MotorWorld(RobotWorld):
         if right != right_target:
             n = min(n, math.ceil(abs(right_target - right) / ramp - _TICK_EPS))
         if n != _NEVER:
-            n = min(n, self._segment)
+            n = max(1, min(n, self._segment))  # a rounding remainder still takes one tick
             # The kinematic drive's speeds over the next n ticks are linear; their mean is the
             # speed after (n + 1) / 2 ramp steps.
             half = 0.5 * (n + 1) * ramp
             left = _ramped(left, left_target, half)
             right = _ramped(right, right_target, half)
-            plan.next_tick = plan.tick + n
+            plan.next_tick = tick + n
         elif plan.settled or (left == 0.0 and right == 0.0):
             plan.settled = True
             plan.next_tick = _NEVER
         else:
             plan.settled = True  # one more event, once the robot's spin has caught up
-            plan.next_tick = plan.tick + self._segment
-        self._aim(plan, 0.5 * (left + right), (right - left) / (2.0 * self._half_track))
-        if plan.next_tick < self._next_event:
-            self._next_event = plan.next_tick
+            plan.next_tick = tick + self._segment
+        self._aim(plan, 0.5 * (left + right), (right - left) * self._inv_track)
+        if plan.next_tick != _NEVER:
+            due = self._due.get(plan.next_tick)
+            if due is None:
+                self._due[plan.next_tick] = [plan]
+            else:
+                due.append(plan)
 
     def _aim(self, plan: _Plan, v: float, w: float) -> None:
         """Point the control body so its drive anchor moves at `v` along an arc turning at `w`.
