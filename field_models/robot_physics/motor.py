@@ -11,16 +11,16 @@ only at **drive events** and leaves every tick between them to ``cpSpaceStep``:
   point moves at v along a direction that turns at ω, so the `PivotJoint` pulls the robot along
   its arc with no Python per tick. (The joint has no position bias and the control body no mass,
   so only the anchor point's velocity counts, not where it is.) At ω = 0 the control body simply
-  moves at v along the heading. The joints and their grip caps
-  are the kinematic drive's (world docstring; shared ``specs/robot_physics.md`` §3.2 option A),
-  so traction, skids and pushing are unchanged.
+  moves at v along the heading. The joints and their grip caps are the kinematic drive's (world
+  docstring; shared ``specs/robot_physics.md`` §3.2 option A): traction, skids and pushing are
+  modelled the same way.
 * **the wheel ramp is a staircase of segments.** While a wheel ramps, an event every
   :data:`SEGMENT_S` (and where a wheel reaches its target) sets the control body to the mean of
   the ramped wheel speeds over the segment ahead (in closed form: the ramp is linear there), and
   the grip caps carry the robot to it (at up to μ·g, faster than the ramp). Once both wheels are
-  at their targets, one more event a segment later re-aims the control body at the robot's
-  heading and place (the robot's spin has caught up by then); after that nothing runs until the
-  next wheel targets.
+  at their targets, one more event a segment later re-aims the drive direction at the robot's
+  heading (the robot's spin has caught up with the last step by then); after that nothing runs
+  until the next wheel targets.
 
 What differs from the kinematic drive (measured in the README, "The motor drive"): the ramp is
 followed in steps of a segment rather than every tick, and between events the drive direction
