@@ -33,8 +33,8 @@ from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.firmware import Firmware
 from field_models.robot_physics.host import CentralHost
 from field_models.robot_physics.link import Link
+from field_models.robot_physics.motor import make_world
 from field_models.robot_physics.trace_text import percept_text
-from field_models.robot_physics.world import RobotWorld
 from field_models.seeding import TrialRngs
 
 _NEVER = 1 << 62
@@ -71,7 +71,7 @@ class RobotArena:
         self.players = players
         self.keep_events = keep_events or trace
         self.trace = trace
-        self.world = RobotWorld(preset, players, rngs["movement"])
+        self.world = make_world(preset, players, rngs["movement"])
         frame_ticks = preset.ticks(1.0 / preset.camera.frame_rate_hz, "camera.frame_rate_hz")
         self.camera = OverheadCamera(
             preset.camera,

@@ -51,9 +51,11 @@ def bench_arena(n_robots: int, seed: int = 0, preset: str = "small_size_1997") -
     return arena
 
 
-def realtime_factor(n_robots: int, sim_seconds: float = 20.0, seed: int = 0) -> float:
-    """Simulated seconds per wall second with `n_robots` chasing the ball."""
-    arena = bench_arena(n_robots, seed)
+def realtime_factor(
+    n_robots: int, sim_seconds: float = 20.0, seed: int = 0, preset: str = "small_size_1997"
+) -> float:
+    """Simulated seconds per wall second with `n_robots` chasing the ball (on `preset`)."""
+    arena = bench_arena(n_robots, seed, preset)
     minds = {ref: ChaseLoad() for ref in arena.players}
     ticks = round(sim_seconds / arena.facts.dt_s)
     start = time.perf_counter()

@@ -82,6 +82,10 @@ class RobotConfig:
     turn_style: str = "spin"
     """How the host runs a turn followed by a dash: ``"spin"`` in place, then drive (the paper's
     primitives, §2); ``"arc"``: drive forward while turning, with a wheel-speed difference."""
+    drive: str = "kinematic"
+    """How the world moves the robots: ``"kinematic"``, each tick's wheel ramp and heading set
+    from Python (:mod:`.world`); ``"motor"``, Chipmunk alone between drive events (:mod:`.motor`;
+    issue 21)."""
 
     def __post_init__(self) -> None:
         check_ranges(self)
@@ -247,6 +251,8 @@ ROBOTS_ACROSS = 8
 """A robot's side is at most the table's width over this: five a side fit with room to move."""
 TURN_STYLES = ("spin", "arc")
 """The values of ``robot.turn_style``."""
+DRIVE_NAMES = ("kinematic", "motor")
+"""The values of ``robot.drive``."""
 
 
 def _validate(p: RobotPhysicsPreset) -> None:
@@ -255,6 +261,11 @@ def _validate(p: RobotPhysicsPreset) -> None:
         raise PresetError(
             f"{p.source}: key 'robot.turn_style': expected one of {', '.join(TURN_STYLES)}, "
             f"got {p.robot.turn_style!r}"
+        )
+    if p.robot.drive not in DRIVE_NAMES:
+        raise PresetError(
+            f"{p.source}: key 'robot.drive': expected one of {', '.join(DRIVE_NAMES)}, "
+            f"got {p.robot.drive!r}"
         )
     p.ticks(1.0 / p.camera.frame_rate_hz, "camera.frame_rate_hz", least=1)
     p.ticks(p.camera.latency_s, "camera.latency_s")
