@@ -285,14 +285,17 @@ def run_trials(
     resume: bool = False,
     progress: bool = True,
     chunk_size: int | None = None,
-    keep: bool = True,
     on_result: Callable[[TrialResult], None] | None = None,
-    backend: str | None = None,
 ) -> list[TrialResult]:
     """Run trials 0..n_trials-1 of `spec` and return their results sorted by index.
 
-    Trial indices are generated as the work goes, and with ``keep=False`` no result is held:
+    Trial indices are generated as the work goes, and with `on_result` no result is held:
     memory does not grow with `n_trials` beyond one byte per trial.
+
+    Trials run on the backend :func:`using_backend` set (default ``"process"``: a process pool
+    on this machine; ``"ray"``: Ray tasks, on a local Ray instance or the cluster
+    ``RAY_ADDRESS`` names, :mod:`robotsoccer.runs.ray_backend`). The results are the same
+    either way; the CLI sets it once per command (``--backend``).
 
     Args:
         spec: What to run.
@@ -303,20 +306,17 @@ def run_trials(
             (ResumeError) when another spec, code version or model file made them.
         progress: Show progress on stderr (a bar on a terminal, lines otherwise).
         chunk_size: Trials per unit of work (default: small enough to balance the workers).
-        keep: Return the results (False: return [] and let `on_result` see them).
-        on_result: Called with every result, the resumed ones first.
-        backend: ``"process"``: a process pool on this machine; ``"ray"``: Ray tasks, on a
-            local Ray instance or the cluster ``RAY_ADDRESS`` names
-            (:mod:`robotsoccer.runs.ray_backend`). The results are the same either way.
-            None: the one :func:`using_backend` set (default ``"process"``).
+        on_result: Stream every result to it (the resumed ones first) instead of returning
+            them: the run then returns [].
 
     Raises:
         KeyboardInterrupt: after flushing every finished trial to `results_path`.
         ResumeError: `resume` onto a table another run made, or a damaged table.
-        ValueError: An unknown `backend`, or ``"ray"`` without Ray installed (before anything
+        ValueError: An unknown backend, or ``"ray"`` without Ray installed (before anything
             is written).
     """
-    backend = backend or _BACKEND.get()
+    backend = _BACKEND.get()
+    keep = on_result is None
     if backend not in ("process", "ray"):
         raise ValueError(f"unknown backend {backend!r}: choose 'process' or 'ray'")
     if backend == "ray":

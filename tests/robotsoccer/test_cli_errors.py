@@ -198,7 +198,7 @@ def test_a_huge_run_allocates_nothing_per_trial_before_its_work(tmp_path, monkey
     with pytest.raises(KeyboardInterrupt):
         pool.run_trials(
             spec, 30_000_000, workers=1, results_path=tmp_path / "r.csv", progress=False,
-            keep=False,
+            on_result=lambda _: None,
         )  # fmt: skip
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()

@@ -46,9 +46,7 @@ def cmd_demo(args: argparse.Namespace) -> int:
             results_path=results_path,
             resume=args.resume,
             progress=not args.quiet,
-            keep=False,
             on_result=tally.add,
-            backend=args.backend,
         )
     except KeyboardInterrupt:
         kept = f"; finished trials are kept in {results_path}" if results_path.exists() else ""

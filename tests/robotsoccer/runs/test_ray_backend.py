@@ -28,15 +28,15 @@ def test_without_ray_the_ray_backend_fails_in_one_line_before_writing(
 ) -> None:
     monkeypatch.setitem(sys.modules, "ray", None)  # `import ray` now fails
     path = tmp_path / "results.csv"
-    with pytest.raises(ValueError, match="needs Ray") as caught:
-        run_trials(INTERCEPT, 4, workers=2, results_path=path, progress=False, backend="ray")
+    with pytest.raises(ValueError, match="needs Ray") as caught, using_backend("ray"):
+        run_trials(INTERCEPT, 4, workers=2, results_path=path, progress=False)
     assert str(caught.value) == MISSING_RAY == "backend 'ray' needs Ray: pip install '.[ray]'"
     assert not path.exists() and not manifest_path(path).exists()
 
 
 def test_an_unknown_backend_is_refused() -> None:
-    with pytest.raises(ValueError, match="unknown backend 'dask'"):
-        run_trials(INTERCEPT, 2, workers=1, progress=False, backend="dask")
+    with pytest.raises(ValueError, match="unknown backend 'dask'"), using_backend("dask"):
+        run_trials(INTERCEPT, 2, workers=1, progress=False)
 
 
 @pytest.fixture(scope="module")
@@ -68,22 +68,16 @@ def test_ray_gives_the_results_and_table_of_the_process_pool(
 ) -> None:
     one = run_trials(spec, n, workers=1, progress=False)
     pool = run_trials(spec, n, workers=2, results_path=tmp_path / "pool.csv", progress=False)
-    ray = run_trials(
-        spec, n, workers=2, results_path=tmp_path / "ray.csv", progress=False, backend="ray"
-    )
+    with using_backend("ray"):
+        ray = run_trials(spec, n, workers=2, results_path=tmp_path / "ray.csv", progress=False)
     assert [r.index for r in ray] == list(range(n))
     assert ray == one == pool
     assert rows(tmp_path / "ray.csv") == rows(tmp_path / "pool.csv")
     assert (tmp_path / "ray.json").read_bytes() == (tmp_path / "pool.json").read_bytes()
-    single = run_trials(  # one chunk: the whole table byte for byte, row order included
-        spec,
-        n,
-        workers=2,
-        results_path=tmp_path / "ray1.csv",
-        progress=False,
-        chunk_size=n,
-        backend="ray",
-    )
+    with using_backend("ray"):  # one chunk: the whole table byte for byte, row order included
+        single = run_trials(
+            spec, n, workers=2, results_path=tmp_path / "ray1.csv", progress=False, chunk_size=n
+        )
     run_trials(spec, n, workers=1, results_path=tmp_path / "one.csv", progress=False)
     assert single == one
     assert (tmp_path / "ray1.csv").read_bytes() == (tmp_path / "one.csv").read_bytes()
@@ -92,9 +86,10 @@ def test_ray_gives_the_results_and_table_of_the_process_pool(
 def test_a_process_pool_table_is_resumed_on_ray(ray_instance, tmp_path) -> None:
     path = tmp_path / "results.csv"
     run_trials(INTERCEPT, 8, workers=2, results_path=path, progress=False)
-    resumed = run_trials(
-        INTERCEPT, 16, workers=2, results_path=path, resume=True, progress=False, backend="ray"
-    )
+    with using_backend("ray"):
+        resumed = run_trials(
+            INTERCEPT, 16, workers=2, results_path=path, resume=True, progress=False
+        )
     assert resumed == run_trials(INTERCEPT, 16, workers=1, progress=False)
     assert read_results(path) == {r.index: r for r in resumed}
 
@@ -115,7 +110,8 @@ def test_stopping_early_cancels_the_tasks_still_out(ray_instance, monkeypatch) -
     # cancelled: ray_backend._cancel says why).
     assert 1 <= len(cancelled) <= IN_FLIGHT_PER_CPU * 2 - 1
     monkeypatch.undo()
-    again = run_trials(INTERCEPT, 4, workers=2, progress=False, backend="ray")
+    with using_backend("ray"):
+        again = run_trials(INTERCEPT, 4, workers=2, progress=False)
     assert again == run_trials(INTERCEPT, 4, workers=1, progress=False)
 
 
@@ -123,8 +119,8 @@ def test_an_error_inside_a_task_is_raised_as_itself(ray_instance, monkeypatch) -
     """A drill this process knows and the Ray workers do not: the tasks raise."""
     monkeypatch.setitem(DRILLS, "boom", DRILLS["shootout"])
     spec = TrialSpec(drill="boom", field_model="robot_physics")
-    with pytest.raises(ValueError, match="unknown drill 'boom'") as caught:
-        run_trials(spec, 8, workers=2, progress=False, chunk_size=1, backend="ray")
+    with pytest.raises(ValueError, match="unknown drill 'boom'") as caught, using_backend("ray"):
+        run_trials(spec, 8, workers=2, progress=False, chunk_size=1)
     assert type(caught.value) is ValueError  # not Ray's wrapper, whose first line is its pid
 
 
