@@ -2,10 +2,10 @@
 
 The paper's defender (:class:`~robotsoccer.skills.intercept.DefenderMind`, the *see-triggered*
 client) decides at each see and sends "turn, then dash". On a server whose sees come every 1.5
-cycles (``rcssserver_19``) the dash waits a cycle and the next see often replaces it: after the
-trigger it dashes on about one cycle in three. Clients for today's server (CMUnited-98 onward)
-act on **every cycle** from a world model kept between sees. :class:`CycleDefenderMind` is that
-client for the interception drill:
+cycles (``rcssserver_19_async``) or 2 (``rcssserver_19``) the dash waits a cycle and the next see
+often replaces it: after the trigger it dashes on about one cycle in three. Clients for today's
+server (CMUnited-98 onward) act on **every cycle** from a world model kept between sees.
+:class:`CycleDefenderMind` is that client for the interception drill:
 
 * **World model.** Its own heading and velocity in a reckoned frame, by dead reckoning from the
   commands the server carried out (the server runs one body command per cycle, so the commands

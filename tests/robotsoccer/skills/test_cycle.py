@@ -165,7 +165,7 @@ def _reversals(steady: bool) -> int:
     )
     if steady:
         options += (("steady_turns", True),)
-    spec = TrialSpec("match", "soccer_server", "rcssserver_19", drill_options=options)
+    spec = TrialSpec("match", "soccer_server", "rcssserver_19_async", drill_options=options)
     rngs, drill, arena = build_trial(spec, 0)
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
@@ -210,7 +210,7 @@ def test_the_cycle_client_saves_more_than_the_see_client_on_rcssserver_19() -> N
         return sum(run_trial(spec, i).label == "SAVE" for i in range(400))
 
     see, cycle = saves("see"), saves("cycle")
-    assert cycle > see + 20  # 2000 trials: 20.7% and 37.0%
+    assert cycle > see + 20  # 2000 trials (seed 0): 21.6% and 37.3%
 
 
 def test_turn_reversals_count_only_big_turns_the_other_way() -> None:
