@@ -32,7 +32,10 @@ def cmd_learn(args: argparse.Namespace) -> int:
     if args.target == "team":
         return cmd_learn_team(args)
     preset = args.field_preset or default_preset(args.field)
-    tag = f"learn-intercept-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
+    client = "" if args.client == "see" else f"-{args.client}"
+    tag = f"learn-intercept-{args.field}-{Path(preset).stem}{client}" + (
+        "-quick" if args.quick else ""
+    )
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     title = f"Layer 1 (interception) on {args.field}" + (" — quick plan" if args.quick else "")
     return _run_layer1(args, [(args.field, preset)], out, title, "robotsoccer learn intercept")
@@ -245,7 +248,7 @@ def _run_layer1(
     for model, preset in models:  # a bad preset fails here with one line, not in a worker
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    plan = plan_for(args.quick)
+    plan = replace(plan_for(args.quick), client=getattr(args, "client", "see"))
     workers = args.workers or default_workers()
     start = time.perf_counter()
     log = clock_log()
