@@ -9,6 +9,7 @@ import pytest
 from field_models.presets import PresetError
 from field_models.registry import field_facts
 from field_models.soccer_server.arena import see_schedule
+from field_models.soccer_server.cycle_rules import dash_rate
 from field_models.soccer_server.params import load_server_preset
 from field_models.soccer_server.sensing_params import SENSING_19
 
@@ -37,3 +38,15 @@ def test_the_old_synch_name_is_refused_in_one_line_naming_the_presets() -> None:
         PresetError, match=r"unknown preset .*rcssserver_19_synch.*rcssserver_19_async"
     ):
         load_server_preset("rcssserver_19_synch")
+
+
+def test_facts_give_the_servers_directed_dash_rates() -> None:
+    facts = field_facts("soccer_server", "rcssserver_19")
+    assert facts.dash_rates == (0.4, 0.7)
+    assert facts.dash_angle_step_rad == pytest.approx(math.radians(1.0))
+    for degrees in range(-180, 181, 5):
+        direction = math.radians(degrees)
+        assert facts.dash_factor(direction) == pytest.approx(dash_rate(direction, 0.4, 0.7))
+    paper = field_facts("soccer_server", "soccer_server_1996")
+    assert paper.dash_rates is None and paper.dash_factor(0.0) == 1.0
+    assert paper.dash_factor(0.5) == 0.0
