@@ -47,12 +47,14 @@ server (CMUnited-98 onward) act on **every cycle** from a world model kept betwe
   openings of the chase's action, a full dash or a coast (a turn toward the target: no push),
   then coasting, and, with directed dashes, for the dash (any direction, power up to full)
   that repeated 1 to :data:`AIM_CYCLES` cycles ends them on the ball's predicted cycle-end
-  position. The rule acts only where the chase's *own* path crosses the ball's, within a touch
-  distance with both moving straight within each cycle (the chase's action, then coasting or
-  two more full dashes): a touch that only swept collisions would count. There, if an
-  opening does better than the chase's action, its first cycle is sent instead. This is the
-  one place the client departs from "TA, then run": it does not make touches the chase would
-  not make with swept collisions, it places the body to make them at a cycle end.
+  position. The rule acts only where the chase's *own* path is predicted to cross the ball's
+  within a touch distance, both moving straight within each cycle (the chase's action, then
+  coasting or two more full dashes): a touch that only swept collisions would count. There,
+  if an opening does better than the chase's action, its first cycle is sent instead. This
+  is the one place the client departs from "TA, then run": it places the body to make the
+  chase's predicted touch at a cycle end (on ``rcssserver_19`` with swept collisions,
+  straight saves 49.6% without the rule and 54.4% with it, n = 1000 each: the prediction
+  lets it reach a few balls the chase alone would not).
 * **Kicking** as the paper's client (``kickable_distance_m``). A ball not seen: dash once
   triggered.
 
@@ -267,8 +269,8 @@ class CycleDefenderMind:
                 miss = self._miss_after(state, ball, j, (aim,) * k)
                 if miss < best - 1e-9:
                     best, best_first = miss, aim
-        # Only where the chase's own path crosses the ball's (a pass-through): the rule turns
-        # the chase's touches into touches at a cycle end, and never makes one of its own.
+        # Only where the chase's own path is predicted to cross the ball's (a pass-through):
+        # the rule moves the chase's touch to a cycle end, where the server checks (spec §4).
         swept = min(
             self._swept_miss(state, ball, j, (action,)),
             self._swept_miss(state, ball, j, (action, dash, dash)),
