@@ -30,5 +30,5 @@ def figures_for(preset: str) -> dict[str, float]:
 
 
 if __name__ == "__main__":
-    presets = ("soccer_server_1996", "rcssserver_19")
+    presets = ("soccer_server_1996", "rcssserver_19_async")
     print(json.dumps({"soccer_server": {p: figures_for(p) for p in presets}}, indent=2))

@@ -194,6 +194,12 @@ class FieldFacts:
             speed does not shorten turns (the robots).
         landmarks: Where the landmarks a percept may name stand, as (name, x [m], y [m]) in
             the field frame: what a client knows of the field to localise itself by.
+        dash_rates: (side, back): the share of a dash's push at ±90° and at 180° from the
+            heading, linear between (:meth:`dash_factor`; the Soccer Server's
+            ``side_dash_rate`` and ``back_dash_rate``, §2.1); None where a dash runs along
+            the heading only (the 1996 servers, the robots).
+        dash_angle_step_rad: Dash directions are rounded to multiples of this [rad] (0: not
+            rounded; the Soccer Server's ``dash_angle_step``).
     """
 
     model: str
@@ -216,6 +222,8 @@ class FieldFacts:
     walled: bool = False
     turn_inertia_s_per_m: float = 0.0
     landmarks: tuple[tuple[str, float, float], ...] = ()
+    dash_rates: tuple[float, float] | None = None
+    dash_angle_step_rad: float = 0.0
     _hash: int = field(init=False, repr=False, compare=False, default=0)
 
     def __post_init__(self) -> None:
@@ -236,6 +244,25 @@ class FieldFacts:
     def touch_distance_m(self) -> float:
         """Centre distance at which a player's body touches the ball [m]."""
         return self.pitch.player_radius_m + self.pitch.ball_radius_m
+
+    def dash_factor(self, direction_rad: float) -> float:
+        """The share of a full dash's push that a dash toward `direction_rad` (relative) gets.
+
+        The Soccer Server's rule as
+        :func:`field_models.soccer_server.cycle_rules.dash_rate` has it (a test checks the
+        two agree): 1 straight ahead, the side rate at ±90°, the back rate at 180°, linear
+        between. Without directed dashes only straight ahead pushes.
+        """
+        a = abs(direction_rad)
+        if self.dash_rates is None:
+            return 1.0 if a == 0.0 else 0.0
+        side, back = self.dash_rates
+        half_pi = 0.5 * math.pi
+        if a > half_pi:
+            rate = back - (back - side) * (1.0 - (a - half_pi) / half_pi)
+        else:
+            rate = side + (1.0 - side) * (1.0 - a / half_pi)
+        return min(max(rate, 0.0), 1.0)
 
 
 @dataclass(frozen=True, slots=True)

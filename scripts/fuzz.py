@@ -235,7 +235,7 @@ class Fuzz:
         }
         self.played = 0
         self.robot_text = (PRESET_DIR / "robot_physics" / "small_size_1997.toml").read_text()
-        self.server_text = (PRESET_DIR / "soccer_server" / "rcssserver_19.toml").read_text()
+        self.server_text = (PRESET_DIR / "soccer_server" / "rcssserver_19_async.toml").read_text()
         self.trial_refusals = Counter[str]()
         self.rcg = self._game_log()
         self.lookup = LookupTable([-1.0, 0.0, 1.0], [0.5, 0.0, -0.5]).save(folder / "table.json")

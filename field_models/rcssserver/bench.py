@@ -1,7 +1,8 @@
 """Speed of a Soccer Server over the wire: synch-mode cycles per second beside in-process.
 
 The same load both ways: 2 players chasing the ball (:class:`~field_models.benchmarks.ChaseLoad`)
-on the ``rcssserver_19`` preset, placed afresh every
+on the ``rcssserver_19_async`` preset (the sensing a protocol-17 wire client gets), placed
+afresh every
 :data:`~field_models.benchmarks.RALLY_CYCLES` cycles. In process, the Soccer Server arena;
 over the wire, the :class:`~field_models.rcssserver.arena.WireArena`: 1 trainer and 2 player
 clients (the project's :class:`~field_models.rcssserver.client.WireClient`) talking
@@ -44,7 +45,7 @@ def wire_and_local(cycles: int, preset: str = "served", seed: int = 0) -> tuple[
         if close is not None:
             close()
     rngs = TrialRngs.for_trial(seed, 0)
-    local = make_arena("soccer_server", "rcssserver_19", PLAYERS, rngs)
+    local = make_arena("soccer_server", "rcssserver_19_async", PLAYERS, rngs)
     return over, cycles_per_s(local, cycles, rngs)
 
 

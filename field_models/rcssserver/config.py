@@ -28,6 +28,9 @@ ENV_BINARY = "RCSSSERVER"
 
 Start = Literal["served", "address", "binary"]
 
+MAX_PROTOCOL = 19
+"""The newest client protocol rcssserver 19 speaks (``(init Team (version V))``, V from 1)."""
+
 
 @dataclass(frozen=True)
 class WirePreset:
@@ -94,7 +97,13 @@ def load(preset: str, options: FieldOptions) -> WirePreset:
     start = server.get("start", "served")
     if start not in ("served", "address", "binary"):
         raise PresetError(f"{path}: key 'server.start': expected served, address or binary")
-    base = served_model.load(str(server.get("model_preset", "rcssserver_19")), options)
+    version = server.get("client_version", 17)
+    if not 1 <= version <= MAX_PROTOCOL:
+        raise PresetError(
+            f"{path}: key 'server.client_version': expected a protocol version 1 to "
+            f"{MAX_PROTOCOL}, got {version}"
+        )
+    base = served_model.load(str(server.get("model_preset", "rcssserver_19_async")), options)
     binary = str(server.get("binary", "")) or os.environ.get(ENV_BINARY, "")
     found = shutil.which(binary) if binary else None
     return WirePreset(
@@ -106,7 +115,7 @@ def load(preset: str, options: FieldOptions) -> WirePreset:
         trainer_port=int(server.get("trainer_port", 6001)),
         binary=found or "",
         options=tuple(str(o) for o in server.get("options", [])),
-        client_version=int(server.get("client_version", 17)),
+        client_version=int(version),
         timeout_s=float(server.get("timeout_s", 5.0)),
     )
 

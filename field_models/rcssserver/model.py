@@ -10,7 +10,7 @@ names the server and the Soccer Server preset it runs:
                               # address: a server already running at host:port (synch mode,
                               #          server::coach=true)
                               # binary: start a real rcssserver per arena (RCSSSERVER or binary)
-    model_preset = "rcssserver_19"   # the soccer_server preset of the server (and of the facts)
+    model_preset = "rcssserver_19_async"  # the soccer_server preset of the server and the facts
     host = "127.0.0.1"
     port = 6000               # address: the player port; the trainer port is trainer_port
     trainer_port = 6001

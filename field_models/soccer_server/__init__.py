@@ -4,7 +4,9 @@ Modules (specs/soccer_server.md):
 
 * :mod:`~field_models.soccer_server.params` — :class:`DynamicsParams`, :class:`ServerPreset` and
   :func:`load_server_preset` for the presets ``soccer_server_1996`` (the paper's era) and
-  ``rcssserver_19`` (today's defaults) in ``field_models/presets/soccer_server/``.
+  ``rcssserver_19`` (today's server as a version-19 client gets it) and ``rcssserver_19_async``
+  (its defaults with the asynchronous sees of a client below protocol 18) in
+  ``field_models/presets/soccer_server/``.
 * :mod:`~field_models.soccer_server.sensing_params` — :class:`SensingParams` (see/hear timing,
   view cone, quantisation).
 * :mod:`~field_models.soccer_server.dynamics` — :class:`SoccerServerModel`: one trial's 100 ms

@@ -88,6 +88,12 @@ def facts(preset: ServerPreset) -> FieldFacts:
         perfect_perception=s.perfect,
         say_max_chars=s.say_msg_size,
         turn_inertia_s_per_m=d.inertia_moment_cycle_per_m * dt,
+        dash_rates=(
+            (d.side_dash_rate, d.back_dash_rate)
+            if d.min_dash_angle_rad < 0.0 < d.max_dash_angle_rad
+            else None
+        ),
+        dash_angle_step_rad=d.dash_angle_step_rad,
         landmarks=tuple((m.name, m.x, m.y) for m in landmarks_for(s.landmark_set)),
     )
 

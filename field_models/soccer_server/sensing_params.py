@@ -112,7 +112,8 @@ class SensingParams:
     quantize_step: float = field(metadata=positive("server.conf quantize_step", high=10))
     quantize_step_l: float = field(metadata=positive("server.conf quantize_step_l", high=10))
     direction_mode: DirectionMode
-    protocol_version: int = field(metadata=positive("client protocol version", high=100, low=1))
+    # rcssserver 19 speaks protocols 1 to 19 (a client asking for more gets 19's messages).
+    protocol_version: int = field(metadata=positive("client protocol version", high=19, low=1))
     report_changes: bool
     landmark_set: LandmarkSet
     unum_far_length_m: float = field(

@@ -1,8 +1,8 @@
 """Presets from a real rcssserver's own configuration: ``server.conf`` or ``server_param``.
 
 A user can run the model with the parameters of an actual server, in the server's own names and
-units, over a base preset (``rcssserver_19`` unless told otherwise) that supplies everything
-the configuration does not set. Two formats are read
+units, over a base preset (``rcssserver_19_async``, the server's own defaults, unless told
+otherwise) that supplies everything the configuration does not set. Two formats are read
 (:mod:`~field_models.soccer_server.server_conf_text`), both as rcssserver 19.0.0 writes them:
 
 * a ``server.conf`` file (``rcss/conf/builder.hpp``, ``createConfFileEntry``; parsed as
@@ -153,7 +153,7 @@ def load_preset(name_or_path: str) -> ServerPreset:
     """Any Soccer Server preset argument: a name or TOML file, or a real server's configuration.
 
     A configuration is a path ending in ``.conf`` or the text of a ``(server_param ...)``
-    message, loaded over the ``rcssserver_19`` preset by :func:`load_server_conf`. This is
+    message, loaded over the ``rcssserver_19_async`` preset by :func:`load_server_conf`. This is
     what the registry entry and the CLI's ``--field-preset`` read.
 
     Raises:
@@ -165,7 +165,7 @@ def load_preset(name_or_path: str) -> ServerPreset:
 
 
 def load_server_conf(
-    source: str | Path, *, base: str | ServerPreset = "rcssserver_19"
+    source: str | Path, *, base: str | ServerPreset = "rcssserver_19_async"
 ) -> ServerConf:
     """A preset from a server's configuration, over `base` (a preset name or path, or a preset).
 
@@ -194,7 +194,7 @@ def load_server_conf(
 def preset_from_settings(
     settings: list[Setting],
     *,
-    base: str | ServerPreset = "rcssserver_19",
+    base: str | ServerPreset = "rcssserver_19_async",
     name: str,
     source: str,
 ) -> ServerConf:

@@ -68,7 +68,7 @@ TEAM_KINDS = ("layered", "baseline", "layer3")
 """The match drill's team kinds (:class:`robotsoccer.drills.match.TeamKind`)."""
 SERVE_FIELD = "soccer_server"
 """The field model ``serve`` serves over UDP; its presets are what ``--field-preset`` names."""
-SERVE_PRESET = "rcssserver_19"
+SERVE_PRESET = "rcssserver_19_async"
 """The preset ``serve`` runs unless told: today's server, what existing agents expect."""
 
 EXIT_USAGE, EXIT_FAILURE, EXIT_INTERRUPTED, EXIT_BROKEN_PIPE = 2, 1, 130, 141

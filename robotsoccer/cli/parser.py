@@ -98,6 +98,13 @@ def build_parser() -> argparse.ArgumentParser:
     intercept.add_argument(
         "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
     )
+    intercept.add_argument(
+        "--client",
+        default="see",
+        choices=("see", "cycle"),
+        help="the defender's client: see (the paper's: turn, then dash, at each see) or cycle "
+        "(a command every cycle, issue 28)",
+    )
     _experiment_options(intercept)
     passing = targets.add_parser(
         "pass", help="layer 2: the pass-evaluation tree (paper §6)", parents=[common]

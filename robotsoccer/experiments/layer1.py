@@ -103,7 +103,7 @@ def run_model(
     section.net_examples = trained.main_examples
     section.train_seconds = trained.seconds
 
-    base = base_spec(field_model, preset, ctx.seeds.evaluation, plan.ta_mode)
+    base = base_spec(field_model, preset, ctx.seeds.evaluation, plan.ta_mode, plan.client)
     plan_of = experiments(plan, base, trained, facts.sensor_latency_s)
     done: dict[str, list[TrialResult]] = {}
     for experiment, keyed in plan_of.items():

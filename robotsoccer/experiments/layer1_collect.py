@@ -103,6 +103,7 @@ def collect(
             "trigger_distance_m": launch.trigger_distance_m,
             "ball_noise_period_s": launch.noise_period_s,
             "ta_mode": str(dict(base.drill_options).get("ta_mode", "hold")),
+            **_client_of(base),
             "rows": "saves only, in trial order",
             "target_saves": plan.collect_saves,
             "saves": counts.saves,
@@ -115,6 +116,12 @@ def collect(
     dataset_path.parent.mkdir(parents=True, exist_ok=True)
     dataset.save(dataset_path)
     return dataset, counts, StageTiming("collect (random TA)", ran_total, wall_total)
+
+
+def _client_of(base: TrialSpec) -> dict[str, str]:
+    """The dataset's ``client`` entry where the saves are not the see client's (else none)."""
+    client = dict(base.drill_options).get("client", "see")
+    return {} if client == "see" else {"client": str(client)}
 
 
 PLAN_OPTIONS = frozenset({"scaling", "trigger_scale", "launch_speed_scale", "turn_tolerance_deg"})
@@ -131,7 +138,7 @@ def collect_into(
     field_model, preset = field
     ctx.log(f"[{field_model}] collect: random TA until {plan.collect_saves} saves")
     dataset, collected, timing = collect(
-        base_spec(field_model, preset, ctx.seeds.collection, plan.ta_mode),
+        base_spec(field_model, preset, ctx.seeds.collection, plan.ta_mode, plan.client),
         plan,
         ctx.results_dir(field_model),
         ctx.out / "datasets" / field_model / "train.npz",

@@ -28,6 +28,9 @@ from robotsoccer.skills.intercept import TaMode
 DRILL = "intercept"
 """The registered name of the interception drill (paper Figure 6)."""
 
+CLIENTS = ("see", "cycle")
+"""The drill's defender clients (:class:`robotsoccer.drills.intercept_options.ClientKind`)."""
+
 COLLECT_BEHAVIOUR = "random"
 """The defender behaviour of the training drill: random TA in [−45°, 45°]."""
 
@@ -63,6 +66,9 @@ class Layer1Plan:
         record_saves: Net saves recorded with rerun per field model.
         record_goals: Net goals recorded with rerun per field model.
         ta_mode: The drill's TA timing (``"hold"``: chosen once, at BD ≤ 14 units).
+        client: The defender's client (the drill's ``client`` option): ``"see"``, the
+            paper's see-triggered client (every shipped plan, ``reproduce``), or ``"cycle"``,
+            the per-cycle client of issue 28 (``learn intercept --client cycle``).
     """
 
     name: str
@@ -83,10 +89,18 @@ class Layer1Plan:
     record_saves: int = 2
     record_goals: int = 2
     ta_mode: TaMode = TaMode.HOLD
+    client: str = "see"
+
+    def __post_init__(self) -> None:
+        if self.client not in CLIENTS:
+            raise ValueError(f"unknown client {self.client!r} (known: {', '.join(CLIENTS)})")
 
     def to_dict(self) -> dict[str, Any]:
-        """The plan as plain JSON types."""
-        return dataclasses.asdict(self)
+        """The plan as plain JSON types (``client`` only where it is not the paper's)."""
+        plan = dataclasses.asdict(self)
+        if self.client == "see":  # run folders of the see client keep their config (resume)
+            del plan["client"]
+        return plan
 
 
 def quick_plan() -> Layer1Plan:
@@ -113,10 +127,17 @@ class Condition:
     n_trials: int
 
 
-def base_spec(field_model: str, preset: str, seed: int, ta_mode: TaMode | str) -> TrialSpec:
-    """The interception drill on a field model, before behaviour, noise and latency."""
+def base_spec(
+    field_model: str, preset: str, seed: int, ta_mode: TaMode | str, client: str = "see"
+) -> TrialSpec:
+    """The interception drill on a field model, before behaviour, noise and latency.
+
+    The see client is the drill's default, so its specs carry no ``client`` option (they stay
+    those of earlier runs, which resume).
+    """
     spec = TrialSpec(drill=DRILL, field_model=field_model, preset=preset, seed=seed)
-    return spec.with_options(ta_mode=str(ta_mode))
+    spec = spec.with_options(ta_mode=str(ta_mode))
+    return spec if client == "see" else spec.with_options(client=client)
 
 
 def condition(

@@ -87,7 +87,15 @@ def intro_lines(
     from robotsoccer.runs.pool import default_workers
 
     presets = ", ".join(f"{m} `{p}`" for m, p in models)
+    client = (
+        "the per-cycle client of issue 28 (`client=cycle`: a command every cycle from a "
+        "world model kept between sees)"
+        if plan.client == "cycle"
+        else "the paper's see-triggered client (`client=see`: turn, then dash, at each see)"
+    )
     return [
+        f"Defender client, in every table below (collection and evaluation): {client}.",
+        "",
         f"Plan **{plan.name}**: {plan.eval_trials} trials per evaluation condition; the "
         f"training drill runs until {plan.collect_saves} saves. Field models and presets: "
         f"{presets}. Wall time {wall_s / 60:.1f} min with {workers or default_workers()} "

@@ -9,6 +9,7 @@ with layer 1 alone.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -26,6 +27,8 @@ class ReproduceParts:
     """Which steps follow layer 1 (none by default: ``learn intercept``).
 
     Attributes:
+        client: Layer 1's client on the Soccer Server (``see``: the paper's see-triggered
+            client; ``cycle``: one that acts every cycle, :mod:`robotsoccer.skills.cycle`).
         layer2: Layer 2 on every field model, with the layer-1 net each trained.
         lead_drills: The lead study's drills (§5's recipe for the robots' lead decision), in
             ``lead/``; empty: no lead study.
@@ -33,6 +36,7 @@ class ReproduceParts:
         transfer: The transfer study's setting; None: no transfer study.
     """
 
+    client: str = "see"
     layer2: bool = False
     lead_drills: tuple[StudyDrill, ...] = ()
     team_field: str | None = None
@@ -49,7 +53,8 @@ def run_reproduce(
     from robotsoccer.experiments.layer1 import run_layer1
     from robotsoccer.experiments.transfer_study import run_transfer_study
 
-    report, sections = run_layer1(models, layer1_plan.plan_for(quick), ctx, title=title)
+    plan = dataclasses.replace(layer1_plan.plan_for(quick), client=parts.client)
+    report, sections = run_layer1(models, plan, ctx, title=title)
     steps: list[Callable[[], str]] = []
     if parts.layer2:
         steps.append(lambda: layer2_step(sections, quick, ctx))

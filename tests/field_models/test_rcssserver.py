@@ -15,6 +15,7 @@ import time
 import pytest
 
 from field_models.checker import QUIET
+from field_models.presets import PresetError
 from field_models.protocol import LEFT, RIGHT, Dash, PlayerRef
 from field_models.registry import DEFAULT_OPTIONS, entry, make_arena
 from field_models.seeding import TrialRngs
@@ -83,3 +84,17 @@ def test_a_stale_think_from_before_the_first_step_is_read_past(stale) -> None:
     assert sees and all(times == {str(tick)} for tick, times in sees.items())
     assert all(p.observed_tick == p.tick for p in percepts)
     arena.close()  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("version", [0, 20])
+def test_a_protocol_version_the_server_does_not_speak_is_refused(tmp_path, version) -> None:
+    wire = tmp_path / "wire.toml"
+    wire.write_text(f'[server]\nstart = "served"\nclient_version = {version}\n')
+    with pytest.raises(
+        PresetError, match=rf"client_version': expected a protocol version 1 to 19, got {version}$"
+    ):
+        entry("rcssserver").load(str(wire), DEFAULT_OPTIONS)
+    sensing = tmp_path / "sensing.toml"
+    sensing.write_text(f'base = "rcssserver_19"\n[sensing]\nprotocol_version = {version}\n')
+    with pytest.raises(PresetError, match=r"protocol_version.*\[1, 19\]"):
+        entry("soccer_server").load(str(sensing), DEFAULT_OPTIONS)

@@ -33,11 +33,15 @@ def cmd_learn(args: argparse.Namespace) -> int:
     from robotsoccer.experiments.reproduce import ReproduceParts
 
     preset = args.field_preset or default_preset(args.field)
-    tag = f"learn-intercept-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
+    client = "" if args.client == "see" else f"-{args.client}"
+    tag = f"learn-intercept-{args.field}-{Path(preset).stem}{client}" + (
+        "-quick" if args.quick else ""
+    )
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     title = f"Layer 1 (interception) on {args.field}" + (" — quick plan" if args.quick else "")
+    parts = ReproduceParts(client=args.client)
     return _run_pipeline(
-        args, [(args.field, preset)], out, title, "robotsoccer learn intercept", ReproduceParts()
+        args, [(args.field, preset)], out, title, "robotsoccer learn intercept", parts
     )
 
 

@@ -86,7 +86,7 @@ def test_the_arena_counts_commands_as_the_server_carries_them_out() -> None:
 
 
 def test_a_say_is_heard_with_the_next_percept_and_the_referee_by_all() -> None:
-    a = arena("rcssserver_19")
+    a = arena("rcssserver_19_async")
     a.submit(A, (Say("pass"),))
     heard = []
     for _ in range(10):

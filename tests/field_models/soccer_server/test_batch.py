@@ -93,7 +93,7 @@ def streams(seed: int) -> tuple[list[Stream], StreamBatch]:
 
 
 @pytest.mark.parametrize("source", ["generators", "streams"])
-@pytest.mark.parametrize("name", ["rcssserver_19", "soccer_server_1996"])
+@pytest.mark.parametrize("name", ["rcssserver_19_async", "soccer_server_1996"])
 def test_batch_equals_single_models_seed_for_seed(name: str, source: str) -> None:
     preset = load_server_preset(name)
     if source == "streams":  # turn and kick draws are computed only when they happen
@@ -134,7 +134,7 @@ def test_batch_equals_single_models_seed_for_seed(name: str, source: str) -> Non
 
 
 def test_move_with_collision_and_state_accessors_match() -> None:
-    preset = load_server_preset("rcssserver_19")
+    preset = load_server_preset("rcssserver_19_async")
     singles = [SoccerServerModel(preset, PLAYERS, rng) for rng in rngs(9)]
     batch = BatchSoccerServer(preset, PLAYERS, rngs(9))
     for k, m in enumerate(singles):
@@ -151,7 +151,9 @@ def test_move_with_collision_and_state_accessors_match() -> None:
 
 
 def test_masked_commands_and_one_body_command_per_cycle() -> None:
-    preset = load_server_preset("rcssserver_19").replace_dynamics(player_rand=0.0, ball_rand=0.0)
+    preset = load_server_preset("rcssserver_19_async").replace_dynamics(
+        player_rand=0.0, ball_rand=0.0
+    )
     batch = BatchSoccerServer(preset, PLAYERS, rngs(1))
     batch.move_player(1, -10.0, 0.0, 0.0)
     mask = np.arange(K) < 4
@@ -167,7 +169,7 @@ def test_masked_commands_and_one_body_command_per_cycle() -> None:
 
 
 def test_change_mode_is_announced_per_trial() -> None:
-    batch = BatchSoccerServer(load_server_preset("rcssserver_19"), PLAYERS, rngs(2))
+    batch = BatchSoccerServer(load_server_preset("rcssserver_19_async"), PLAYERS, rngs(2))
     batch.change_mode("kick_off_l", mask=np.arange(K) == 2)
     assert batch.step() == [(2, "kick_off_l")]
     assert batch.mode_name(2) == "kick_off_l" and batch.mode_name(1) == "play_on"
@@ -176,7 +178,7 @@ def test_change_mode_is_announced_per_trial() -> None:
     assert "play_on" in PLAY_MODES
 
 
-@pytest.mark.parametrize("name", ["rcssserver_19", "soccer_server_1996"])
+@pytest.mark.parametrize("name", ["rcssserver_19_async", "soccer_server_1996"])
 def test_directed_dashes_equal_the_single_model(name: str) -> None:
     preset = load_server_preset(name).replace_dynamics(player_rand=0.0, ball_rand=0.0)
     directions = np.radians(np.linspace(-200.0, 200.0, K))  # beyond the range, off the step
@@ -192,7 +194,7 @@ def test_directed_dashes_equal_the_single_model(name: str) -> None:
     batch.step()
     assert_same(singles, batch)
     moved = np.hypot(batch.x[:, 1] + 10.0, batch.y[:, 1])
-    if name == "rcssserver_19":  # side and back dashes are slower than straight ones
+    if name == "rcssserver_19_async":  # side and back dashes are slower than straight ones
         assert moved.min() < 0.7 * moved.max()
     else:  # no dash direction in 1996: every dash runs straight ahead
         np.testing.assert_allclose(moved, 0.8, atol=1e-12)

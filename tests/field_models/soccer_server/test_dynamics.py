@@ -25,12 +25,12 @@ THEM = PlayerRef(RIGHT, 1)
 QUIET = {"ball_rand": 0.0, "player_rand": 0.0, "kick_rand": 0.0}
 
 
-def preset(name: str = "rcssserver_19", **changes: object) -> ServerPreset:
+def preset(name: str = "rcssserver_19_async", **changes: object) -> ServerPreset:
     return load_server_preset(name).replace_dynamics(**{**QUIET, **changes})
 
 
 def model(
-    name: str = "rcssserver_19", players: tuple[PlayerRef, ...] = (ME,), **changes: object
+    name: str = "rcssserver_19_async", players: tuple[PlayerRef, ...] = (ME,), **changes: object
 ) -> SoccerServerModel:
     return SoccerServerModel(preset(name, **changes), players, np.random.default_rng(0))
 
@@ -53,7 +53,7 @@ def touching_kick(name: str) -> tuple[SoccerServerModel, float]:
 
 
 def test_power_100_kick_today_moves_2_7_then_45_m_in_total() -> None:
-    m, x0 = touching_kick("rcssserver_19")
+    m, x0 = touching_kick("rcssserver_19_async")
     positions = {}
     below = None
     for k in range(1, 1001):
@@ -209,7 +209,7 @@ def first_push(
 def test_directed_dash_rate_and_direction_today(direction_deg: float, rate: float) -> None:
     # leg.cpp calcDashAccel: 1 ahead, 0.4 (side_dash_rate) at ±90°, 0.7 (back_dash_rate) at 180°,
     # linear between; the push runs along heading + direction (ours CCW: +90° is to the left).
-    x, y = first_push("rcssserver_19", direction_deg)
+    x, y = first_push("rcssserver_19_async", direction_deg)
     push = 100.0 * 0.006 * rate
     expected = (
         push * math.cos(math.radians(direction_deg)),
@@ -221,15 +221,15 @@ def test_directed_dash_rate_and_direction_today(direction_deg: float, rate: floa
 
 def test_side_dash_goes_sideways_relative_to_the_heading() -> None:
     # Facing +y, a dash at +90° (our left) runs toward -x at 0.4 of the power.
-    x, y = first_push("rcssserver_19", 90.0, heading=math.pi / 2)
+    x, y = first_push("rcssserver_19_async", 90.0, heading=math.pi / 2)
     assert (x, y) == pytest.approx((-0.24, 0.0), abs=1e-12)
     # The server's (dash 100 90) is to the player's right: our -90°.
-    x, y = first_push("rcssserver_19", -90.0, heading=math.pi / 2)
+    x, y = first_push("rcssserver_19_async", -90.0, heading=math.pi / 2)
     assert (x, y) == pytest.approx((0.24, 0.0), abs=1e-12)
 
 
 def test_dash_direction_is_rounded_to_the_step_and_clamped() -> None:
-    d = load_server_preset("rcssserver_19").dynamics
+    d = load_server_preset("rcssserver_19_async").dynamics
     assert dash_direction(math.radians(30.4), d) == pytest.approx(math.radians(30.0), abs=1e-12)
     assert dash_direction(math.radians(-30.6), d) == pytest.approx(math.radians(-31.0), abs=1e-12)
     assert dash_direction(math.radians(0.5), d) == 0.0  # rint: half to even
@@ -247,7 +247,7 @@ def test_dash_direction_is_rounded_to_the_step_and_clamped() -> None:
     assert dash_direction(math.radians(-60.0), narrow) == pytest.approx(math.radians(-30.0))
     assert dash_direction(math.radians(120.0), narrow) == pytest.approx(math.radians(90.0))
     # A rounded direction moves the player exactly like the rounded request.
-    assert first_push("rcssserver_19", 44.6) == first_push("rcssserver_19", 45.0)
+    assert first_push("rcssserver_19_async", 44.6) == first_push("rcssserver_19_async", 45.0)
 
 
 def test_dash_rate_is_clamped_to_0_1() -> None:
@@ -266,7 +266,7 @@ def test_1996_preset_ignores_the_dash_direction() -> None:
 
 
 def test_negative_dash_power_with_a_direction_today_does_nothing() -> None:
-    assert first_push("rcssserver_19", 90.0, power=-50.0) == (0.0, 0.0)  # min_dash_power 0
+    assert first_push("rcssserver_19_async", 90.0, power=-50.0) == (0.0, 0.0)  # min_dash_power 0
 
 
 @pytest.mark.parametrize(
@@ -295,11 +295,13 @@ def test_arguments_are_clamped_as_the_server_clamps_them() -> None:
         m.step()
         return m.x[1] - x1, m.x[0] - xb
 
-    assert first_move("rcssserver_19", Dash(150.0)) == first_move("rcssserver_19", Dash(100.0))
-    assert first_move("rcssserver_19", Dash(-50.0))[0] == 0.0  # min_dash_power 0 today
+    assert first_move("rcssserver_19_async", Dash(150.0)) == first_move(
+        "rcssserver_19_async", Dash(100.0)
+    )
+    assert first_move("rcssserver_19_async", Dash(-50.0))[0] == 0.0  # min_dash_power 0 today
     assert first_move("soccer_server_1996", Dash(-50.0))[0] == pytest.approx(-0.3)  # minpower -30
-    kick_200 = first_move("rcssserver_19", Kick(200.0, 0.0), ball_x=0.385)
-    assert kick_200 == first_move("rcssserver_19", Kick(100.0, 0.0), ball_x=0.385)
+    kick_200 = first_move("rcssserver_19_async", Kick(200.0, 0.0), ball_x=0.385)
+    assert kick_200 == first_move("rcssserver_19_async", Kick(100.0, 0.0), ball_x=0.385)
 
 
 def test_turn_and_kick_direction_are_clamped_to_the_moment_range() -> None:
@@ -403,7 +405,7 @@ def test_before_kick_off_nothing_moves_but_turns() -> None:
 
 
 def shot(
-    name: str = "rcssserver_19", players: tuple[PlayerRef, ...] = (ME, THEM), **kw: object
+    name: str = "rcssserver_19_async", players: tuple[PlayerRef, ...] = (ME, THEM), **kw: object
 ) -> SoccerServerModel:
     """§8.10: ball at (50, 0) moving 1.5 m/cycle toward the right goal."""
     m = model(name, players=players, **kw)
@@ -460,7 +462,7 @@ def test_goal_for_the_right_team_and_a_wide_shot() -> None:
 def test_goal_between_the_posts_counts_the_post_radius() -> None:
     # rcssserver_19: |y| <= 7.01 + 0.06 at the line is a goal; the 1996 servers had no posts.
     for name, y, expected in [
-        ("rcssserver_19", 7.05, ["goal_l_1"]),
+        ("rcssserver_19_async", 7.05, ["goal_l_1"]),
         ("soccer_server_1996", 7.05, []),
         ("soccer_server_1996", 7.0, ["goal_l_1", "kick_off_r"]),
     ]:
@@ -510,7 +512,7 @@ def test_state_accessors_speak_metres_per_second() -> None:
 
 def run_noisy(seed: int) -> list[tuple[float, ...]]:
     m = SoccerServerModel(
-        load_server_preset("rcssserver_19"), (ME, THEM), np.random.default_rng(seed)
+        load_server_preset("rcssserver_19_async"), (ME, THEM), np.random.default_rng(seed)
     )
     m.move_ball(0.0, 0.0)
     m.move_player(1, -0.5, 0.0, 0.0)

@@ -18,7 +18,7 @@ DRAWS = 100_000
 
 def movement_noise(noise_model: str, draws: int = DRAWS) -> np.ndarray:
     """Per-cycle perturbation of a ball moving at SPEED along x (no acceleration, no decay)."""
-    preset = load_server_preset("rcssserver_19").replace_dynamics(
+    preset = load_server_preset("rcssserver_19_async").replace_dynamics(
         noise_model=noise_model, ball_rand=0.05, ball_decay=1.0, referee=False
     )
     m = SoccerServerModel(preset, (ME,), np.random.default_rng(2024))
@@ -52,7 +52,9 @@ def test_polar_noise_per_axis_variance_is_r2_over_6() -> None:
 
 def test_noise_scales_with_speed_after_the_kick() -> None:
     # §1.3: a ball kicked from rest already gets noise in the kick cycle, sized 0.05 * 2.7.
-    preset = load_server_preset("rcssserver_19").replace_dynamics(kick_rand=0.0, referee=False)
+    preset = load_server_preset("rcssserver_19_async").replace_dynamics(
+        kick_rand=0.0, referee=False
+    )
     deviations = []
     for seed in range(300):
         m = SoccerServerModel(preset, (ME,), np.random.default_rng(seed))
@@ -68,7 +70,9 @@ def test_noise_scales_with_speed_after_the_kick() -> None:
 def test_a_ball_at_rest_stays_at_rest() -> None:
     n = movement_noise("polar", draws=10)
     assert n.shape == (10, 2)
-    m = SoccerServerModel(load_server_preset("rcssserver_19"), (ME,), np.random.default_rng(1))
+    m = SoccerServerModel(
+        load_server_preset("rcssserver_19_async"), (ME,), np.random.default_rng(1)
+    )
     m.move_ball(3.0, 4.0)
     for _ in range(50):
         m.step()
@@ -114,7 +118,7 @@ def kick_noise(name: str, **changes: object) -> np.ndarray:
 def test_todays_kick_noise_is_polar_with_the_spec_radius() -> None:
     # §2.3: pos_rate 0.5 (touching, straight ahead), speed_rate 0.5 (ball at rest):
     # R = kick_rand · (50/100) · 1.0 = 0.05.
-    n = kick_noise("rcssserver_19")
+    n = kick_noise("rcssserver_19_async")
     r = 0.05
     assert np.hypot(n[:, 0], n[:, 1]).max() <= r * (1.0 + 1e-9)
     for axis in (0, 1):

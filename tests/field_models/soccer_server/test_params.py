@@ -21,10 +21,10 @@ SHIPPED = PRESET_DIR / "soccer_server"
 
 def test_both_presets_load_with_their_era() -> None:
     old = load_server_preset("soccer_server_1996")
-    new = load_server_preset("rcssserver_19")
+    new = load_server_preset("rcssserver_19_async")
     assert isinstance(old, ServerPreset) and isinstance(old.dynamics, DynamicsParams)
     assert (old.name, old.era) == ("soccer_server_1996", "1996")
-    assert (new.name, new.era) == ("rcssserver_19", "19")
+    assert (new.name, new.era) == ("rcssserver_19_async", "19")
     assert old.source.endswith("soccer_server_1996.toml")
 
 
@@ -43,7 +43,7 @@ def test_1996_preset_is_the_papers_server() -> None:
 
 
 def test_19_preset_is_todays_defaults() -> None:
-    d = load_server_preset("rcssserver_19").dynamics
+    d = load_server_preset("rcssserver_19_async").dynamics
     assert d.noise_model == "polar" and d.kick_rand == 0.1 and d.kick_reduction
     assert (d.ball_decay, d.ball_accel_max_m_per_cycle2, d.ball_speed_max_m_per_cycle) == (
         0.94,
@@ -64,7 +64,7 @@ def test_1996_preset_has_no_dash_direction() -> None:
 
 
 def test_degrees_become_radians_once() -> None:
-    for name in ("soccer_server_1996", "rcssserver_19"):
+    for name in ("soccer_server_1996", "rcssserver_19_async"):
         preset = load_server_preset(name)
         assert preset.dynamics.maxmoment_rad == pytest.approx(math.pi)
         assert preset.dynamics.minmoment_rad == pytest.approx(-math.pi)
@@ -73,12 +73,12 @@ def test_degrees_become_radians_once() -> None:
 
 def test_sensing_tables_match_the_eras_values() -> None:
     assert load_server_preset("soccer_server_1996").sensing == sensing_params_for_era("1996")
-    assert load_server_preset("rcssserver_19").sensing == sensing_params_for_era("19")
+    assert load_server_preset("rcssserver_19_async").sensing == sensing_params_for_era("19")
     assert load_server_preset("soccer_server_1996").sensing.send_step_ms == 250  # paper §5
 
 
 def test_pitch_from_params() -> None:
-    pitch = load_server_preset("rcssserver_19").dynamics.pitch()
+    pitch = load_server_preset("rcssserver_19_async").dynamics.pitch()
     assert (pitch.length_m, pitch.width_m, pitch.goal_width_m) == (105.0, 68.0, 14.02)
     assert pitch.player_radius_m == 0.3 and pitch.ball_radius_m == 0.085
     assert pitch.goal_post_radius_m == 0.06  # the goal test's widening (§6)
@@ -88,7 +88,7 @@ def test_pitch_from_params() -> None:
 # ----------------------------------------------------------------------------- bad files
 
 
-def _edited(tmp_path: Path, old: str, new: str, name: str = "rcssserver_19") -> Path:
+def _edited(tmp_path: Path, old: str, new: str, name: str = "rcssserver_19_async") -> Path:
     text = (SHIPPED / f"{name}.toml").read_text()
     assert old in text, old
     path = tmp_path / "bad.toml"
@@ -153,7 +153,7 @@ def test_sensing_check_names_key(tmp_path: Path) -> None:
 
 
 def test_missing_table_and_bad_era(tmp_path: Path) -> None:
-    text = (SHIPPED / "rcssserver_19.toml").read_text()
+    text = (SHIPPED / "rcssserver_19_async.toml").read_text()
     no_sensing = tmp_path / "no_sensing.toml"
     no_sensing.write_text(text.split("[sensing]")[0])
     assert "'sensing'" in _error(no_sensing)
@@ -162,12 +162,12 @@ def test_missing_table_and_bad_era(tmp_path: Path) -> None:
 
 
 def test_unknown_preset_name_lists_the_known_ones() -> None:
-    with pytest.raises(PresetError, match="rcssserver_19"):
+    with pytest.raises(PresetError, match="rcssserver_19_async"):
         load_server_preset("soccer_server_2042")
 
 
 def test_record_checks_apply_to_replace() -> None:
-    d = load_server_preset("rcssserver_19").dynamics
+    d = load_server_preset("rcssserver_19_async").dynamics
     with pytest.raises(ParamError, match="minpower"):
         d.replace(minpower=200.0)
     with pytest.raises(ParamError, match="min_dash_angle_rad"):
@@ -183,7 +183,7 @@ def test_dash_angles_in_degrees_and_their_order(tmp_path: Path) -> None:
 
 
 def test_replace_sensing() -> None:
-    preset = load_server_preset("rcssserver_19")
+    preset = load_server_preset("rcssserver_19_async")
     perfect = preset.replace_sensing(perfect=True)
     assert perfect.sensing.perfect and not preset.sensing.perfect
     assert perfect.dynamics == preset.dynamics

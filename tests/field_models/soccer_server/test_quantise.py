@@ -153,5 +153,5 @@ def test_bad_sensing_values_are_refused_with_the_key() -> None:
 
 
 def test_shipped_presets_carry_these_sensing_values() -> None:
-    assert load_server_preset("rcssserver_19").sensing == SENSING_19
+    assert load_server_preset("rcssserver_19_async").sensing == SENSING_19
     assert load_server_preset("soccer_server_1996").sensing == SENSING_1996

@@ -60,7 +60,7 @@ def test_the_parameter_list_is_rcssserver_19s() -> None:
 
 
 def test_server_conf_of_todays_defaults_is_the_rcssserver_19_preset() -> None:
-    today = load_server_preset("rcssserver_19")
+    today = load_server_preset("rcssserver_19_async")
     loaded = load_server_conf(DEFAULTS)
     assert loaded.preset.dynamics == today.dynamics
     assert loaded.preset.sensing == today.sensing
@@ -76,7 +76,7 @@ def test_server_conf_of_todays_defaults_is_the_rcssserver_19_preset() -> None:
 def test_every_server_parameter_we_model_comes_from_the_file() -> None:
     # Over the 1996 preset, the file sets every field the server has a parameter for; what
     # is left of 1996 is what server.conf cannot say (version rules, compiled constants).
-    today = load_server_preset("rcssserver_19")
+    today = load_server_preset("rcssserver_19_async")
     old = load_server_preset("soccer_server_1996")
     loaded = load_server_conf(DEFAULTS, base=old).preset
     assert set(differences(loaded.dynamics, today.dynamics)) == {
@@ -101,7 +101,7 @@ def test_server_param_message_of_todays_defaults_is_the_rcssserver_19_preset() -
     text = message_from_conf(DEFAULTS)
     assert "(coach 0)" in text and '(text_log_dir "./")' in text
     loaded = load_server_conf(text, base="soccer_server_1996")
-    today = load_server_preset("rcssserver_19")
+    today = load_server_preset("rcssserver_19_async")
     assert set(differences(loaded.preset.dynamics, today.dynamics)) == {
         "goal_post_radius_m",
         "kick_reduction",
@@ -115,7 +115,7 @@ def test_server_param_message_of_todays_defaults_is_the_rcssserver_19_preset() -
 
 
 def test_server_param_changes_exactly_what_it_sets() -> None:
-    base = load_server_preset("rcssserver_19")
+    base = load_server_preset("rcssserver_19_async")
     text = (
         "(server_param (ball_decay 0.9) (visible_angle 120) (maxmoment 90) (send_step 100) "
         "(simulator_step 50) (kick_rand 0) (stamina_max 4000) (coach 1) (landmark_file "
@@ -158,12 +158,12 @@ def test_dash_parameters_in_degrees_become_radians() -> None:
 
 def test_referee_follows_coach_and_coach_w_referee() -> None:
     def referee(conf: str) -> bool:
-        return load_server_conf(conf, base="rcssserver_19").preset.dynamics.referee
+        return load_server_conf(conf, base="rcssserver_19_async").preset.dynamics.referee
 
     assert referee("(server_param (coach 1))") is False
     assert referee("(server_param (coach 1) (coach_w_referee 1))") is True
     assert referee("(server_param (coach 0))") is True
-    no_referee = load_server_preset("rcssserver_19").replace_dynamics(referee=False)
+    no_referee = load_server_preset("rcssserver_19_async").replace_dynamics(referee=False)
     loaded = load_server_conf("(server_param (coach_w_referee 0))", base=no_referee)
     assert loaded.preset.dynamics.referee is False  # neither decides: the base's value
     assert loaded.ignored == ("coach_w_referee",)

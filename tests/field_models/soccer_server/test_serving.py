@@ -16,7 +16,7 @@ from field_models.soccer_server.serving_state import Client
 
 
 def game(synch: bool = False, **kw) -> ServedGame:
-    return ServedGame(load_server_preset("rcssserver_19"), synch=synch, **kw)
+    return ServedGame(load_server_preset("rcssserver_19_async"), synch=synch, **kw)
 
 
 def texts(g: ServedGame, client: Client) -> list[str]:

@@ -23,7 +23,7 @@ def served(
 ) -> Iterator[tuple[UdpServer, list[str]]]:
     """A server on free ports in a thread, stopped (at the latest after `seconds`) on exit."""
     lines: list[str] = []
-    game = ServedGame(load_server_preset("rcssserver_19"), synch=synch, log=lines.append)
+    game = ServedGame(load_server_preset("rcssserver_19_async"), synch=synch, log=lines.append)
     server = UdpServer(game, port=0, trainer_port=0, olcoach_port=0, **kw)
     stop = threading.Event()
     result: list[ServeStats] = []

@@ -80,7 +80,7 @@ def test_drill_options_give_the_one_trial_results(options: dict[str, str | float
 
 def test_todays_server_gives_the_one_trial_results() -> None:
     # rcssserver 19: 150 ms sees, so a new decision can cut the previous one's dash.
-    one, many = both(dataclasses.replace(spec(behaviour="random"), preset="rcssserver_19"))
+    one, many = both(dataclasses.replace(spec(behaviour="random"), preset="rcssserver_19_async"))
     assert many == one
 
 

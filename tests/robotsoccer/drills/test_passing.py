@@ -70,7 +70,7 @@ def test_placement_follows_figure_9() -> None:
 
 def test_on_rcssserver_19_most_reports_are_too_long_and_the_receiver_half_is_unknown() -> None:
     # 10 characters carry a report of at most one seen player (codec: "v" + 4 + 5 per player).
-    s = TrialSpec(drill="pass", field_model="soccer_server", preset="rcssserver_19")
+    s = TrialSpec(drill="pass", field_model="soccer_server", preset="rcssserver_19_async")
     unknown = 0
     for index in range(6):
         r = run_trial(s, index)

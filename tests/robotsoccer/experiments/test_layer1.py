@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import subprocess
 import sys
@@ -355,8 +356,36 @@ def test_tiny_pipeline_writes_report_plots_models_and_results(tmp_path) -> None:
         run_layer1([("soccer_server", None)], TINY, RunContext.for_seed(out, 4, 1, lines.append))
 
 
+def test_a_cycle_client_run_collects_and_evaluates_on_that_client(tmp_path) -> None:
+    """``learn intercept --client cycle``: the client option reaches collection and every
+    condition, the dataset and the report say so; the see client's specs carry no option."""
+    plan = dataclasses.replace(
+        TINY, client="cycle", eval_trials=8, collect_saves=20, collect_batch=200, checks=False
+    )
+    plan = dataclasses.replace(plan, training_sizes=(10,), net_examples=10, noises=(0.05,))
+    out = tmp_path / "run"
+    report, _ = run_layer1(
+        [("soccer_server", "rcssserver_19")], plan, RunContext.for_seed(out, 3, 1)
+    )
+    config = json.loads((out / "config.json").read_text())
+    assert config["plan"]["client"] == "cycle"
+    conditions = config["conditions"]["soccer_server"].values()
+    assert all(["client", "cycle"] in c["spec"]["drill_options"] for c in conditions)
+    dataset = InterceptionDataset.load(out / "datasets" / "soccer_server" / "train.npz")
+    assert dataset.provenance.extra["client"] == "cycle"
+    assert "Defender client, in every table below (collection and evaluation): the per-cycle" in (
+        report.read_text()
+    )
+    assert "client" not in TINY.to_dict()
+    see = base_spec("soccer_server", "rcssserver_19", 0, "hold")
+    assert see.drill_options == (("ta_mode", "hold"),)
+    with pytest.raises(ValueError, match=r"unknown client 'every' \(known: see, cycle\)"):
+        dataclasses.replace(TINY, client="every")
+
+
 def test_cli_learn_and_reproduce_refuse_bad_input_in_one_line() -> None:
     for args in (
+        ("learn", "intercept", "--field", "soccer_server", "--client", "every"),
         ("learn", "intercept", "--field", "mars"),
         ("learn", "tackle", "--field", "soccer_server"),
         ("learn", "pass", "--field", "soccer_server", "--net", "no-such-net.npz"),
