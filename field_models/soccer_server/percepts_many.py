@@ -9,10 +9,14 @@ states and sensing settings, and whole pass trials). That one-player route, thro
 `specs/soccer_server.md` §3); this module does the same operations in another order:
 
 * the geometry of every (observer, object) pair — the ball, the other players, then the
-  landmarks the mode shows — as (K, M) arrays: offsets in the server frame, the angle through
-  :func:`field_models.fpmath.atan2_array` (the bits of the scalar ``atan2``), the wrap, the
-  view cone (§3.2) and the felt distance; then, for the pairs a percept shows, the distance's
-  log index (§3.3) and the direction in the server's degrees;
+  landmarks the mode shows — as (K, M) arrays: offsets in the server frame, the angle, the
+  wrap, the view cone (§3.2) and the felt distance; then, for the pairs a percept shows, the
+  distance's log index (§3.3) and the direction in the server's degrees. The angle and the
+  logarithm come from numpy's own kernels, whose last bits depend on the CPU; a see reports
+  only the cone test, whole degrees and the log index, so those agree with the scalar
+  :mod:`field_models.fpmath` except next to a boundary, and the few pairs within a safe margin
+  of one take the scalar function (in perfect perception, which reports the angle itself,
+  :func:`field_models.fpmath.atan2_array` gives every bit);
 * the random draws as one block: each see draws ``1 + 2N`` numbers (then one per flag when
   flags carry changes), so K sees in a row read one block of K times that many, row by row;
 * per pair shown (a few per observer), the scalar rules themselves: the memoised quantised
@@ -196,6 +200,66 @@ class _Geometry(NamedTuple):
         return cls(dx, dy, dx * dx + dy * dy, heading[me])
 
 
+_numpy_atan2 = np.arctan2
+"""numpy's own kernels: fast, but their last bits depend on the CPU (:mod:`field_models.fpmath`);
+module names so that a test can perturb them."""
+_numpy_log = np.log
+
+SAFE_MARGIN_RAD = 1e-9
+"""How near a cone edge, a degree boundary or ±π an angle from numpy's ``arctan2`` may come before
+the scalar ``fpmath.atan2`` decides it. The two differ by a few units in the last place (below
+1e-14 rad for angles within ±2π), so outside this margin they report the same cone test and the
+same whole degrees."""
+SAFE_MARGIN_INDEX = 1e-7
+"""The same for a distance's log index ``ln(d + EPS) / step``: numpy's and fdlibm's logarithms
+differ by below 1e-11 in it for any distance up to 1e6 m."""
+
+
+def _view_angles(c: SeeConsts, g: _Geometry) -> Array:
+    """Each pair's direction from the observer's view (server frame, [-π, π)), as ``observe``.
+
+    Perfect perception reports the angle itself, so every bit comes from
+    :func:`field_models.fpmath.atan2_array`. Otherwise a see reports only the cone test (§3.2)
+    and whole degrees (truncated or rounded), so numpy's faster ``arctan2`` gives the same
+    report except within :data:`SAFE_MARGIN_RAD` of a boundary; those few pairs (about one in
+    10^8) take the scalar ``atan2``.
+    """
+    if c.perfect:
+        return wrap_angle(fpmath.atan2_array(g.dy, g.dx) - g.heading)
+    ang = wrap_angle(_numpy_atan2(g.dy, g.dx) - g.heading)
+    size = np.abs(ang)
+    deg = ang * RAD2DEG
+    edge = deg if c.truncate else deg + 0.5  # truncation flips at whole degrees, rounding at halves
+    near = np.abs(size - c.half_angle) < SAFE_MARGIN_RAD
+    near |= np.abs(edge - np.rint(edge)) < SAFE_MARGIN_RAD * RAD2DEG
+    if not c.truncate:  # where ±π wraps, rounding flips sign (truncation: ±180 is a boundary)
+        near |= np.abs(size - math.pi) < SAFE_MARGIN_RAD
+    for k, j in zip(*np.nonzero(near), strict=True):
+        exact = fpmath.atan2(float(g.dy[k, j]), float(g.dx[k, j])) - float(g.heading[k, 0])
+        ang[k, j] = wrap_angle(exact)
+    return ang
+
+
+def _log_indices(exact: Array, steps: Array) -> list[int]:
+    """``round(fpmath.log(d + EPS) / step)`` per distance (§3.3), through numpy's ``log``.
+
+    As for angles, only a quotient within :data:`SAFE_MARGIN_INDEX` of a half takes the scalar
+    logarithm: elsewhere both round to the same index.
+
+    Raises:
+        ValueError: A distance that is not finite (a position became NaN or inf).
+    """
+    quotient = _numpy_log(exact + EPS) / steps
+    if not np.isfinite(quotient).all():
+        raise ValueError("see: a distance that is not finite (a position became NaN or inf)")
+    index = np.rint(quotient)
+    edge = quotient + 0.5
+    for p in np.flatnonzero(np.abs(edge - np.rint(edge)) < SAFE_MARGIN_INDEX):
+        index[p] = round(fpmath.log(float(exact[p]) + EPS) / float(steps[p]))
+    out: list[int] = index.astype(np.intp).tolist()
+    return out
+
+
 class _Pairs(NamedTuple):
     """The (observer, column) pairs a percept shows, in percept order (observer, then column).
 
@@ -228,7 +292,7 @@ class _Builder:
     def pairs(self) -> _Pairs:
         """The pairs shown, with the operations of ``observe`` (arrays over all pairs first)."""
         c, layout, g = self.c, self.layout, self.geometry
-        ang = wrap_angle(fpmath.atan2_array(g.dy, g.dx) - g.heading)
+        ang = _view_angles(c, g)
         in_cone = (-c.half_angle < ang) & (ang < c.half_angle)
         shown = in_cone | ((g.d2 <= c.vis_dist2) & layout.feels)
         if not c.high:
@@ -241,8 +305,7 @@ class _Builder:
         if c.perfect:
             exact_list, direction = exact.tolist(), deg
         else:
-            log_index = np.rint(fpmath.log_array(exact + EPS) / layout.steps[js])
-            index = log_index.astype(np.intp).tolist()
+            index = _log_indices(exact, layout.steps[js])
             direction = np.trunc(deg) if c.truncate else np.rint(deg)
         bounds = np.searchsorted(ks, np.arange(len(layout.observers) + 1))
         angle = -(direction * _DEG2RAD) + 0.0  # server degrees -> our CCW radians
@@ -262,34 +325,31 @@ class _Builder:
         pairs = self.pairs()
         layout, c = self.layout, self.c
         first_mark, names = self.first_mark, layout.mark_names
+        qds = self.distances(pairs)
         # Within both fading lengths a player shows team and number: far_probability is 0.
-        near = min(c.team_far, c.unum_far)
-        get, get_l = c.table.get, c.table_l.get
+        near = math.inf if c.perfect else min(c.team_far, c.unum_far)
         block, per_see = draws
         time, heard = when
         out: list[Percept] = []
+        bounds = pairs.bounds
         for k, row in enumerate(layout.observers.tolist()):
             ball: SeenBall | None = None
             others: list[SeenPlayer] = []
             marks: list[SeenLandmark] = []
             start = k * per_see
             refs, team_draws = layout.refs[k], layout.team_draws[k]
-            for p in range(pairs.bounds[k], pairs.bounds[k + 1]):
-                j, angle = pairs.column[p], pairs.angle[p]
-                if c.perfect:
-                    qd = pairs.exact[p]
-                else:
-                    m = pairs.log_index[p]
-                    found = (get_l if j >= first_mark else get)(m)
-                    qd = self.distance(j >= first_mark, m) if found is None else found
+            lo, hi = bounds[k], bounds[k + 1]
+            shown = (pairs.column[lo:hi], qds[lo:hi], pairs.angle[lo:hi], pairs.in_cone[lo:hi])
+            for j, qd, angle, in_cone in zip(*shown, strict=True):
                 if j >= first_mark:
                     marks.append(_make_mark(names[j - first_mark], qd, angle))
                 elif not j:
-                    ball = self.ball(k, (qd, angle, pairs.in_cone[p]), block[start])
-                elif not pairs.in_cone[p]:
+                    ball = self.ball(k, (qd, angle, in_cone), block[start])
+                elif not in_cone:
                     others.append(_make_player(qd, angle, None, None))  # felt "(P)"
-                elif c.perfect or qd <= near:
-                    others.append(_make_player(qd, angle, refs[j - 1].team, refs[j - 1].number))
+                elif qd <= near:
+                    ref = refs[j - 1]
+                    others.append(_make_player(qd, angle, ref.team, ref.number))
                 else:
                     u = start + team_draws[j - 1]
                     team, number = self.identity(qd, refs[j - 1], block[u], block[u + 1])
@@ -300,6 +360,23 @@ class _Builder:
             )
             out.append(percept)
         return out
+
+    def distances(self, pairs: _Pairs) -> list[float]:
+        """Each pair's reported distance: exact when perfect, else its log index's (§3.3)."""
+        c = self.c
+        if c.perfect:
+            return pairs.exact
+        get, get_l, first_mark = c.table.get, c.table_l.get, self.first_mark
+        found = [
+            (get_l if j >= first_mark else get)(m)
+            for j, m in zip(pairs.column, pairs.log_index, strict=True)
+        ]
+        if None not in found:
+            return found  # type: ignore[return-value]
+        return [
+            self.distance(j >= first_mark, m) if qd is None else qd
+            for j, m, qd in zip(pairs.column, pairs.log_index, found, strict=True)
+        ]
 
     def distance(self, mark: bool, index: int) -> float:
         """The reported distance of a log index not yet in the memo (§3.3)."""

@@ -10,9 +10,11 @@ from typing import Any
 import numpy as np
 import pytest
 
+from field_models import fpmath
 from field_models.protocol import LEFT, RIGHT, Heard, Percept, PlayerRef
 from field_models.seeding import Rng, TrialRngs
 from field_models.soccer_server import arena as arena_module
+from field_models.soccer_server import percepts_many
 from field_models.soccer_server.percepts import percept_from_state
 from field_models.soccer_server.percepts_many import Bodies, percepts_of
 from field_models.soccer_server.sensing import LandmarkMode
@@ -99,6 +101,93 @@ def test_a_cycle_of_percepts_equals_one_see_at_a_time_bit_for_bit(era: str) -> N
         got = percepts_of(observers, bodies, PLAYERS, params, rng_b, 40, heards, mode)
         assert bits(got) == bits(want), (era, case)
         assert rng_a.random() == rng_b.random()  # both read the same share of the stream
+
+
+def on_the_boundaries(params: SensingParams) -> Bodies:
+    """Observer row 1 at the origin facing +x; the others on a cone edge, on whole degrees (and
+    halves), on the axes, and at distances whose log index lies on a half (§3.2, §3.3)."""
+    half = params.half_angle_rad
+    q = params.quantize_step
+    places = [
+        (5.0, 5.0),  # 45°: the normal cone's edge (atan2(1, 1) is pi/4 to the last bit)
+        (10.0 * math.cos(half), -10.0 * math.sin(half)),
+        (math.exp(30.5 * q) - 1e-10, 0.0),  # on the x axis, log index 30.5
+        (0.0, math.exp(25.5 * q)),
+        (-7.0, 0.0),  # behind, on the axis: ±180°, not felt
+        (-2.0, -0.0),  # felt (within 3 m) at ±180°
+        (8.0 * math.cos(math.radians(12.0)), 8.0 * math.sin(math.radians(12.0))),
+        (8.0 * math.cos(math.radians(-30.5)), 8.0 * math.sin(math.radians(-30.5))),
+        (9.0 * math.cos(math.radians(44.0)), 9.0 * math.sin(math.radians(44.0))),
+        (3.0, 0.0),
+        (20.0, 20.0),
+    ]
+    x = [1.0, 0.0] + [p[0] for p in places]
+    y = [-1.0, 0.0] + [p[1] for p in places]
+    zeros = [0.0] * len(x)
+    return Bodies(x, y, zeros, zeros, zeros)
+
+
+@pytest.mark.parametrize("era", ["1996", "rounded", "19", "wide"])
+def test_angles_and_distances_on_a_boundary_take_the_exact_scalar_rule(
+    era: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    params = SENSINGS[era]
+    bodies = on_the_boundaries(params)
+    calls = []
+    scalar = fpmath.atan2
+
+    def counted(y: float, x: float) -> float:
+        calls.append((y, x))
+        return scalar(y, x)
+
+    monkeypatch.setattr(fpmath, "atan2", counted)
+    got = percepts_of([1], bodies, PLAYERS, params, np.random.default_rng(3), 5, [()], "all")
+    assert calls  # the fast kernel's answer was not trusted near a boundary
+    monkeypatch.undo()
+    want = one_at_a_time([1], bodies, PLAYERS, params, np.random.default_rng(3), 5, [()], "all")
+    assert bits(got) == bits(want)
+    assert len(got[0].players) >= 5
+
+
+def _perturbed(scale: float) -> tuple[Any, Any]:
+    """numpy's atan2 and log, each result moved by up to `scale` of itself (a CPU of its own)."""
+    g = np.random.default_rng(11)
+
+    def atan2(y: Any, x: Any) -> Any:
+        out = np.arctan2(y, x)
+        return out * (1.0 + scale * g.uniform(-1.0, 1.0, np.shape(out)))
+
+    def log(x: Any) -> Any:
+        out = np.log(x)
+        return out + np.abs(out) * scale * g.uniform(-1.0, 1.0, np.shape(out))
+
+    return atan2, log
+
+
+def _mismatches(monkeypatch: pytest.MonkeyPatch, scale: float) -> int:
+    atan2, log = _perturbed(scale)
+    monkeypatch.setattr(percepts_many, "_numpy_atan2", atan2)
+    monkeypatch.setattr(percepts_many, "_numpy_log", log)
+    g = np.random.default_rng(8)
+    wrong = 0
+    for case in range(150):
+        params = SENSING_1996 if case % 2 else SENSING_19.replace(direction_mode="round")
+        bodies = on_the_boundaries(params) if case < 4 else random_state(g, case % 3)
+        observers = [1, 4, 9] if case >= 4 else [1]
+        rng_a, rng_b = np.random.default_rng(case), np.random.default_rng(case)
+        want = one_at_a_time(observers, bodies, PLAYERS, params, rng_a, 1, [()] * len(observers))
+        got = percepts_of(observers, bodies, PLAYERS, params, rng_b, 1, [()] * len(observers))
+        wrong += bits(got) != bits(want)
+    return wrong
+
+
+def test_kernels_that_round_otherwise_still_give_the_same_percepts(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """numpy's kernels may differ from fdlibm's in the last bits on another CPU; within the
+    safety margin that changes nothing, while errors far beyond it do show (the check works)."""
+    assert _mismatches(monkeypatch, 1e-13) == 0
+    assert _mismatches(monkeypatch, 1e-4) > 0
 
 
 def test_the_check_would_see_a_sign_of_zero() -> None:
