@@ -131,6 +131,7 @@ def on_the_boundaries(params: SensingParams) -> Bodies:
 def test_angles_and_distances_on_a_boundary_take_the_exact_scalar_rule(
     era: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    monkeypatch.setattr(percepts_many, "ARRAY_PAIRS_MIN", 0)  # one observer: arrays all the same
     params = SENSINGS[era]
     bodies = on_the_boundaries(params)
     calls = []
@@ -143,7 +144,7 @@ def test_angles_and_distances_on_a_boundary_take_the_exact_scalar_rule(
     monkeypatch.setattr(fpmath, "atan2", counted)
     got = percepts_of([1], bodies, PLAYERS, params, np.random.default_rng(3), 5, [()], "all")
     assert calls  # the fast kernel's answer was not trusted near a boundary
-    monkeypatch.undo()
+    monkeypatch.setattr(fpmath, "atan2", scalar)
     want = one_at_a_time([1], bodies, PLAYERS, params, np.random.default_rng(3), 5, [()], "all")
     assert bits(got) == bits(want)
     assert len(got[0].players) >= 5
@@ -166,6 +167,7 @@ def _perturbed(scale: float) -> tuple[Any, Any]:
 
 def _mismatches(monkeypatch: pytest.MonkeyPatch, scale: float) -> int:
     atan2, log = _perturbed(scale)
+    monkeypatch.setattr(percepts_many, "ARRAY_PAIRS_MIN", 0)
     monkeypatch.setattr(percepts_many, "_numpy_atan2", atan2)
     monkeypatch.setattr(percepts_many, "_numpy_log", log)
     g = np.random.default_rng(8)
@@ -192,6 +194,22 @@ def test_kernels_that_round_otherwise_still_give_the_same_percepts(
 
 def test_the_check_would_see_a_sign_of_zero() -> None:
     assert bits(0.0) != bits(-0.0) and bits((1.0, None)) == bits([1.0, None])
+
+
+def test_small_cycles_take_the_one_see_route_and_agree_either_way(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    bodies = random_state(np.random.default_rng(9), 1)
+    two = [(), ()]
+    calls = []
+    monkeypatch.setattr(percepts_many, "_Builder", lambda *a: calls.append(a))
+    percepts_of([2, 5], bodies, PLAYERS, SENSING_1996, np.random.default_rng(1), 4, two)
+    assert not calls  # 2 observers x 14 objects: below ARRAY_PAIRS_MIN
+    monkeypatch.undo()
+    monkeypatch.setattr(percepts_many, "ARRAY_PAIRS_MIN", 0)
+    got = percepts_of([2, 5], bodies, PLAYERS, SENSING_1996, np.random.default_rng(1), 4, two)
+    want = one_at_a_time([2, 5], bodies, PLAYERS, SENSING_1996, np.random.default_rng(1), 4, two)
+    assert bits(got) == bits(want)
 
 
 def test_a_numpy_generator_works_too_and_no_observers_draw_nothing() -> None:
