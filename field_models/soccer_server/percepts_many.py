@@ -129,12 +129,7 @@ def percepts_of(
         landmarks: ``"goals"``, ``"all"`` (flags and goals) or ``"none"``.
     """
     n = len(players)
-    if len(heard) != len(observers):
-        raise ValueError(f"heard: {len(heard)} entries for {len(observers)} observers")
-    if any(not 1 <= row <= n for row in observers):
-        raise ValueError(f"observer rows {list(observers)} not all inside 1..{n}")
-    if landmarks not in LANDMARK_MODES:
-        raise ValueError(f"landmarks: expected one of {LANDMARK_MODES}; got {landmarks!r}")
+    _check(observers, n, heard, landmarks)
     if not observers:
         return []
     c = see_consts(params)
@@ -159,6 +154,18 @@ def percepts_of(
     draws = rng.random(len(observers) * per_see).tolist()
     build = _Builder(c, params, layout, _Geometry.of(layout, bodies), bodies)
     return build.percepts(players, (draws, per_see), (time, heard))
+
+
+def _check(
+    observers: Sequence[int], n: int, heard: Sequence[tuple[Heard, ...]], landmarks: str
+) -> None:
+    """Refuse observers outside rows 1..n, a heard list of another length, an unknown mode."""
+    if len(heard) != len(observers):
+        raise ValueError(f"heard: {len(heard)} entries for {len(observers)} observers")
+    if any(not 1 <= row <= n for row in observers):
+        raise ValueError(f"observer rows {list(observers)} not all inside 1..{n}")
+    if landmarks not in LANDMARK_MODES:
+        raise ValueError(f"landmarks: expected one of {LANDMARK_MODES}; got {landmarks!r}")
 
 
 class _Layout(NamedTuple):
@@ -312,6 +319,8 @@ class _Builder:
         self.c, self.params, self.layout, self.geometry = c, params, layout, geometry
         self.bodies = bodies
         self.first_mark = layout.columns.shape[1] - len(layout.mark_names)
+        # Within both fading lengths a player shows team and number: far_probability is 0.
+        self.near = math.inf if c.perfect else min(c.team_far, c.unum_far)
 
     def pairs(self) -> _Pairs:
         """The pairs shown, with the operations of ``observe`` (arrays over all pairs first)."""
@@ -347,43 +356,42 @@ class _Builder:
     ) -> list[Percept]:
         """Every observer's percept; `draws` is the cycle's block and each see's share of it."""
         pairs = self.pairs()
-        layout, c = self.layout, self.c
-        first_mark, names = self.first_mark, layout.mark_names
         qds = self.distances(pairs)
-        # Within both fading lengths a player shows team and number: far_probability is 0.
-        near = math.inf if c.perfect else min(c.team_far, c.unum_far)
-        block, per_see = draws
         time, heard = when
         out: list[Percept] = []
-        bounds = pairs.bounds
-        for k, row in enumerate(layout.observers.tolist()):
-            ball: SeenBall | None = None
-            others: list[SeenPlayer] = []
-            marks: list[SeenLandmark] = []
-            start = k * per_see
-            refs, team_draws = layout.refs[k], layout.team_draws[k]
-            lo, hi = bounds[k], bounds[k + 1]
-            shown = (pairs.column[lo:hi], qds[lo:hi], pairs.angle[lo:hi], pairs.in_cone[lo:hi])
-            for j, qd, angle, in_cone in zip(*shown, strict=True):
-                if j >= first_mark:
-                    marks.append(_make_mark(names[j - first_mark], qd, angle))
-                elif not j:
-                    ball = self.ball(k, (qd, angle, in_cone), block[start])
-                elif not in_cone:
-                    others.append(_make_player(qd, angle, None, None))  # felt "(P)"
-                elif qd <= near:
-                    ref = refs[j - 1]
-                    others.append(_make_player(qd, angle, ref.team, ref.number))
-                else:
-                    u = start + team_draws[j - 1]
-                    team, number = self.identity(qd, refs[j - 1], block[u], block[u + 1])
-                    others.append(_make_player(qd, angle, team, number))
-            marks_seen = tuple(marks)
-            percept = _make_percept(
-                players[row - 1], time, time, ball, tuple(others), heard[k], marks_seen
-            )
-            out.append(percept)
+        for k, row in enumerate(self.layout.observers.tolist()):
+            ball, others, marks = self.objects(k, pairs, qds, draws)
+            out.append(_make_percept(players[row - 1], time, time, ball, others, heard[k], marks))
         return out
+
+    def objects(
+        self, k: int, pairs: _Pairs, qds: list[float], draws: tuple[list[float], int]
+    ) -> tuple[SeenBall | None, tuple[SeenPlayer, ...], tuple[SeenLandmark, ...]]:
+        """Observer `k`'s ball, players and landmarks, in the see's order."""
+        first_mark, names = self.first_mark, self.layout.mark_names
+        refs, team_draws = self.layout.refs[k], self.layout.team_draws[k]
+        block, per_see = draws
+        start = k * per_see
+        ball: SeenBall | None = None
+        others: list[SeenPlayer] = []
+        marks: list[SeenLandmark] = []
+        lo, hi = pairs.bounds[k], pairs.bounds[k + 1]
+        shown = (pairs.column[lo:hi], qds[lo:hi], pairs.angle[lo:hi], pairs.in_cone[lo:hi])
+        for j, qd, angle, in_cone in zip(*shown, strict=True):
+            if j >= first_mark:
+                marks.append(_make_mark(names[j - first_mark], qd, angle))
+            elif not j:
+                ball = self.ball(k, (qd, angle, in_cone), block[start])
+            elif not in_cone:
+                others.append(_make_player(qd, angle, None, None))  # felt "(P)"
+            elif qd <= self.near:
+                ref = refs[j - 1]
+                others.append(_make_player(qd, angle, ref.team, ref.number))
+            else:
+                u = start + team_draws[j - 1]
+                team, number = self.identity(qd, refs[j - 1], block[u], block[u + 1])
+                others.append(_make_player(qd, angle, team, number))
+        return ball, tuple(others), tuple(marks)
 
     def distances(self, pairs: _Pairs) -> list[float]:
         """Each pair's reported distance: exact when perfect, else its log index's (§3.3)."""
