@@ -9,7 +9,8 @@ One tick is one 100 ms server cycle (shared `specs/soccer_server.md` §1):
 3. each player whose see timer fires this cycle (§3.1, the preset's `send_step_ms`; the paper's
    250 ms by default) gets a percept built from its see by the structured fast path
    (:func:`~field_models.soccer_server.percepts.percept_from_state`, which a test proves equal
-   to rendering the see message as text and parsing it back).
+   to rendering the see message as text and parsing it back), all of the cycle's at once
+   (:func:`~field_models.soccer_server.percepts_many.percepts_of`, equal to that bit for bit).
 
 **Several body actions per decision.** The paper's clients send more than one command per see
 (Figure 4: ``(turn 1)`` then ``(dash 60)``), and the server runs one body command per cycle. So a
