@@ -240,9 +240,10 @@ SAFE_MARGIN_RAD = 1e-9
 the scalar ``fpmath.atan2`` decides it. The two differ by a few units in the last place (below
 1e-14 rad for angles within ±2π), so outside this margin they report the same cone test and the
 same whole degrees."""
-SAFE_MARGIN_INDEX = 1e-7
-"""The same for a distance's log index ``ln(d + EPS) / step``: numpy's and fdlibm's logarithms
-differ by below 1e-11 in it for any distance up to 1e6 m."""
+SAFE_MARGIN_LOG = 1e-9
+"""The same for a distance's log index ``round(ln(d + EPS) / step)``: how near (in ln) to a half
+step the logarithm may come. numpy's and fdlibm's logarithms differ by a few units in the last
+place, below 1e-13 for any distance below 10^6 m."""
 
 
 def _view_angles(c: SeeConsts, g: _Geometry) -> Array:
@@ -252,7 +253,7 @@ def _view_angles(c: SeeConsts, g: _Geometry) -> Array:
     :func:`field_models.fpmath.atan2_array`. Otherwise a see reports only the cone test (§3.2)
     and whole degrees (truncated or rounded), so numpy's faster ``arctan2`` gives the same
     report except within :data:`SAFE_MARGIN_RAD` of a boundary; those few pairs (about one in
-    10^8) take the scalar ``atan2``.
+    ten million) take the scalar ``atan2``.
     """
     if c.perfect:
         return wrap_angle(fpmath.atan2_array(g.dy, g.dx) - g.heading)
@@ -274,8 +275,8 @@ def _view_angles(c: SeeConsts, g: _Geometry) -> Array:
 def _log_indices(exact: Array, steps: Array) -> list[int]:
     """``round(fpmath.log(d + EPS) / step)`` per distance (§3.3), through numpy's ``log``.
 
-    As for angles, only a quotient within :data:`SAFE_MARGIN_INDEX` of a half takes the scalar
-    logarithm: elsewhere both round to the same index.
+    As for angles, only a logarithm within :data:`SAFE_MARGIN_LOG` of a half step takes the
+    scalar one: elsewhere both round to the same index.
 
     Raises:
         ValueError: A distance that is not finite (a position became NaN or inf).
@@ -285,7 +286,7 @@ def _log_indices(exact: Array, steps: Array) -> list[int]:
         raise ValueError("see: a distance that is not finite (a position became NaN or inf)")
     index = np.rint(quotient)
     edge = quotient + 0.5
-    for p in np.flatnonzero(np.abs(edge - np.rint(edge)) < SAFE_MARGIN_INDEX):
+    for p in np.flatnonzero(np.abs(edge - np.rint(edge)) * steps < SAFE_MARGIN_LOG):
         index[p] = round(fpmath.log(float(exact[p]) + EPS) / float(steps[p]))
     out: list[int] = index.astype(np.intp).tolist()
     return out

@@ -173,7 +173,11 @@ def _mismatches(monkeypatch: pytest.MonkeyPatch, scale: float) -> int:
     g = np.random.default_rng(8)
     wrong = 0
     for case in range(150):
-        params = SENSING_1996 if case % 2 else SENSING_19.replace(direction_mode="round")
+        params = (
+            SENSING_1996,
+            SENSING_19.replace(direction_mode="round"),
+            SENSING_1996.replace(quantize_step=1e-5),  # the smallest step: indices near 10^6
+        )[case % 3]
         bodies = on_the_boundaries(params) if case < 4 else random_state(g, case % 3)
         observers = [1, 4, 9] if case >= 4 else [1]
         rng_a, rng_b = np.random.default_rng(case), np.random.default_rng(case)
