@@ -9,7 +9,8 @@ One tick is one 100 ms server cycle (shared `specs/soccer_server.md` §1):
 3. each player whose see timer fires this cycle (§3.1, the preset's `send_step_ms`; the paper's
    250 ms by default) gets a percept built from its see by the structured fast path
    (:func:`~field_models.soccer_server.percepts.percept_from_state`, which a test proves equal
-   to rendering the see message as text and parsing it back).
+   to rendering the see message as text and parsing it back), all of the cycle's at once
+   (:func:`~field_models.soccer_server.percepts_many.percepts_of`, equal to that bit for bit).
 
 **Several body actions per decision.** The paper's clients send more than one command per see
 (Figure 4: ``(turn 1)`` then ``(dash 60)``), and the server runs one body command per cycle. So a
@@ -57,11 +58,8 @@ from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.hearing import HearInfo, deliver_says, referee_hear
 from field_models.soccer_server.messages import parse_see, render_hear, render_see
 from field_models.soccer_server.params import ServerPreset
-from field_models.soccer_server.percepts import (
-    heard_from_hear,
-    percept_from_see,
-    percept_from_state,
-)
+from field_models.soccer_server.percepts import heard_from_hear, percept_from_see
+from field_models.soccer_server.percepts_many import Bodies, percepts_of
 from field_models.soccer_server.see_timing import SeeTimer
 from field_models.soccer_server.sensing import LandmarkMode, observe
 from field_models.soccer_server.sensing_params import SensingParams
@@ -100,7 +98,7 @@ class SoccerServerArena:
         self._landmarks: LandmarkMode = "all" if self.sensing.percept_flags else "goals"
         self._see_schedule = see_schedule(self.sensing)
         self._timer = SeeTimer(self.sensing)  # every player's sees share one phase (0)
-        self._listening = [True] * len(players)
+        self._observers = tuple(range(1, len(players) + 1))  # rows whose sees are built
         self._rows = {ref: i + 1 for i, ref in enumerate(players)}
         self._plans: list[deque[Action]] = [deque() for _ in players]
         self._heard: list[list[Heard]] = [[] for _ in players]
@@ -164,22 +162,30 @@ class SoccerServerArena:
         due = schedule[cycle] if cycle < len(schedule) else self._timer.due(cycle)
         if not due:
             return []
-        return [self._see(i, cycle) for i, on in enumerate(self._listening) if on]
+        if self.trace:
+            return [self._see_text(row - 1, cycle) for row in self._observers]
+        m = self.model
+        bodies = Bodies(m.x, m.y, m.vx, m.vy, m.heading)
+        heard = [self._take_heard(row - 1) for row in self._observers]
+        return percepts_of(
+            self._observers, bodies, self.players, self.sensing, self._see_rng, cycle, heard,
+            self._landmarks,
+        )  # fmt: skip
 
     def listen(self, refs: frozenset[PlayerRef]) -> None:
         """See only for these players (the others' see messages would go unread)."""
-        self._listening = [ref in refs for ref in self.players]
+        self._observers = tuple(row for row, ref in enumerate(self.players, 1) if ref in refs)
 
-    def _see(self, i: int, cycle: int) -> Percept:
-        """Player `i`'s percept from its see of this cycle (the text route when tracing)."""
-        m = self.model
+    def _take_heard(self, i: int) -> tuple[Heard, ...]:
+        """What player `i` heard since its last percept (handed over once)."""
         heard = tuple(self._heard[i])
         self._heard[i].clear()
-        if not self.trace:
-            return percept_from_state(
-                i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
-                self._see_rng, tick=cycle, heard=heard, landmarks=self._landmarks,
-            )  # fmt: skip
+        return heard
+
+    def _see_text(self, i: int, cycle: int) -> Percept:
+        """Player `i`'s percept from the text of its see of this cycle (the trace route)."""
+        m = self.model
+        heard = self._take_heard(i)
         info = observe(
             i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
             self._see_rng, landmarks="all",

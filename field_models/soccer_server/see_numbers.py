@@ -200,6 +200,28 @@ def see_direction(c: SeeConsts, angle_rad: float) -> float:
     return degrees(angle_rad, c.truncate)
 
 
+def see_changes(
+    c: SeeConsts, dx: float, dy: float, wx: float, wy: float, d: float, qd: float
+) -> tuple[float, float]:
+    """Distance and direction change in the server's units and rounding (§3.4, ``calcVel``).
+
+    `dx`, `dy` is the object's offset, `wx`, `wy` its velocity relative to the observer (server
+    frame, per cycle), `d` the exact distance and `qd` the reported one.
+    """
+    if d == 0.0:
+        return 0.0, 0.0
+    ex, ey = dx / d, dy / d
+    dist_chg = wx * ex + wy * ey
+    dir_chg = (wy * ex - wx * ey) / d * RAD2DEG
+    if c.perfect:
+        return dist_chg + 0.0, dir_chg + 0.0
+    dir_q = 0.0 if dir_chg == 0.0 else round(round(dir_chg / c.dir_step) * c.dir_step, c.dir_dec)
+    if abs(dir_q) >= 1e5:  # objects nearly on top of each other: keep what %g prints
+        dir_q = printed(dir_q)
+    rel = round(dist_chg / d / c.rel_step) * c.rel_step
+    return round(qd * rel, c.chg_dec) + 0.0, dir_q + 0.0
+
+
 def decide(prob: float, u: float) -> bool:
     """The server's ``decide``: true with probability `prob`, using the uniform draw `u`."""
     if prob >= 1.0:

@@ -70,8 +70,8 @@ from field_models.soccer_server.see_numbers import (
     decide,
     far_probability,
     from_log_index,
-    printed,
     quantised,
+    see_changes,
     see_consts,
     see_direction,
 )
@@ -206,24 +206,6 @@ def observe(
     return SeeInfo(time, tuple(objects))
 
 
-def _changes(
-    c: SeeConsts, dx: float, dy: float, wx: float, wy: float, d: float, qd: float
-) -> tuple[float, float]:
-    """Distance and direction change in the server's units and rounding (§3.4, ``calcVel``)."""
-    if d == 0.0:
-        return 0.0, 0.0
-    ex, ey = dx / d, dy / d
-    dist_chg = wx * ex + wy * ey
-    dir_chg = (wy * ex - wx * ey) / d * RAD2DEG
-    if c.perfect:
-        return dist_chg + 0.0, dir_chg + 0.0
-    dir_q = 0.0 if dir_chg == 0.0 else round(round(dir_chg / c.dir_step) * c.dir_step, c.dir_dec)
-    if abs(dir_q) >= 1e5:  # objects nearly on top of each other: keep what %g prints
-        dir_q = printed(dir_q)
-    rel = round(dist_chg / d / c.rel_step) * c.rel_step
-    return round(qd * rel, c.chg_dec) + 0.0, dir_q + 0.0
-
-
 def _see_flags(
     c: SeeConsts,
     rows: tuple[tuple[int, float, float, str, str], ...],
@@ -271,7 +253,7 @@ def _see_flags(
             ):
                 append(new(SeenObject, (name, qd, direction, None, None, None, None, None, None)))
             else:
-                dist_chg, dir_chg = _changes(c, dx, dy, -ovx, -ovy, d, qd)
+                dist_chg, dir_chg = see_changes(c, dx, dy, -ovx, -ovy, d, qd)
                 append(
                     new(
                         SeenObject, (name, qd, direction, dist_chg, dir_chg, None, None, None, None)
@@ -308,7 +290,7 @@ def _see_flags_exact(
             if not c.high:
                 out.append(SeenObject(name, None, direction))
             elif c.changes:
-                dist_chg, dir_chg = _changes(c, dx, dy, -ovx, -ovy, d, d)
+                dist_chg, dir_chg = see_changes(c, dx, dy, -ovx, -ovy, d, d)
                 out.append(SeenObject(name, d, direction, dist_chg, dir_chg))
             else:
                 out.append(SeenObject(name, d, direction))
@@ -342,7 +324,7 @@ def _see_ball(
             not c.perfect and decide(far_probability(qd, c.unum_far, c.unum_too_far), u)
         ):
             return SeenObject("b", qd, direction)
-        dist_chg, dir_chg = _changes(c, dx, dy, bvx - ovx, bvy - ovy, d, qd)
+        dist_chg, dir_chg = see_changes(c, dx, dy, bvx - ovx, bvy - ovy, d, qd)
         return SeenObject("b", qd, direction, dist_chg, dir_chg)
     if d2 <= c.vis_dist2:
         qd_close = quantised(c, math.sqrt(d2), c.q) if c.high else None
@@ -380,7 +362,7 @@ def _see_player(
             return SeenObject("p", shown, direction, None, None, who.team)
     if not c.high or not c.changes:
         return SeenObject("p", shown, direction, None, None, who.team, who.number)
-    dist_chg, dir_chg = _changes(c, dx, dy, pvx - ovx, pvy - ovy, d, qd)
+    dist_chg, dir_chg = see_changes(c, dx, dy, pvx - ovx, pvy - ovy, d, qd)
     rel = wrap_angle(pth - oth)
     body = see_direction(c, rel) if c.body else None
     head = body if c.head else None  # no neck: head = body

@@ -1,0 +1,447 @@
+"""The percepts of every player whose see fires in a cycle, at once: the see's geometry in arrays.
+
+:func:`percepts_of` gives, for the K players whose see fires in one cycle, exactly the percepts
+that K calls of :func:`~field_models.soccer_server.percepts.percept_from_state` give, in that
+order and from the same generator state, bit for bit
+(``tests/field_models/soccer_server/test_percepts_many.py`` compares every field on random
+states and sensing settings, and whole pass trials). That one-player route, through
+:func:`~field_models.soccer_server.sensing.observe`, stays the specification (shared
+`specs/soccer_server.md` §3); this module does the same operations in another order:
+
+* the geometry of every (observer, object) pair — the ball, the other players, then the
+  landmarks the mode shows — as (K, M) arrays: offsets in the server frame, the angle, the
+  wrap, the view cone (§3.2) and the felt distance; then, for the pairs a percept shows, the
+  distance's log index (§3.3) and the direction in the server's degrees. The angle and the
+  logarithm come from numpy's own kernels, whose last bits depend on the CPU; a see reports
+  only the cone test, whole degrees and the log index, so those agree with the scalar
+  :mod:`field_models.fpmath` except next to a boundary, and the few pairs within a safe margin
+  of one take the scalar function (in perfect perception, which reports the angle itself,
+  :func:`field_models.fpmath.atan2_array` gives every bit);
+* the random draws as one block: each see draws ``1 + 2N`` numbers (then one per flag when
+  flags carry changes), so K sees in a row read one block of K times that many, row by row;
+* per pair shown (a few per observer), the scalar rules themselves: the memoised quantised
+  distance, team and number fading (§3.5, ``decide``), the ball's changes (§3.4, the only
+  changes a percept keeps);
+* the records built by positional makers (no frozen ``__setattr__`` per field).
+
+A cycle of fewer than :data:`ARRAY_PAIRS_MIN` pairs (two players and the ball) is built one see
+at a time by that route itself, which is cheaper there. The arena's percepts come from here;
+with ``trace=True`` it takes them from the see text.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from functools import lru_cache
+from typing import NamedTuple
+
+import numpy as np
+import numpy.typing as npt
+
+from field_models import fpmath
+from field_models.protocol import (
+    Heard,
+    Percept,
+    PlayerRef,
+    SeenBall,
+    SeenLandmark,
+    SeenPlayer,
+    wrap_angle,
+)
+from field_models.robot_physics.records import positional_maker
+from field_models.seeding import Rng
+from field_models.soccer_server.percepts import percept_from_state
+from field_models.soccer_server.see_numbers import (
+    EPS,
+    RAD2DEG,
+    SeeConsts,
+    decide,
+    far_probability,
+    quantised_distance_for_index,
+    see_changes,
+    see_consts,
+)
+from field_models.soccer_server.sensing import LANDMARK_MODES, LandmarkMode
+from field_models.soccer_server.sensing_params import SensingParams
+
+Array = npt.NDArray[np.float64]
+Mask = npt.NDArray[np.bool_]
+Index = npt.NDArray[np.intp]
+
+_DEG2RAD = math.pi / 180.0
+
+_make_percept = positional_maker(Percept)
+_make_ball = positional_maker(SeenBall)
+_make_player = positional_maker(SeenPlayer)
+_make_mark = positional_maker(SeenLandmark)
+
+ARRAY_PAIRS_MIN = 32
+"""Below this many (observer, object) pairs in a cycle the sees are built one at a time: numpy's
+fixed cost per array operation outweighs the per-pair work (measured: with 12 players, 2
+observers cost about the same either way, 3 or more are cheaper as arrays)."""
+
+When = tuple[int, Sequence[tuple[Heard, ...]]]
+"""The cycle of the sees and, per observer, what it heard since its previous percept."""
+
+
+class Bodies(NamedTuple):
+    """Per-object state, our frame: row 0 the ball, rows 1..N the players (as ``observe``).
+
+    Attributes:
+        x: x [m].
+        y: y [m] (up).
+        vx: x velocity [m/cycle].
+        vy: y velocity [m/cycle].
+        heading: heading [rad], CCW from +x (row 0 unused).
+    """
+
+    x: Sequence[float]
+    y: Sequence[float]
+    vx: Sequence[float]
+    vy: Sequence[float]
+    heading: Sequence[float]
+
+
+def percepts_of(
+    observers: Sequence[int],
+    bodies: Bodies,
+    players: tuple[PlayerRef, ...],
+    params: SensingParams,
+    rng: Rng,
+    time: int,
+    heard: Sequence[tuple[Heard, ...]],
+    landmarks: LandmarkMode = "goals",
+) -> list[Percept]:
+    """The percepts of the sees at cycle `time` of the players in rows `observers`, in order.
+
+    Equal, field for field and bit for bit, to ``percept_from_state(row, ..., time, params,
+    rng, tick=time, heard=heard[k], landmarks=landmarks)`` for each row in turn.
+
+    Args:
+        observers: Rows of the observing players (1..N), in the order their sees are drawn.
+        bodies: Every object's state (row 0 the ball).
+        players: Identities of rows 1..N.
+        params: Sensing parameters.
+        rng: The trial's sensing generator.
+        time: The cycle the sees show and the percepts reach the clients.
+        heard: Per observer, the messages heard since its previous percept.
+        landmarks: ``"goals"``, ``"all"`` (flags and goals) or ``"none"``.
+    """
+    n = len(players)
+    _check(observers, n, heard, landmarks)
+    if not observers:
+        return []
+    c = see_consts(params)
+    marks = () if landmarks == "none" else c.flags if landmarks == "all" else c.goals
+    if len(observers) * (n + len(marks)) < ARRAY_PAIRS_MIN:
+        return [
+            percept_from_state(
+                row,
+                *bodies,
+                players,
+                time,
+                params,
+                rng,
+                tick=time,
+                heard=heard[k],
+                landmarks=landmarks,
+            )
+            for k, row in enumerate(observers)
+        ]
+    layout = _layout(players, tuple(observers), marks, (c.q, c.q_l))
+    per_see = 1 + 2 * n + (len(c.flags) if landmarks != "none" and c.changes and c.high else 0)
+    draws = rng.random(len(observers) * per_see).tolist()
+    build = _Builder(c, params, layout, _Geometry.of(layout, bodies), bodies)
+    return build.percepts(players, (draws, per_see), (time, heard))
+
+
+def _check(
+    observers: Sequence[int], n: int, heard: Sequence[tuple[Heard, ...]], landmarks: str
+) -> None:
+    """Refuse observers outside rows 1..n, a heard list of another length, an unknown mode."""
+    if len(heard) != len(observers):
+        raise ValueError(f"heard: {len(heard)} entries for {len(observers)} observers")
+    if any(not 1 <= row <= n for row in observers):
+        raise ValueError(f"observer rows {list(observers)} not all inside 1..{n}")
+    if landmarks not in LANDMARK_MODES:
+        raise ValueError(f"landmarks: expected one of {LANDMARK_MODES}; got {landmarks!r}")
+
+
+class _Layout(NamedTuple):
+    """Which object each (observer, column) pair is; fixed for a set of observers."""
+
+    observers: Index  # (K,) rows of the observers
+    columns: Index  # (K, M): ball, the other players in row order, then the landmarks
+    feels: Mask  # (M,): a close object is felt (ball, players), not a landmark (no name)
+    steps: Array  # (M,): log step of the distance quantisation, q or q_l (§3.3)
+    team_draws: tuple[tuple[int, ...], ...]  # per observer, each player column's team draw
+    refs: tuple[tuple[PlayerRef, ...], ...]  # per observer, the players of its columns
+    mark_x: Array  # (L,) landmark x [m]
+    mark_y: Array  # (L,) landmark y [m], server frame (down)
+    mark_names: tuple[str, ...]  # (L,)
+
+
+@lru_cache(maxsize=64)
+def _layout(
+    players: tuple[PlayerRef, ...],
+    observers: tuple[int, ...],
+    marks: tuple[tuple[int, float, float, str, str], ...],
+    steps: tuple[float, float],
+) -> _Layout:
+    """The columns of each observer: the ball, the other players in row order, the landmarks.
+
+    `steps` is the quantisation step of ball and players, then of flags and goals.
+    """
+    n = len(players)
+    kept = [m for m in marks if m[3][0] in "fg" and len(m[3]) > 1]  # what a percept keeps
+    others = [[row for row in range(1, n + 1) if row != me] for me in observers]
+    columns = [[0, *rows, *range(n + 1, n + 1 + len(kept))] for rows in others]
+    return _Layout(
+        observers=np.array(observers, dtype=np.intp),
+        columns=np.array(columns, dtype=np.intp).reshape(len(observers), -1),
+        feels=np.array([True] * n + [False] * len(kept)),
+        steps=np.array([steps[0]] * n + [steps[1]] * len(kept)),
+        team_draws=tuple(tuple(2 * row - 1 for row in rows) for rows in others),
+        refs=tuple(tuple(players[row - 1] for row in rows) for rows in others),
+        mark_x=np.array([m[1] for m in kept], dtype=np.float64),
+        mark_y=np.array([m[2] for m in kept], dtype=np.float64),
+        mark_names=tuple(m[3] for m in kept),
+    )
+
+
+class _Geometry(NamedTuple):
+    """Offsets of every (observer, column) pair in the server frame, (K, M) arrays."""
+
+    dx: Array  # [m]
+    dy: Array  # [m], server y (down)
+    d2: Array  # squared distance [m²]
+    heading: Array  # (K, 1) the observers' headings, server frame (clockwise in ours) [rad]
+
+    @classmethod
+    def of(cls, layout: _Layout, bodies: Bodies) -> _Geometry:
+        """The offsets, computed as ``observe`` does (the negations are exact)."""
+        x = np.concatenate((np.asarray(bodies.x, dtype=np.float64), layout.mark_x))
+        y = np.concatenate((-np.asarray(bodies.y, dtype=np.float64), layout.mark_y))
+        heading = -np.asarray(bodies.heading, dtype=np.float64)
+        me = layout.observers[:, None]
+        dx = x[layout.columns] - x[me]
+        dy = y[layout.columns] - y[me]
+        return cls(dx, dy, dx * dx + dy * dy, heading[me])
+
+
+_numpy_atan2 = np.arctan2
+"""numpy's own kernels: fast, but their last bits depend on the CPU (:mod:`field_models.fpmath`);
+module names so that a test can perturb them."""
+_numpy_log = np.log
+
+SAFE_MARGIN_RAD = 1e-9
+"""How near a cone edge, a degree boundary or ±π an angle from numpy's ``arctan2`` may come before
+the scalar ``fpmath.atan2`` decides it. The two differ by a few units in the last place (below
+1e-14 rad for angles within ±2π), so outside this margin they report the same cone test and the
+same whole degrees."""
+SAFE_MARGIN_LOG = 1e-9
+"""The same for a distance's log index ``round(ln(d + EPS) / step)``: how near (in ln) to a half
+step the logarithm may come. numpy's and fdlibm's logarithms differ by a few units in the last
+place, below 1e-13 for any distance below 10^6 m."""
+
+
+def _view_angles(c: SeeConsts, g: _Geometry) -> Array:
+    """Each pair's direction from the observer's view (server frame, [-π, π)), as ``observe``.
+
+    Perfect perception reports the angle itself, so every bit comes from
+    :func:`field_models.fpmath.atan2_array`. Otherwise a see reports only the cone test (§3.2)
+    and whole degrees (truncated or rounded), so numpy's faster ``arctan2`` gives the same
+    report except within :data:`SAFE_MARGIN_RAD` of a boundary; those few pairs (about one in
+    ten million) take the scalar ``atan2``.
+    """
+    if c.perfect:
+        return wrap_angle(fpmath.atan2_array(g.dy, g.dx) - g.heading)
+    ang = wrap_angle(_numpy_atan2(g.dy, g.dx) - g.heading)
+    size = np.abs(ang)
+    deg = ang * RAD2DEG
+    edge = deg if c.truncate else deg + 0.5  # truncation flips at whole degrees, rounding at halves
+    near = np.abs(size - c.half_angle) < SAFE_MARGIN_RAD
+    near |= (g.dx == 0.0) | (g.dy == 0.0)  # on an axis: signed zeros, exact constants
+    near |= np.abs(edge - np.rint(edge)) < SAFE_MARGIN_RAD * RAD2DEG
+    if not c.truncate:  # where ±π wraps, rounding flips sign (truncation: ±180 is a boundary)
+        near |= np.abs(size - math.pi) < SAFE_MARGIN_RAD
+    for k, j in zip(*np.nonzero(near), strict=True):
+        exact = fpmath.atan2(float(g.dy[k, j]), float(g.dx[k, j])) - float(g.heading[k, 0])
+        ang[k, j] = wrap_angle(exact)
+    return ang
+
+
+def _log_indices(exact: Array, steps: Array) -> list[int]:
+    """``round(fpmath.log(d + EPS) / step)`` per distance (§3.3), through numpy's ``log``.
+
+    As for angles, only a logarithm within :data:`SAFE_MARGIN_LOG` of a half step takes the
+    scalar one: elsewhere both round to the same index.
+
+    Raises:
+        ValueError: A distance that is not finite (a position became NaN or inf).
+    """
+    quotient = _numpy_log(exact + EPS) / steps
+    if not np.isfinite(quotient).all():
+        raise ValueError("see: a distance that is not finite (a position became NaN or inf)")
+    index = np.rint(quotient)
+    edge = quotient + 0.5
+    for p in np.flatnonzero(np.abs(edge - np.rint(edge)) * steps < SAFE_MARGIN_LOG):
+        index[p] = round(fpmath.log(float(exact[p]) + EPS) / float(steps[p]))
+    out: list[int] = index.astype(np.intp).tolist()
+    return out
+
+
+class _Pairs(NamedTuple):
+    """The (observer, column) pairs a percept shows, in percept order (observer, then column).
+
+    ``angle`` is in our CCW radians, from the reported direction.
+    """
+
+    bounds: list[int]  # observer k's pairs are bounds[k]:bounds[k + 1]
+    column: list[int]
+    exact: list[float]  # the exact distance [m] in perfect perception (else empty)
+    log_index: list[int]  # otherwise the log index of the quantised distance (§3.3)
+    angle: list[float]
+    in_cone: list[bool]  # False: felt (close, outside the cone): no team, number or changes
+
+
+class _Builder:
+    """Turns the shown pairs of one cycle into percepts: distances, fading, ball changes."""
+
+    def __init__(
+        self,
+        c: SeeConsts,
+        params: SensingParams,
+        layout: _Layout,
+        geometry: _Geometry,
+        bodies: Bodies,
+    ) -> None:
+        self.c, self.params, self.layout, self.geometry = c, params, layout, geometry
+        self.bodies = bodies
+        self.first_mark = layout.columns.shape[1] - len(layout.mark_names)
+        # Within both fading lengths a player shows team and number: far_probability is 0.
+        self.near = math.inf if c.perfect else min(c.team_far, c.unum_far)
+
+    def pairs(self) -> _Pairs:
+        """The pairs shown, with the operations of ``observe`` (arrays over all pairs first)."""
+        c, layout, g = self.c, self.layout, self.geometry
+        ang = _view_angles(c, g)
+        in_cone = (-c.half_angle < ang) & (ang < c.half_angle)
+        shown = in_cone | ((g.d2 <= c.vis_dist2) & layout.feels)
+        if not c.high:
+            shown[...] = False  # low quality: no distances, and a percept keeps none without
+        ks, js = np.nonzero(shown)  # row-major: each observer's pairs in column order
+        exact = np.sqrt(g.d2[ks, js])
+        deg = ang[ks, js] * RAD2DEG
+        exact_list: list[float] = []
+        index: list[int] = []
+        if c.perfect:
+            exact_list, direction = exact.tolist(), deg
+        else:
+            index = _log_indices(exact, layout.steps[js])
+            direction = np.trunc(deg) if c.truncate else np.rint(deg)
+        bounds = np.searchsorted(ks, np.arange(len(layout.observers) + 1))
+        angle = -(direction * _DEG2RAD) + 0.0  # server degrees -> our CCW radians
+        return _Pairs(
+            bounds.tolist(),
+            js.tolist(),
+            exact_list,
+            index,
+            angle.tolist(),
+            in_cone[ks, js].tolist(),
+        )
+
+    def percepts(
+        self, players: tuple[PlayerRef, ...], draws: tuple[list[float], int], when: When
+    ) -> list[Percept]:
+        """Every observer's percept; `draws` is the cycle's block and each see's share of it."""
+        pairs = self.pairs()
+        qds = self.distances(pairs)
+        time, heard = when
+        out: list[Percept] = []
+        for k, row in enumerate(self.layout.observers.tolist()):
+            ball, others, marks = self.objects(k, pairs, qds, draws)
+            out.append(_make_percept(players[row - 1], time, time, ball, others, heard[k], marks))
+        return out
+
+    def objects(
+        self, k: int, pairs: _Pairs, qds: list[float], draws: tuple[list[float], int]
+    ) -> tuple[SeenBall | None, tuple[SeenPlayer, ...], tuple[SeenLandmark, ...]]:
+        """Observer `k`'s ball, players and landmarks, in the see's order."""
+        first_mark, names = self.first_mark, self.layout.mark_names
+        refs, team_draws = self.layout.refs[k], self.layout.team_draws[k]
+        block, per_see = draws
+        start = k * per_see
+        ball: SeenBall | None = None
+        others: list[SeenPlayer] = []
+        marks: list[SeenLandmark] = []
+        lo, hi = pairs.bounds[k], pairs.bounds[k + 1]
+        shown = (pairs.column[lo:hi], qds[lo:hi], pairs.angle[lo:hi], pairs.in_cone[lo:hi])
+        for j, qd, angle, in_cone in zip(*shown, strict=True):
+            if j >= first_mark:
+                marks.append(_make_mark(names[j - first_mark], qd, angle))
+            elif not j:
+                ball = self.ball(k, (qd, angle, in_cone), block[start])
+            elif not in_cone:
+                others.append(_make_player(qd, angle, None, None))  # felt "(P)"
+            elif qd <= self.near:
+                ref = refs[j - 1]
+                others.append(_make_player(qd, angle, ref.team, ref.number))
+            else:
+                u = start + team_draws[j - 1]
+                team, number = self.identity(qd, refs[j - 1], block[u], block[u + 1])
+                others.append(_make_player(qd, angle, team, number))
+        return ball, tuple(others), tuple(marks)
+
+    def distances(self, pairs: _Pairs) -> list[float]:
+        """Each pair's reported distance: exact when perfect, else its log index's (§3.3)."""
+        c = self.c
+        if c.perfect:
+            return pairs.exact
+        get, get_l, first_mark = c.table.get, c.table_l.get, self.first_mark
+        found = [
+            (get_l if j >= first_mark else get)(m)
+            for j, m in zip(pairs.column, pairs.log_index, strict=True)
+        ]
+        if None not in found:
+            return found  # type: ignore[return-value]
+        return [
+            self.distance(j >= first_mark, m) if qd is None else qd
+            for j, m, qd in zip(pairs.column, pairs.log_index, found, strict=True)
+        ]
+
+    def distance(self, mark: bool, index: int) -> float:
+        """The reported distance of a log index not yet in the memo (§3.3)."""
+        c = self.c
+        return quantised_distance_for_index(self.params, index, c.q_l if mark else c.q)
+
+    def identity(
+        self, qd: float, ref: PlayerRef, u_team: float, u_number: float
+    ) -> tuple[str | None, int | None]:
+        """A player's team and number as fading shows them (§3.5): the team fades first."""
+        c = self.c
+        if decide(far_probability(qd, c.team_far, c.team_too_far), u_team):
+            return None, None
+        if decide(far_probability(qd, c.unum_far, c.unum_too_far), u_number):
+            return ref.team, None
+        return ref.team, ref.number
+
+    def ball(self, k: int, seen: tuple[float, float, bool], u: float) -> SeenBall:
+        """Observer `k`'s ball, with its changes where the see reports them (§3.4)."""
+        qd, angle, in_cone = seen
+        c = self.c
+        reports = c.changes and in_cone  # a felt ball carries no changes
+        if reports and not c.perfect:
+            reports = not decide(far_probability(qd, c.unum_far, c.unum_too_far), u)
+        if not reports:
+            return _make_ball(qd, angle, None, None)
+        g, b, row = self.geometry, self.bodies, int(self.layout.observers[k])
+        # Velocity relative to the observer in the server frame (y down), as observe has it.
+        wx = b.vx[0] - b.vx[row]
+        wy = -b.vy[0] - -b.vy[row]
+        dx, dy = float(g.dx[k, 0]), float(g.dy[k, 0])
+        dist_chg, dir_chg = see_changes(c, dx, dy, wx, wy, math.sqrt(dx * dx + dy * dy), qd)
+        cycle_s = self.params.simulator_step_ms / 1000.0
+        dir_rad = -(dir_chg * _DEG2RAD) + 0.0  # server degrees -> our CCW radians
+        return _make_ball(qd, angle, dist_chg / cycle_s, dir_rad / cycle_s)
