@@ -31,8 +31,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from field_models.protocol import TWO_PI, PlayerRef, wrap_angle
+from field_models.records import positional_maker
 from field_models.robot_physics.config import CameraConfig
-from field_models.robot_physics.records import positional_maker
 from field_models.seeding import Rng
 
 _NEVER = 1 << 62

@@ -88,10 +88,10 @@ from field_models.protocol import (
     Turn,
     wrap_angle,
 )
+from field_models.records import positional_maker
 from field_models.robot_physics.camera import Frame
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.link import Command, Link, Primitive
-from field_models.robot_physics.records import positional_maker
 from field_models.robot_physics.trace_text import describe
 
 _make_percept = positional_maker(Percept)

@@ -49,7 +49,7 @@ from field_models.protocol import (
     SeenPlayer,
     wrap_angle,
 )
-from field_models.robot_physics.records import positional_maker
+from field_models.records import positional_maker
 from field_models.seeding import Rng
 from field_models.soccer_server.percepts import percept_from_state
 from field_models.soccer_server.see_numbers import (

@@ -24,10 +24,10 @@ from field_models.protocol import (
     SeenPlayer,
     wrap_angle,
 )
+from field_models.records import positional_maker
 from field_models.robot_physics.camera import Frame, RobotDetection
 from field_models.robot_physics.config import load_preset
 from field_models.robot_physics.link import Command, Primitive
-from field_models.robot_physics.records import positional_maker
 from field_models.robot_physics.world import RobotWorld
 
 PRESET = load_preset()

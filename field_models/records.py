@@ -1,4 +1,4 @@
-"""Cheap construction of the frozen, slotted dataclasses the robot engine makes every frame.
+"""Cheap construction of the frozen, slotted dataclasses both field models make every frame.
 
 A frozen dataclass's ``__init__`` stores each field through ``object.__setattr__`` (the class's
 own ``__setattr__`` refuses), a Python-level call per field; the host builds about 130 such
@@ -6,7 +6,8 @@ records per camera frame with 12 robots (issue 21's profile: percept building is
 per-frame cost). :func:`positional_maker` returns a constructor that stores the same slots with
 plain slot stores in a twin class of the same layout, then switches the object's class. The
 object is the same: same class, same field values, equal and hashing equal to one built by
-``__init__``.
+``__init__``. The Soccer Server model builds its sees the same way
+(:mod:`field_models.soccer_server.percepts_many`).
 """
 
 from __future__ import annotations
