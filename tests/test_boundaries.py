@@ -221,3 +221,31 @@ def test_no_module_imports_itself_round_a_cycle() -> None:
 def test_the_cycle_check_finds_a_cycle() -> None:
     graph = {"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}
     assert strongly_connected(graph) == [frozenset({"a", "b", "c"})]
+
+
+def _imported_modules(path: Path) -> set[str]:
+    tree = ast.parse(path.read_text(), filename=str(path))
+    names: set[str] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names |= {alias.name for alias in node.names}
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names.add(node.module)
+    return names
+
+
+SELF_CONTAINED = {
+    "robot_physics": {"soccer_server", "rcssserver"},
+    "soccer_server": {"robot_physics", "rcssserver"},
+}
+"""Each simulated field model is self-contained (DESIGN.md §3): what both need lives in
+``field_models/`` itself (the arena interface, seeding, fpmath, records). The ``rcssserver``
+model, a client of the real server, reuses the Soccer Server model's message code."""
+
+
+@pytest.mark.parametrize("model", sorted(SELF_CONTAINED))
+def test_a_field_model_imports_no_other_field_model(model: str) -> None:
+    others = {f"field_models.{name}" for name in SELF_CONTAINED[model]}
+    for path in sorted((ROOT / "field_models" / model).rglob("*.py")):
+        bad = {m for m in _imported_modules(path) if ".".join(m.split(".")[:2]) in others}
+        assert not bad, f"{path.relative_to(ROOT)} imports {sorted(bad)}"
