@@ -14,7 +14,19 @@ One tick is one 100 ms server cycle (shared `specs/soccer_server.md` §1):
 **Several body actions per decision.** The paper's clients send more than one command per see
 (Figure 4: ``(turn 1)`` then ``(dash 60)``), and the server runs one body command per cycle. So a
 mind may return several body actions: they run in order, one per cycle, and a new decision
-replaces whatever is left of the previous one. Says go out at once.
+replaces whatever is left of the previous one. Says, neck turns and view changes are not body
+commands (§1.1): they go out at once, beside the decision's first body action.
+
+**Neck and view.** A ``TurnNeck`` turns the player's neck at the next step (the model's
+:meth:`~field_models.soccer_server.dynamics.SoccerServerModel.turn_neck`); its sees then look
+along body + neck and its percepts carry the neck angle (``Percept.neck_rad``). A
+``ChangeView`` changes that player's view width and quality at once (§3.1): its cone and its
+see interval. Until some player changes its view, every player's sees come on one shared
+schedule (phase 0); from then on each player counts the server's visual-timer ticks (every
+``send_step / 4`` ms) and gets a see when its count reaches its view's interval (4 ticks at
+normal width and high quality, ×½ narrow, ×2 wide, ×½ low quality), keeping the remainder:
+with a view that never changes this gives exactly the shared schedule. At most one percept a
+cycle, as before (the fast views of a 150 ms ``send_step`` can fire twice in one cycle).
 
 **Counts.** Like rcssserver, the arena counts each player's commands as the server carries them
 out (:meth:`SoccerServerArena.command_tally`): a body action when its cycle comes (one left in
@@ -43,6 +55,7 @@ from field_models.commands import render_command
 from field_models.protocol import (
     Action,
     BodyState,
+    ChangeView,
     Dash,
     Heard,
     Kick,
@@ -51,6 +64,7 @@ from field_models.protocol import (
     Say,
     Truth,
     Turn,
+    TurnNeck,
 )
 from field_models.seeding import TrialRngs
 from field_models.soccer_server.dynamics import SoccerServerModel
@@ -62,7 +76,7 @@ from field_models.soccer_server.percepts import (
     percept_from_see,
     percept_from_state,
 )
-from field_models.soccer_server.see_timing import SeeTimer
+from field_models.soccer_server.see_timing import SeeTimer, visual_send_interval
 from field_models.soccer_server.sensing import LandmarkMode, observe
 from field_models.soccer_server.sensing_params import SensingParams
 
@@ -107,6 +121,9 @@ class SoccerServerArena:
         self._events: list[ArenaEvent] = []
         self._counts = [[0] * len(COMMAND_COUNTERS) for _ in players]
         self._kick_tick = [-1] * len(players)  # the tick whose cycle carried out a kick
+        self._views: list[SensingParams] = [self.sensing] * len(players)
+        self._view_params: dict[tuple[str, str], SensingParams] = {}  # one object per view
+        self._view_ticks: list[int] | None = None  # timer ticks per player, once views differ
 
     @property
     def tick(self) -> int:
@@ -160,11 +177,46 @@ class SoccerServerArena:
             self._counts[row - 1][_SAY] += 1
         if says or referee:
             self._hear(says, referee, cycle)
+        if self._view_ticks is not None:
+            return self._own_sees(cycle)
         schedule = self._see_schedule
         due = schedule[cycle] if cycle < len(schedule) else self._timer.due(cycle)
         if not due:
             return []
         return [self._see(i, cycle) for i, on in enumerate(self._listening) if on]
+
+    def _own_sees(self, cycle: int) -> list[Percept]:
+        """The sees of this cycle once views differ: each player's own timer count (docstring)."""
+        assert self._view_ticks is not None
+        new = self._ticks_in(cycle)
+        out = []
+        for i, on in enumerate(self._listening):
+            interval = visual_send_interval(self._views[i])
+            count = self._view_ticks[i] + new
+            self._view_ticks[i] = count % interval
+            if count >= interval and on:
+                out.append(self._see(i, cycle))
+        return out
+
+    def _ticks_in(self, cycle: int) -> int:
+        """Visual-timer ticks fired in `cycle`'s window (as :meth:`SeeTimer.sees_in_cycle`)."""
+        step = self.sensing.simulator_step_ms
+        return self._timer.ticks_by(step * (cycle + 1) - 1) - self._timer.ticks_by(step * cycle - 1)
+
+    def _change_view(self, row: int, view: ChangeView) -> None:
+        """Player `row`'s view width and quality change now (§3.1); counted as the server does."""
+        if self._view_ticks is None:  # the shared schedule's phase, as each player's own count
+            step = self.sensing.simulator_step_ms
+            done = self._timer.ticks_by(step * (self.model.cycle + 1) - 1)
+            interval = visual_send_interval(self.sensing)
+            self._view_ticks = [done % interval] * len(self.players)
+        key = (view.width, view.quality)
+        params = self._view_params.get(key)
+        if params is None:  # one object per view: the see's constants are cached by identity
+            params = self.sensing.replace(view_width=view.width, view_quality=view.quality)
+            self._view_params[key] = params
+        self._views[row - 1] = params
+        self._counts[row - 1][_VIEW] += 1
 
     def listen(self, refs: frozenset[PlayerRef]) -> None:
         """See only for these players (the others' see messages would go unread)."""
@@ -175,19 +227,22 @@ class SoccerServerArena:
         m = self.model
         heard = tuple(self._heard[i])
         self._heard[i].clear()
+        view = self._views[i]
         if not self.trace:
             return percept_from_state(
-                i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
-                self._see_rng, tick=cycle, heard=heard, landmarks=self._landmarks,
+                i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, view,
+                self._see_rng, tick=cycle, heard=heard, landmarks=self._landmarks, neck=m.neck,
             )  # fmt: skip
         info = observe(
-            i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
-            self._see_rng, landmarks="all",
+            i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, view,
+            self._see_rng, landmarks="all", neck=m.neck,
         )  # fmt: skip
         ref = self.players[i]
-        text = render_see(info, self.sensing.protocol_version)
+        text = render_see(info, view.protocol_version)
         self._log(cycle, "see", text, ref)
-        return percept_from_see(parse_see(text), ref, cycle, cycle, heard, cycle_s=m.dt_s)
+        return percept_from_see(
+            parse_see(text), ref, cycle, cycle, heard, cycle_s=m.dt_s, neck_rad=m.neck[i + 1]
+        )
 
     def _hear(self, says: list[tuple[int, str]], referee: list[str], cycle: int) -> None:
         m = self.model
@@ -209,12 +264,21 @@ class SoccerServerArena:
             self._heard[row - 1].append(heard)
 
     def submit(self, ref: PlayerRef, actions: tuple[Action, ...]) -> None:
-        """Queue a decision: says now, body actions one per cycle from the next cycle."""
+        """Queue a decision: says, neck turns and view changes now, body actions one per cycle.
+
+        The body actions start with the next cycle; a neck turn goes with that cycle's step
+        (the first of a cycle wins, §2.2), a view change applies at once (§3.1).
+        """
         row = self._rows[ref]
         body = []
         for action in actions:
             if isinstance(action, Say):
                 self.model.say(row, action.text)
+            elif isinstance(action, TurnNeck):
+                if self.model.turn_neck(row, action.angle_rad):
+                    self._counts[row - 1][_NECK] += 1
+            elif isinstance(action, ChangeView):
+                self._change_view(row, action)
             else:
                 body.append(action)
             if self.keep_events:
@@ -259,6 +323,8 @@ _COUNTER = {
 }
 _KICK = _COUNTER[Kick]
 _SAY = _COUNTER[Say]
+_NECK = COMMAND_COUNTERS.index("turn_neck")
+_VIEW = COMMAND_COUNTERS.index("change_view")
 
 SCHEDULE_CYCLES = 6000
 """Cycles (10 simulated minutes) whose see timing is computed once per preset."""
