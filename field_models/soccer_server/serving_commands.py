@@ -2,8 +2,9 @@
 
 Every command a client sends after joining (rcssserver 19.0.0's ``src/player.cpp``,
 ``src/coach.cpp``, ``src/monitor.cpp``): a player's body commands (the first of a cycle wins),
-``say``, ``turn_neck`` (the first of a cycle wins), ``move``, ``change_view``, ``sense_body``, ``score``, ``done``, ``bye``; the trainer's
-``move``, ``change_mode``, ``look``, ``eye``, ``ear``, ``recover``, ``start``, ``check_ball``,
+``say``, ``turn_neck`` (the first of a cycle wins), ``move``, ``change_view``, ``sense_body``,
+``score``, ``done``, ``bye``; the trainer's ``move``, ``change_mode``, ``look``, ``eye``,
+``ear``, ``recover``, ``start``, ``check_ball``,
 ``team_names``, ``say``, ``done``; a monitor's ``dispstart`` and ``dispbye``. What the model does
 not have is answered ``(error unknown_command)``, a malformed command
 ``(error illegal_command_form)`` or the server's more specific error; nothing raises out of
