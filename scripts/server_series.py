@@ -47,16 +47,12 @@ def reversals(spec: TrialSpec, index: int) -> dict[str, Any]:
     verdict = TrialLoop(arena, drill, minds, observe).run()
     minutes = arena.tick * arena.facts.dt_s / 60.0
     players = {side: sum(s == side for s in side_of.values()) for side in kind}
-    return {
-        "label": None if verdict is None else verdict.label,
-        "by_kind": {
-            kind[side]: {
-                "reversals": counters[side].count,
-                "player_minutes": players[side] * minutes,
-            }
-            for side in kind
-        },
-    }
+    by_kind: dict[str, dict[str, float]] = {}
+    for side in kind:  # both sides of one kind (baseline v baseline) add up
+        counts = by_kind.setdefault(kind[side], {"reversals": 0, "player_minutes": 0.0})
+        counts["reversals"] += counters[side].count
+        counts["player_minutes"] += players[side] * minutes
+    return {"label": None if verdict is None else verdict.label, "by_kind": by_kind}
 
 
 def goal_differences(folder: Path) -> dict[tuple[str, int], float]:
@@ -92,6 +88,9 @@ def main() -> None:
     parser.add_argument("--tree", type=Path, required=True)
     parser.add_argument("--steady-turns", action="store_true")
     parser.add_argument(
+        "--look", choices=("body", "neck"), default="body", help="the minds' look (issue 28)"
+    )
+    parser.add_argument(
         "--transfer", action="store_true", help="net and tree trained on another preset"
     )
     parser.add_argument("--reversal-games", type=int, default=2, help="per side")
@@ -115,6 +114,8 @@ def main() -> None:
         options["half_time_s"] = args.half_time
     if args.steady_turns:
         options["steady_turns"] = True
+    if args.look != "body":
+        options["look"] = args.look
     if args.transfer:
         options["transfer"] = True
     base = TrialSpec(
@@ -129,6 +130,8 @@ def main() -> None:
     games = run_series(base, args.games, args.out, workers=args.workers, progress=False)
     series_s = time.perf_counter() - start
     minds = "steady turns" if args.steady_turns else "default minds"
+    if args.look == "neck":
+        minds = "looking with the neck (and steady turns)"
     title = f"Layered vs baseline on soccer_server ({args.preset}), seed {args.seed}, {minds}"
     write_report(games, args.out, title, print)
     start = time.perf_counter()
