@@ -2,7 +2,8 @@
 
 Everything is SI inside (metres, seconds, radians). Angles are counter-clockwise positive in a
 right-handed field frame (x toward the right goal, y up); egocentric angles are measured from
-the player's heading, positive to its left. Degrees appear only at the Soccer Server's message
+the player's head (its heading plus ``Percept.neck_rad``, which is 0 unless a Soccer Server
+player turned its neck), positive to its left. Degrees appear only at the Soccer Server's message
 edge (`field_models.soccer_server`), never here.
 
 The percept is what the paper's clients see (DESIGN.md §2): it carries no truth. The truth
@@ -44,7 +45,8 @@ class SeenBall:
 
     Attributes:
         distance_m: Distance from the player's centre [m].
-        angle_rad: Direction relative to the player's heading, left positive [rad].
+        angle_rad: Direction relative to the player's head (its heading plus the percept's
+            ``neck_rad``, 0 without a neck), left positive [rad].
         distance_change_mps: Rate of change of the distance, when the sensor reports it [m/s].
         angle_change_radps: Rate of change of the direction, when reported [rad/s].
     """
