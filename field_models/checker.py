@@ -19,6 +19,10 @@ a 2.74 m table and a 105 m pitch):
   the other player with its identity, and the goal in view where they should be;
 * :func:`check_actions` — a turn turns the body toward its sign, a dash runs along the heading,
   a kick (or a push where there is no kicker) sends the ball forward;
+* :func:`check_head` — a neck turn and a view change go beside a body command without taking
+  its place, and percepts measure from the head (``Percept.neck_rad`` from the body), so
+  :meth:`~field_models.protocol.Percept.body_relative` shows the ball where the body has it
+  (a model without a head accepts both and keeps ``neck_rad`` 0);
 * :func:`check_hearing` — a say reaches another player's percept;
 * :func:`check_events` — kept events carry every command in the client's command text;
 * :func:`check_determinism` — the same seed gives the same percepts and truth, another seed
@@ -37,12 +41,14 @@ from field_models.protocol import (
     LEFT,
     RIGHT,
     Action,
+    ChangeView,
     Dash,
     Kick,
     Percept,
     PlayerRef,
     Say,
     Turn,
+    TurnNeck,
     wrap_angle,
 )
 from field_models.registry import conformance_limits, field_facts, make_arena
@@ -340,6 +346,42 @@ def check_hearing(model: str, preset: str | None = None) -> None:
     _require("hello" in heard, model, "a say must reach the other player's percepts")
 
 
+# ----------------------------------------------------------------------------- the head
+
+
+def check_head(model: str, preset: str | None = None) -> None:
+    """A neck turn and a view change leave the body command alone; percepts say the neck."""
+    arena = _arena(model, preset)
+    _park(arena)
+    heading, turn, neck = 0.4, 0.3, 0.5
+    arena.place_player(A, 0.0, 0.0, heading)
+    arena.place_ball(*_polar(15 * arena.facts.unit_m, heading + math.radians(20.0)))
+    arena.listen(frozenset({A}))
+    seen = _run(arena, 1.0, _once((TurnNeck(neck), ChangeView("normal", "high"), Turn(turn))))
+    a, ball = arena.player_state(A), arena.ball_state()
+    _require(
+        math.isclose(wrap_angle(a.heading - heading), turn, rel_tol=0.15),
+        model,
+        "a Turn sent with a TurnNeck and a ChangeView still turns the body",
+    )
+    last = seen[-1]
+    _require(
+        last.neck_rad == 0.0 or math.isclose(last.neck_rad, neck, rel_tol=0.05),
+        model,
+        f"the neck turned by {neck} rad (or, without a head, stays 0): {last.neck_rad}",
+    )
+    body = last.body_relative()
+    _require(body.ball is not None, model, "the ball in view of the head is seen")
+    assert body.ball is not None
+    truth = wrap_angle(math.atan2(ball.y - a.y, ball.x - a.x) - a.heading)
+    _require(
+        abs(wrap_angle(body.ball.angle_rad - truth)) < math.radians(2.0),
+        model,
+        f"the ball from the body at {math.degrees(body.ball.angle_rad):.1f}°, "
+        f"truly {math.degrees(truth):.1f}°",
+    )
+
+
 # ----------------------------------------------------------------------------- events
 
 
@@ -393,6 +435,7 @@ CHECKS: tuple[Callable[[str, str | None], None], ...] = (
     check_placement_and_stepping,
     check_percepts,
     check_actions,
+    check_head,
     check_hearing,
     check_events,
     check_determinism,

@@ -1,8 +1,9 @@
 """Client commands as text: the one way an action is written down, and read back.
 
 The shared action vocabulary is the Soccer Server's (DESIGN.md §2), so its text form is the
-server's client command syntax (shared `specs/soccer_server.md` §2): ``(turn Moment)``,
-``(dash Power [Direction])``, ``(kick Power Direction)`` and ``(say Message)``. Traces,
+server's client command syntax (shared `specs/soccer_server.md` §2, §3.1): ``(turn Moment)``,
+``(dash Power [Direction])``, ``(kick Power Direction)``, ``(say Message)``,
+``(turn_neck Moment)`` and ``(change_view Width Quality)``. Traces,
 recordings and event logs of both field models write actions this way, and
 :func:`parse_command` reads a client's command text back into an action.
 
@@ -16,13 +17,23 @@ from __future__ import annotations
 
 import math
 
-from field_models.protocol import Action, Dash, Kick, Say, Turn
+from field_models.protocol import (
+    VIEW_QUALITIES,
+    VIEW_WIDTHS,
+    Action,
+    ChangeView,
+    Dash,
+    Kick,
+    Say,
+    Turn,
+    TurnNeck,
+)
 
 _RAD2DEG = 180.0 / math.pi
 
 
 class CommandParseError(ValueError):
-    """A client command's text is not a turn, dash, kick or say the server would accept."""
+    """A client command's text is not an action (turn, dash, ...) the server would accept."""
 
     def __init__(self, reason: str, text: str) -> None:
         super().__init__(f"{reason}: {text!r}")
@@ -66,6 +77,10 @@ def render_command(action: Action) -> str:
         return f"(kick {_number(action.power)} {_number(server_degrees(action.direction_rad))})"
     if isinstance(action, Say):
         return f"(say {_say_message(action.text)})"
+    if isinstance(action, TurnNeck):
+        return f"(turn_neck {_number(server_degrees(action.angle_rad))})"
+    if isinstance(action, ChangeView):
+        return f"(change_view {action.width} {action.quality})"
     raise TypeError(f"not an action: {action!r}")
 
 
@@ -103,6 +118,8 @@ def parse_command(text: str) -> Action:
     name, _, rest = inner.partition(" ")
     if name == "say":
         return Say(_say_text(rest.strip(), text))
+    if name == "change_view":
+        return _change_view(rest.split(), text)
     args = [_float(token, text) for token in rest.split()]
     if name == "turn":
         _arity(args, 1, 1, text)
@@ -114,7 +131,27 @@ def parse_command(text: str) -> Action:
     if name == "kick":
         _arity(args, 2, 2, text)
         return Kick(args[0], -math.radians(args[1]) + 0.0)
-    raise CommandParseError(f"unknown command {name!r} (known: turn, dash, kick, say)", text)
+    if name == "turn_neck":
+        _arity(args, 1, 1, text)
+        return TurnNeck(-math.radians(args[0]) + 0.0)
+    raise CommandParseError(
+        f"unknown command {name!r} (known: turn, dash, kick, say, turn_neck, change_view)", text
+    )
+
+
+def _change_view(words: list[str], text: str) -> ChangeView:
+    """``(change_view Width [Quality])``: the quality is high when left out, as the server's."""
+    if not 1 <= len(words) <= 2:
+        raise CommandParseError(f"expected 1 or 2 argument(s), got {len(words)}", text)
+    width = words[0]
+    quality = words[1] if len(words) == 2 else "high"
+    if width not in VIEW_WIDTHS:
+        raise CommandParseError(f"view width {width!r} (known: {', '.join(VIEW_WIDTHS)})", text)
+    if quality not in VIEW_QUALITIES:
+        raise CommandParseError(
+            f"view quality {quality!r} (known: {', '.join(VIEW_QUALITIES)})", text
+        )
+    return ChangeView(width, quality)
 
 
 def _inner(text: str) -> str:

@@ -2,7 +2,8 @@
 
 Everything is SI inside (metres, seconds, radians). Angles are counter-clockwise positive in a
 right-handed field frame (x toward the right goal, y up); egocentric angles are measured from
-the player's heading, positive to its left. Degrees appear only at the Soccer Server's message
+the player's head (its heading plus ``Percept.neck_rad``, which is 0 unless a Soccer Server
+player turned its neck), positive to its left. Degrees appear only at the Soccer Server's message
 edge (`field_models.soccer_server`), never here.
 
 The percept is what the paper's clients see (DESIGN.md §2): it carries no truth. The truth
@@ -44,7 +45,8 @@ class SeenBall:
 
     Attributes:
         distance_m: Distance from the player's centre [m].
-        angle_rad: Direction relative to the player's heading, left positive [rad].
+        angle_rad: Direction relative to the player's head (its heading plus the percept's
+            ``neck_rad``, 0 without a neck), left positive [rad].
         distance_change_mps: Rate of change of the distance, when the sensor reports it [m/s].
         angle_change_radps: Rate of change of the direction, when reported [rad/s].
     """
@@ -101,6 +103,11 @@ class Percept:
         players: Other players seen (teammates and opponents).
         heard: Messages heard since the previous percept.
         landmarks: Landmarks seen (goals, flags); empty where the sensor gives none.
+        neck_rad: The neck angle relative to the body when the sensor sampled [rad], left
+            positive. Every angle above is measured from the head (body + neck), as the
+            Soccer Server's see is (spec §3.1); 0 where there is no neck (the robots) or it
+            was never turned, so head and body agree. :meth:`body_relative` re-measures the
+            angles from the body.
     """
 
     player: PlayerRef
@@ -110,6 +117,7 @@ class Percept:
     players: tuple[SeenPlayer, ...] = ()
     heard: tuple[Heard, ...] = ()
     landmarks: tuple[SeenLandmark, ...] = ()
+    neck_rad: float = 0.0
 
     def landmark(self, name: str) -> SeenLandmark | None:
         """The landmark called `name`, if seen."""
@@ -117,6 +125,35 @@ class Percept:
             if mark.name == name:
                 return mark
         return None
+
+    def body_relative(self) -> Percept:
+        """This percept with every direction measured from the body (``neck_rad`` 0).
+
+        A mind that turns the neck reasons about where its body points; a percept whose neck
+        is already 0 comes back as it is.
+        """
+        neck = self.neck_rad
+        if neck == 0.0:
+            return self
+        ball = self.ball
+        if ball is not None:
+            ball = SeenBall(
+                ball.distance_m,
+                wrap_angle(ball.angle_rad + neck),
+                ball.distance_change_mps,
+                ball.angle_change_radps,
+            )
+        players = tuple(
+            SeenPlayer(p.distance_m, wrap_angle(p.angle_rad + neck), p.team, p.number)
+            for p in self.players
+        )
+        marks = tuple(
+            SeenLandmark(m.name, m.distance_m, wrap_angle(m.angle_rad + neck))
+            for m in self.landmarks
+        )
+        return Percept(
+            self.player, self.tick, self.observed_tick, ball, players, self.heard, marks, 0.0
+        )
 
 
 # ----------------------------------------------------------------------------- actions
@@ -151,14 +188,60 @@ class Kick:
 
 
 @dataclass(frozen=True, slots=True)
+class TurnNeck:
+    """Turn the neck by `angle_rad` (left positive). The Soccer Server's ``(turn_neck Moment)``.
+
+    The neck angle is relative to the body and stays within the server's ``minneckang`` ..
+    ``maxneckang`` (±90°, spec §2.2); the view points along body + neck. It is not a body
+    command: it may go in the same cycle as a turn, dash or kick (spec §1.1). On the robots
+    (an overhead camera sees the whole field, there is no head to turn) it is accepted and
+    does nothing, so one client's code runs on both field models.
+    """
+
+    angle_rad: float
+
+
+@dataclass(frozen=True, slots=True)
+class ChangeView:
+    """Change the view: the Soccer Server's ``(change_view Width Quality)`` (spec §3.1).
+
+    `width` is ``"narrow"``, ``"normal"`` or ``"wide"`` (cone ×½, ×1, ×2 and see interval the
+    same), `quality` ``"high"`` or ``"low"`` (low: no distances, see interval halved). Not a
+    body command (spec §1.1). On the robots, whose camera has one fixed view, it is accepted
+    and does nothing, as :class:`TurnNeck`.
+    """
+
+    width: str = "normal"
+    quality: str = "high"
+
+    def __post_init__(self) -> None:
+        if self.width not in VIEW_WIDTHS:
+            raise ValueError(f"view width {self.width!r}: expected one of {VIEW_WIDTHS}")
+        if self.quality not in VIEW_QUALITIES:
+            raise ValueError(f"view quality {self.quality!r}: expected one of {VIEW_QUALITIES}")
+
+
+VIEW_WIDTHS = ("narrow", "normal", "wide")
+"""The widths of :class:`ChangeView`."""
+VIEW_QUALITIES = ("high", "low")
+"""The qualities of :class:`ChangeView`."""
+
+
+@dataclass(frozen=True, slots=True)
 class Say:
     """Broadcast a short text message to players within hearing range."""
 
     text: str
 
 
-Action: TypeAlias = Turn | Dash | Kick | Say
-"""The action vocabulary shared by both field models (DESIGN.md §2)."""
+Action: TypeAlias = Turn | Dash | Kick | Say | TurnNeck | ChangeView
+"""The action vocabulary shared by both field models (DESIGN.md §2).
+
+Turn, dash and kick are body commands (one per server cycle); say, turn_neck and change_view
+go with them (spec §1.1)."""
+
+SIDE_ACTIONS = (Say, TurnNeck, ChangeView)
+"""The actions that are not body commands: each field model carries them out at once."""
 
 
 class Mind(Protocol):

@@ -8,7 +8,12 @@ player's last such turn, every cycle, true headings) in the first `--reversal-ga
 each side through the trial runner's own loop, per team kind, per player-minute.
 
     python scripts/server_series.py --preset soccer_server_1996 --games 34 --workers 2 \
-        --net NET --tree TREE [--steady-turns] --out runs/series-ss-default
+        --net NET --tree TREE [--steady-turns] [--look neck] --out runs/series-ss-default
+
+``--dither SEEDS`` counts the reversals of baseline-v-baseline matches instead (game 0 of each
+seed, both teams together; no net or tree), the issue's measure of dithering:
+
+    python scripts/server_series.py --dither 0,1 --half-time 30 [--steady-turns] [--look neck]
 """
 
 from __future__ import annotations
@@ -47,16 +52,30 @@ def reversals(spec: TrialSpec, index: int) -> dict[str, Any]:
     verdict = TrialLoop(arena, drill, minds, observe).run()
     minutes = arena.tick * arena.facts.dt_s / 60.0
     players = {side: sum(s == side for s in side_of.values()) for side in kind}
-    return {
-        "label": None if verdict is None else verdict.label,
-        "by_kind": {
-            kind[side]: {
-                "reversals": counters[side].count,
-                "player_minutes": players[side] * minutes,
-            }
-            for side in kind
-        },
-    }
+    by_kind: dict[str, dict[str, float]] = {}
+    for side in kind:  # both sides of one kind (baseline v baseline) add up
+        counts = by_kind.setdefault(kind[side], {"reversals": 0, "player_minutes": 0.0})
+        counts["reversals"] += counters[side].count
+        counts["player_minutes"] += players[side] * minutes
+    return {"label": None if verdict is None else verdict.label, "by_kind": by_kind}
+
+
+def dither(preset: str, seeds: list[int], options: dict[str, Any]) -> list[dict[str, Any]]:
+    """Reversals per player-minute of baseline v baseline, game 0 of each seed (both teams)."""
+    out = []
+    for seed in seeds:
+        spec = TrialSpec(
+            drill="match",
+            field_model="soccer_server",
+            preset=preset,
+            seed=seed,
+            field=FieldOptions(),
+        ).with_options(left="baseline", right="baseline", players=0, **options)
+        game = reversals(spec, 0)
+        counts = game["by_kind"]["baseline"]
+        rate = counts["reversals"] / counts["player_minutes"]
+        out.append({"seed": seed, "label": game["label"], **counts, "per_player_minute": rate})
+    return out
 
 
 def goal_differences(folder: Path) -> dict[tuple[str, int], float]:
@@ -88,18 +107,43 @@ def main() -> None:
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--half-time", type=float, default=None, help="one half [s] (300)")
-    parser.add_argument("--net", type=Path, required=True)
-    parser.add_argument("--tree", type=Path, required=True)
+    parser.add_argument("--net", type=Path)
+    parser.add_argument("--tree", type=Path)
+    parser.add_argument(
+        "--dither", help="seeds (e.g. 0,1): count baseline-v-baseline reversals only and stop"
+    )
     parser.add_argument("--steady-turns", action="store_true")
+    parser.add_argument(
+        "--look", choices=("body", "neck"), default="body", help="the minds' look (issue 28)"
+    )
     parser.add_argument(
         "--transfer", action="store_true", help="net and tree trained on another preset"
     )
     parser.add_argument("--reversal-games", type=int, default=2, help="per side")
-    parser.add_argument("--out", type=Path, required=True)
+    parser.add_argument("--out", type=Path)
     parser.add_argument(
         "--before", type=Path, help="a finished series folder: print the paired change and stop"
     )
     args = parser.parse_args()
+    minds: dict[str, Any] = {}
+    if args.steady_turns:
+        minds["steady_turns"] = True
+    if args.look != "body":
+        minds["look"] = args.look
+    if args.dither is not None:
+        if args.half_time is not None:
+            minds["half_time_s"] = args.half_time
+        seeds = [int(seed) for seed in args.dither.split(",")]
+        games = dither(args.preset, seeds, minds)
+        for g in games:
+            count = f"{g['reversals']:.0f} in {g['player_minutes']:.0f} player-minutes"
+            rate = f"{g['per_player_minute']:.1f} reversals per player-minute ({count})"
+            print(f"{args.preset} {minds or 'default'} seed {g['seed']}: {rate}")
+        total = sum(g["reversals"] for g in games) / sum(g["player_minutes"] for g in games)
+        print(f"all seeds: {total:.1f} reversals per player-minute")
+        return
+    if args.net is None or args.tree is None or args.out is None:
+        parser.error("a series needs --net, --tree and --out")
     if args.before is not None:
         print(
             f"goal difference, {args.out} - {args.before}: {paired_change(args.before, args.out)}"
@@ -113,8 +157,7 @@ def main() -> None:
     options: dict[str, Any] = {"players": 0, "net": str(args.net), "tree": str(args.tree)}
     if args.half_time is not None:
         options["half_time_s"] = args.half_time
-    if args.steady_turns:
-        options["steady_turns"] = True
+    options.update(minds)
     if args.transfer:
         options["transfer"] = True
     base = TrialSpec(
@@ -128,8 +171,10 @@ def main() -> None:
     start = time.perf_counter()
     games = run_series(base, args.games, args.out, workers=args.workers, progress=False)
     series_s = time.perf_counter() - start
-    minds = "steady turns" if args.steady_turns else "default minds"
-    title = f"Layered vs baseline on soccer_server ({args.preset}), seed {args.seed}, {minds}"
+    which = "steady turns" if args.steady_turns else "default minds"
+    if args.look == "neck":
+        which = "looking with the neck (and steady turns)"
+    title = f"Layered vs baseline on soccer_server ({args.preset}), seed {args.seed}, {which}"
     write_report(games, args.out, title, print)
     start = time.perf_counter()
     counted = [

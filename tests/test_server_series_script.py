@@ -47,3 +47,13 @@ def test_goal_differences_take_the_layered_side_and_pair_by_game(tmp_path: Path)
     other = _series(tmp_path / "c", [(1, 1)], [(1, 1)])
     with pytest.raises(ValueError, match="same games"):
         script.paired_change(before, other)
+
+
+def test_dither_counts_both_baseline_teams_together() -> None:
+    script = _script()
+    games = script.dither("soccer_server_1996", [0], {"half_time_s": 3.0})
+    assert len(games) == 1
+    game = games[0]
+    assert game["player_minutes"] == pytest.approx(22 * 6.0 / 60.0)  # both teams of 11
+    assert game["reversals"] > 0
+    assert game["per_player_minute"] == game["reversals"] / game["player_minutes"]

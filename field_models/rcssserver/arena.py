@@ -17,9 +17,11 @@ One :class:`WireArena` per trial (shared `specs/soccer_server.md` §5):
   team connects first, so it gets the left side). Uniform numbers come from the server in
   order, so the arena connects 1..N of each team and says ``bye`` for numbers not in the trial.
 * **a tick** is one cycle: every player sends the commands of its plan (body actions one per
-  cycle, says at once, as the Soccer Server arena queues them) and ``(done)``; the server
-  steps and sends each player its sense_body, hears and see, then ``(think)``; a see becomes a
-  percept through the same parser as the Soccer Server arena's trace path.
+  cycle; says, neck turns and view changes at once, as the Soccer Server arena queues them)
+  and ``(done)``; the server steps and sends each player its sense_body, hears and see, then
+  ``(think)``; a see becomes a percept through the same parser as the Soccer Server arena's
+  trace path, with the neck angle of the cycle's sense_body (``head_angle``: the see's
+  directions are relative to the head).
 """
 
 from __future__ import annotations
@@ -42,11 +44,13 @@ from field_models.protocol import (
     RIGHT,
     Action,
     BodyState,
+    ChangeView,
     Heard,
     Percept,
     PlayerRef,
     Say,
     Truth,
+    TurnNeck,
 )
 from field_models.rcssserver.client import WireClient, WireError
 from field_models.rcssserver.config import WirePreset, server_options
@@ -104,6 +108,7 @@ class WireArena:
         self._listening = set(players)
         self._plans: dict[PlayerRef, deque[Action]] = {ref: deque() for ref in players}
         self._says: dict[PlayerRef, list[str]] = {ref: [] for ref in players}
+        self._side: dict[PlayerRef, list[str]] = {ref: [] for ref in players}  # neck, view
         self._heard: dict[PlayerRef, list[Heard]] = {ref: [] for ref in players}
         self._placed: dict[PlayerRef | None, BodyState] = {}
         self._look: tuple[int, BodyState, dict[PlayerRef, BodyState]] | None = None
@@ -328,8 +333,9 @@ class WireArena:
         """
         target = self._trainer_time() + 1 if self._server_time is None else None
         for ref, client in self._clients.items():
-            commands = [f'(say "{text}")' for text in self._says[ref]]
+            commands = [f'(say "{text}")' for text in self._says[ref]] + self._side[ref]
             self._says[ref].clear()
+            self._side[ref] = []
             plan = self._plans[ref]
             if plan:
                 commands.append(render_command(plan.popleft()))
@@ -357,7 +363,7 @@ class WireArena:
                 elif text.startswith("(hear "):
                     self._hear(ref, text)
             if seen is not None and ref in self._listening:
-                percepts.append(self._percept(ref, seen, now))
+                percepts.append(self._percept(ref, seen, now, _head_angle(batch)))
         return percepts
 
     def _trainer_time(self) -> int:
@@ -378,8 +384,11 @@ class WireArena:
         if heard is not None:
             self._heard[ref].append(heard)
 
-    def _percept(self, ref: PlayerRef, text: str, now: int | None) -> Percept:
-        """The see's percept at this tick; a see older than the server's time is dated back."""
+    def _percept(self, ref: PlayerRef, text: str, now: int | None, neck: float = 0.0) -> Percept:
+        """The see's percept at this tick; a see older than the server's time is dated back.
+
+        `neck` is the player's neck angle [rad, CCW] from the cycle's sense_body.
+        """
         if self.trace:
             self._log(self._tick, "see", text, ref)
         heard = tuple(self._heard[ref])
@@ -388,7 +397,7 @@ class WireArena:
         info = parse_see(text)
         late = max(0, now - info.time) if now is not None else 0
         observed = max(0, tick - late)
-        return percept_from_see(info, ref, tick, observed, heard, cycle_s=self._dt)
+        return percept_from_see(info, ref, tick, observed, heard, cycle_s=self._dt, neck_rad=neck)
 
     def listen(self, refs: frozenset[PlayerRef]) -> None:
         """Build percepts only for these players (the others' sees still come, unread)."""
@@ -400,6 +409,8 @@ class WireArena:
         for action in actions:
             if isinstance(action, Say):
                 self._says[ref].append(action.text)
+            elif isinstance(action, TurnNeck | ChangeView):  # not body commands (spec §1.1)
+                self._side[ref].append(render_command(action))
             else:
                 body.append(action)
             if self.keep_events:
@@ -445,6 +456,22 @@ def _shut(resources: list[object]) -> None:
             thread.join(timeout=5.0)
             server.close()
     resources.clear()
+
+
+def _head_angle(batch: list[str]) -> float:
+    """The neck angle [rad, CCW] of the last ``sense_body``'s ``(head_angle H)`` (0: none).
+
+    H is in the server's degrees, clockwise on our field, so its sign flips.
+    """
+    angle = 0.0
+    for text in batch:
+        if text.startswith("(sense_body "):
+            start = text.find("(head_angle ")
+            if start >= 0:
+                token = text[start + len("(head_angle ") :].split(")", 1)[0]
+                with contextlib.suppress(ValueError):
+                    angle = -math.radians(float(token)) + 0.0
+    return angle
 
 
 def _sense_time(batch: list[str]) -> int | None:

@@ -27,7 +27,15 @@ from collections.abc import Iterable
 
 from field_models.arena import ArenaEvent, FieldFacts
 from field_models.commands import render_command
-from field_models.protocol import Action, BodyState, Percept, PlayerRef, Truth
+from field_models.protocol import (
+    Action,
+    BodyState,
+    ChangeView,
+    Percept,
+    PlayerRef,
+    Truth,
+    TurnNeck,
+)
 from field_models.robot_physics.camera import OverheadCamera
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.firmware import Firmware
@@ -212,13 +220,19 @@ class RobotArena:
         self._listeners = None if refs >= frozenset(self.players) else refs
 
     def submit(self, ref: PlayerRef, actions: tuple[Action, ...]) -> None:
-        """Translate a robot's actions into primitives and queue them on the link."""
+        """Translate a robot's actions into primitives and queue them on the link.
+
+        Neck turns and view changes are logged and otherwise dropped here (the host's module
+        docstring says why), so a decision that holds only those is no decision at all.
+        """
         if not actions:
             return
         tick = self.world.tick
         if self.keep_events:
             self._events += [ArenaEvent(tick, "command", render_command(a), ref) for a in actions]
-        self.host.submit(ref, actions, tick)
+        actions = tuple(a for a in actions if not isinstance(a, TurnNeck | ChangeView))
+        if actions:
+            self.host.submit(ref, actions, tick)
 
     def submit_wheels(self, ref: PlayerRef, left_mps: float, right_mps: float) -> None:
         """Send wheel speeds [m/s] to a robot through host, link and firmware (WheelDrive)."""

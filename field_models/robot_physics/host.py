@@ -50,6 +50,10 @@ Dash or Kick) at once. Let v_max be the top wheel speed, T one camera period, ω
   right), held for 2·T like a dash; they replace any pending body actions.
 * ``Say(text)``: not sent to the robot; relayed by the host to every other robot's heard buffer,
   with the sender and, when both poses are known, the direction of the sender from the listener.
+* ``TurnNeck`` and ``ChangeView``: accepted and ignored. The overhead camera sees the whole
+  field at once and a robot has no head: there is nothing to point and no view to change, and
+  every percept already reports angles from the body (``Percept.neck_rad`` 0). Ignoring them,
+  rather than refusing, keeps one client's code running on both field models (DESIGN.md §2).
 
 **Events** (:meth:`CentralHost.drain_events`, when `keep_events`): every primitive sent, on the
 ``"link"`` channel (``left1 TURN +2.10 rad/s for 24 ticks``).
@@ -76,6 +80,7 @@ from field_models.arena import ArenaEvent
 from field_models.protocol import (
     TWO_PI,
     Action,
+    ChangeView,
     Dash,
     Heard,
     Kick,
@@ -86,6 +91,7 @@ from field_models.protocol import (
     SeenLandmark,
     SeenPlayer,
     Turn,
+    TurnNeck,
     wrap_angle,
 )
 from field_models.records import positional_maker
@@ -233,7 +239,7 @@ class CentralHost:
             heard_list.clear()
             pose = poses[i]
             if pose is None:
-                out.append(make_percept(ref, tick, observed, None, (), heard, ()))
+                out.append(make_percept(ref, tick, observed, None, (), heard, (), 0.0))
                 continue
             px, py, heading = pose
             seen_ball = None
@@ -265,7 +271,7 @@ class CentralHost:
                 landmarks.append(make_landmark(name, hypot(dx, dy), a))
             out.append(
                 make_percept(
-                    ref, tick, observed, seen_ball, tuple(players), heard, tuple(landmarks)
+                    ref, tick, observed, seen_ball, tuple(players), heard, tuple(landmarks), 0.0
                 )
             )
         return out
@@ -282,7 +288,7 @@ class CentralHost:
         for action in actions:
             if isinstance(action, Say):
                 self._relay(ref, action.text, tick)
-            else:
+            elif not isinstance(action, TurnNeck | ChangeView):  # no head, one view: ignored
                 body.append(action)
         i = self._row_of(ref)
         old = self._pending[i]

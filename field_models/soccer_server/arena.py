@@ -15,7 +15,19 @@ One tick is one 100 ms server cycle (shared `specs/soccer_server.md` §1):
 **Several body actions per decision.** The paper's clients send more than one command per see
 (Figure 4: ``(turn 1)`` then ``(dash 60)``), and the server runs one body command per cycle. So a
 mind may return several body actions: they run in order, one per cycle, and a new decision
-replaces whatever is left of the previous one. Says go out at once.
+replaces whatever is left of the previous one. Says, neck turns and view changes are not body
+commands (§1.1): they go out at once, beside the decision's first body action.
+
+**Neck and view.** A ``TurnNeck`` turns the player's neck at the next step (the model's
+:meth:`~field_models.soccer_server.dynamics.SoccerServerModel.turn_neck`); its sees then look
+along body + neck and its percepts carry the neck angle (``Percept.neck_rad``). A
+``ChangeView`` changes that player's view width and quality at once (§3.1): its cone and its
+see interval. Until some player changes its view, every player's sees come on one shared
+schedule (phase 0); from then on each player counts the server's visual-timer ticks (every
+``send_step / 4`` ms) and gets a see when its count reaches its view's interval (4 ticks at
+normal width and high quality, ×½ narrow, ×2 wide, ×½ low quality), keeping the remainder:
+with a view that never changes this gives exactly the shared schedule. At most one percept a
+cycle, as before (the fast views of a 150 ms ``send_step`` can fire twice in one cycle).
 
 **Counts.** Like rcssserver, the arena counts each player's commands as the server carries them
 out (:meth:`SoccerServerArena.command_tally`): a body action when its cycle comes (one left in
@@ -44,6 +56,7 @@ from field_models.commands import render_command
 from field_models.protocol import (
     Action,
     BodyState,
+    ChangeView,
     Dash,
     Heard,
     Kick,
@@ -52,15 +65,20 @@ from field_models.protocol import (
     Say,
     Truth,
     Turn,
+    TurnNeck,
 )
 from field_models.seeding import TrialRngs
 from field_models.soccer_server.dynamics import SoccerServerModel
 from field_models.soccer_server.hearing import HearInfo, deliver_says, referee_hear
 from field_models.soccer_server.messages import parse_see, render_hear, render_see
 from field_models.soccer_server.params import ServerPreset
-from field_models.soccer_server.percepts import heard_from_hear, percept_from_see
+from field_models.soccer_server.percepts import (
+    heard_from_hear,
+    percept_from_see,
+    percept_from_state,
+)
 from field_models.soccer_server.percepts_many import Bodies, percepts_of
-from field_models.soccer_server.see_timing import SeeTimer
+from field_models.soccer_server.see_timing import SeeTimer, visual_send_interval
 from field_models.soccer_server.sensing import LandmarkMode, observe
 from field_models.soccer_server.sensing_params import SensingParams
 
@@ -105,6 +123,9 @@ class SoccerServerArena:
         self._events: list[ArenaEvent] = []
         self._counts = [[0] * len(COMMAND_COUNTERS) for _ in players]
         self._kick_tick = [-1] * len(players)  # the tick whose cycle carried out a kick
+        self._views: list[SensingParams] = [self.sensing] * len(players)
+        self._view_params: dict[tuple[str, str], SensingParams] = {}  # one object per view
+        self._view_ticks: list[int] | None = None  # timer ticks per player, once views differ
 
     @property
     def tick(self) -> int:
@@ -158,19 +179,65 @@ class SoccerServerArena:
             self._counts[row - 1][_SAY] += 1
         if says or referee:
             self._hear(says, referee, cycle)
+        if self._view_ticks is not None:
+            return self._own_sees(cycle)
         schedule = self._see_schedule
         due = schedule[cycle] if cycle < len(schedule) else self._timer.due(cycle)
         if not due:
             return []
+        return self._sees(self._observers, cycle)
+
+    def _sees(self, rows: tuple[int, ...], cycle: int) -> list[Percept]:
+        """The percepts of the sees of players `rows` (in order) at this cycle.
+
+        All at once (:func:`~field_models.soccer_server.percepts_many.percepts_of`, equal bit for
+        bit to one see at a time) while every head looks along its body and every player has
+        the preset's view; one at a time once a neck is turned or a view changed.
+        """
         if self.trace:
-            return [self._see_text(row - 1, cycle) for row in self._observers]
+            return [self._see_text(row - 1, cycle) for row in rows]
         m = self.model
+        if self._view_ticks is not None or any(m.neck):
+            return [self._see_state(row - 1, cycle) for row in rows]
         bodies = Bodies(m.x, m.y, m.vx, m.vy, m.heading)
-        heard = [self._take_heard(row - 1) for row in self._observers]
+        heard = [self._take_heard(row - 1) for row in rows]
         return percepts_of(
-            self._observers, bodies, self.players, self.sensing, self._see_rng, cycle, heard,
-            self._landmarks,
-        )  # fmt: skip
+            rows, bodies, self.players, self.sensing, self._see_rng, cycle, heard, self._landmarks
+        )
+
+    def _own_sees(self, cycle: int) -> list[Percept]:
+        """The sees of this cycle once views differ: each player's own timer count (docstring)."""
+        assert self._view_ticks is not None
+        new = self._ticks_in(cycle)
+        listening = set(self._observers)
+        due = []
+        for i, view in enumerate(self._views):
+            interval = visual_send_interval(view)
+            count = self._view_ticks[i] + new
+            self._view_ticks[i] = count % interval
+            if count >= interval and i + 1 in listening:
+                due.append(i + 1)
+        return self._sees(tuple(due), cycle)
+
+    def _ticks_in(self, cycle: int) -> int:
+        """Visual-timer ticks fired in `cycle`'s window (as :meth:`SeeTimer.sees_in_cycle`)."""
+        step = self.sensing.simulator_step_ms
+        return self._timer.ticks_by(step * (cycle + 1) - 1) - self._timer.ticks_by(step * cycle - 1)
+
+    def _change_view(self, row: int, view: ChangeView) -> None:
+        """Player `row`'s view width and quality change now (§3.1); counted as the server does."""
+        if self._view_ticks is None:  # the shared schedule's phase, as each player's own count
+            step = self.sensing.simulator_step_ms
+            done = self._timer.ticks_by(step * (self.model.cycle + 1) - 1)
+            interval = visual_send_interval(self.sensing)
+            self._view_ticks = [done % interval] * len(self.players)
+        key = (view.width, view.quality)
+        params = self._view_params.get(key)
+        if params is None:  # one object per view: the see's constants are cached by identity
+            params = self.sensing.replace(view_width=view.width, view_quality=view.quality)
+            self._view_params[key] = params
+        self._views[row - 1] = params
+        self._counts[row - 1][_VIEW] += 1
 
     def listen(self, refs: frozenset[PlayerRef]) -> None:
         """See only for these players (the others' see messages would go unread)."""
@@ -182,18 +249,30 @@ class SoccerServerArena:
         self._heard[i].clear()
         return heard
 
+    def _see_state(self, i: int, cycle: int) -> Percept:
+        """Player `i`'s percept of its see of this cycle, through its own view and neck."""
+        m = self.model
+        return percept_from_state(
+            i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self._views[i],
+            self._see_rng, tick=cycle, heard=self._take_heard(i), landmarks=self._landmarks,
+            neck=m.neck,
+        )  # fmt: skip
+
     def _see_text(self, i: int, cycle: int) -> Percept:
         """Player `i`'s percept from the text of its see of this cycle (the trace route)."""
         m = self.model
         heard = self._take_heard(i)
+        view = self._views[i]
         info = observe(
-            i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self.sensing,
-            self._see_rng, landmarks="all",
+            i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, view,
+            self._see_rng, landmarks="all", neck=m.neck,
         )  # fmt: skip
         ref = self.players[i]
-        text = render_see(info, self.sensing.protocol_version)
+        text = render_see(info, view.protocol_version)
         self._log(cycle, "see", text, ref)
-        return percept_from_see(parse_see(text), ref, cycle, cycle, heard, cycle_s=m.dt_s)
+        return percept_from_see(
+            parse_see(text), ref, cycle, cycle, heard, cycle_s=m.dt_s, neck_rad=m.neck[i + 1]
+        )
 
     def _hear(self, says: list[tuple[int, str]], referee: list[str], cycle: int) -> None:
         m = self.model
@@ -215,12 +294,21 @@ class SoccerServerArena:
             self._heard[row - 1].append(heard)
 
     def submit(self, ref: PlayerRef, actions: tuple[Action, ...]) -> None:
-        """Queue a decision: says now, body actions one per cycle from the next cycle."""
+        """Queue a decision: says, neck turns and view changes now, body actions one per cycle.
+
+        The body actions start with the next cycle; a neck turn goes with that cycle's step
+        (the first of a cycle wins, §2.2), a view change applies at once (§3.1).
+        """
         row = self._rows[ref]
         body = []
         for action in actions:
             if isinstance(action, Say):
                 self.model.say(row, action.text)
+            elif isinstance(action, TurnNeck):
+                if self.model.turn_neck(row, action.angle_rad):
+                    self._counts[row - 1][_NECK] += 1
+            elif isinstance(action, ChangeView):
+                self._change_view(row, action)
             else:
                 body.append(action)
             if self.keep_events:
@@ -265,6 +353,8 @@ _COUNTER = {
 }
 _KICK = _COUNTER[Kick]
 _SAY = _COUNTER[Say]
+_NECK = COMMAND_COUNTERS.index("turn_neck")
+_VIEW = COMMAND_COUNTERS.index("change_view")
 
 SCHEDULE_CYCLES = 6000
 """Cycles (10 simulated minutes) whose see timing is computed once per preset."""

@@ -6,6 +6,11 @@ with the see timer and :mod:`~field_models.soccer_server.batch_sensing`; it sati
 counter-based "movement" stream (:class:`~field_models.seeding.StreamBatch`), so trial k gives
 the numbers of a one-trial :class:`~field_models.soccer_server.arena.SoccerServerArena` built
 with the same trial's streams.
+
+It has no neck and one view for every player (the preset's): it takes turn, dash and kick
+arrays, never actions, and the batched drills' vectorised minds (the interception drill's)
+have no ``turn_neck`` or ``change_view`` to send. A drill whose minds look with the neck runs
+on the one-trial arena.
 """
 
 from __future__ import annotations

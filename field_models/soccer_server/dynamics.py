@@ -83,6 +83,7 @@ from field_models.protocol import (
     PlayerRef,
     Say,
     Turn,
+    TurnNeck,
     end_line_crossing,
     wrap_angle,
 )
@@ -133,6 +134,9 @@ class SoccerServerModel:
         score_left, score_right: Goals of each team.
         x, y: Positions per row [m]. vx, vy: stored velocities per row [m/cycle].
         heading: Body angle per row [rad], counter-clockwise; 0 for the ball.
+        neck: Neck angle per row relative to the body [rad], counter-clockwise; 0 for the
+            ball and for every player that never sent ``turn_neck``. The view points along
+            heading + neck (§2.2, §3.1).
         kicked_at: Per row, the cycle count (``cycle`` after the step) of the last step whose
             kick took effect; -1 before any. rcssserver flags such a player's ``KICK`` state in
             that cycle's show (monitors and game logs read it).
@@ -162,6 +166,8 @@ class SoccerServerModel:
         self.vx = [0.0] * n
         self.vy = [0.0] * n
         self.heading = [0.0] * n
+        self.neck = [0.0] * n
+        self._neck_turn: dict[int, float] = {}  # this cycle's turn_neck per row (one a cycle)
         self._ax = [0.0] * n
         self._ay = [0.0] * n
         self._size = [p.ball_size_m] + [p.player_size_m] * (n - 1)
@@ -262,7 +268,7 @@ class SoccerServerModel:
         """Queue player row `i`'s action for the next step; False if the server would ignore it.
 
         A second body command (turn, dash, kick) in the same cycle is ignored (§1.1); a say
-        combines with one.
+        or a turn_neck combines with one. A view change is the sensing's, not the model's.
         """
         if isinstance(action, Dash):
             return self.dash(i, action.power, action.direction_rad)
@@ -272,7 +278,9 @@ class SoccerServerModel:
             return self.kick(i, action.power, action.direction_rad)
         if isinstance(action, Say):
             return self.say(i, action.text)
-        raise TypeError(f"not a Soccer Server action: {action!r}")
+        if isinstance(action, TurnNeck):
+            return self.turn_neck(i, action.angle_rad)
+        raise TypeError(f"not a Soccer Server model action: {action!r}")
 
     def dash(self, i: int, power: float, direction_rad: float = 0.0) -> bool:
         """Queue ``(dash power direction)`` (§2.1; direction counter-clockwise from the heading).
@@ -298,6 +306,22 @@ class SoccerServerModel:
         power = clamp(power, p.minpower, p.maxpower)
         direction = -clamp(-direction_rad, p.minmoment_rad, p.maxmoment_rad)
         return self._queue(i, KICK, power, direction)
+
+    def turn_neck(self, i: int, angle_rad: float) -> bool:
+        """Queue ``(turn_neck Moment)``: the neck turns by `angle_rad` (left positive) at the step.
+
+        As rcssserver's ``Player::turn_neck``: the moment is clamped to [minneckmoment,
+        maxneckmoment] and the new neck angle to [minneckang, maxneckang], both in the server's
+        sign (§2.2); no noise, so no random number is drawn. Not a body command: it goes with
+        one; a second turn_neck in the same cycle is ignored (False), as the server's
+        per-cycle ``turn_neck`` flag does.
+        """
+        self._check_player(i)
+        if i in self._neck_turn:
+            return False
+        p = self.params
+        self._neck_turn[i] = -clamp(-angle_rad, p.minneckmoment_rad, p.maxneckmoment_rad)
+        return True
 
     def say(self, i: int, text: str) -> bool:
         """Queue a say; a message longer than ``say_msg_size`` is dropped (§2.6)."""
@@ -334,6 +358,8 @@ class SoccerServerModel:
         self._block_row = r + 1
         if self._pending:
             self._run_commands(r, messages)
+        if self._neck_turn:
+            self._turn_necks()
         bx0, by0 = self.x[0], self.y[0]
         if self.play_mode == BEFORE_KICK_OFF:
             self._hold_players()
@@ -386,6 +412,14 @@ class SoccerServerModel:
         if kicked and self.play_mode in RESTART_MODES and self.params.referee:
             self.play_mode = PLAY_ON
             messages.append(PLAY_ON)
+
+    def _turn_necks(self) -> None:
+        """Commit this cycle's turn_necks (the server commits the neck at the step, §1.1)."""
+        p = self.params
+        for i, moment in self._neck_turn.items():
+            server = clamp(-(self.neck[i] + moment), p.minneckang_rad, p.maxneckang_rad)
+            self.neck[i] = -server + 0.0
+        self._neck_turn.clear()
 
     def _do_dash(self, i: int, power: float, direction: float) -> None:
         """Push the player toward heading + direction: power · dir rate · dash_power_rate.

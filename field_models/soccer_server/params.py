@@ -104,6 +104,11 @@ class DynamicsParams:
             "a fast ball may pass through a player"). Off in both shipped presets (the real
             server); on, the pair is moved back to the moment of closest approach and resolved
             as a collision. Not supported by batch mode.
+        minneckang_rad, maxneckang_rad: ``minneckang``/``maxneckang``: the neck angle's range
+            relative to the body, server sign [rad] (±90° since 5.00; §2.2); preset keys
+            ``*_deg``.
+        minneckmoment_rad, maxneckmoment_rad: ``minneckmoment``/``maxneckmoment``: the range of
+            one ``turn_neck`` moment, server sign [rad] (±180°); preset keys ``*_deg``.
     """
 
     simulator_step_ms: int = field(
@@ -170,6 +175,18 @@ class DynamicsParams:
     after_goal_wait_cycles: int = field(metadata=non_negative(high=100_000))
     referee: bool = True
     swept_ball_collisions: bool = False
+    minneckang_rad: float = field(
+        default=-0.5 * math.pi, metadata=bounded(-TWO_PI, TWO_PI, "server.conf minneckang")
+    )
+    maxneckang_rad: float = field(
+        default=0.5 * math.pi, metadata=bounded(-TWO_PI, TWO_PI, "server.conf maxneckang")
+    )
+    minneckmoment_rad: float = field(
+        default=-math.pi, metadata=bounded(-TWO_PI, TWO_PI, "server.conf minneckmoment")
+    )
+    maxneckmoment_rad: float = field(
+        default=math.pi, metadata=bounded(-TWO_PI, TWO_PI, "server.conf maxneckmoment")
+    )
 
     def __post_init__(self) -> None:
         check_ranges(self)
@@ -177,6 +194,8 @@ class DynamicsParams:
         _ordered("min_dash_power", self.min_dash_power, self.max_dash_power)
         _ordered("minmoment_rad", self.minmoment_rad, self.maxmoment_rad)
         _ordered("min_dash_angle_rad", self.min_dash_angle_rad, self.max_dash_angle_rad)
+        _ordered("minneckang_rad", self.minneckang_rad, self.maxneckang_rad)
+        _ordered("minneckmoment_rad", self.minneckmoment_rad, self.maxneckmoment_rad)
         if self.goal_width_m >= self.pitch_width_m:
             raise ParamError("goal_width_m", "expected less than pitch_width_m")
         if self.pitch_width_m > self.pitch_length_m:  # drills measure in length / 105

@@ -62,6 +62,7 @@ def percept_from_see(
     heard: tuple[Heard, ...] = (),
     *,
     cycle_s: float = 0.1,
+    neck_rad: float = 0.0,
 ) -> Percept:
     """The percept of `player` from the content of one see message.
 
@@ -72,6 +73,8 @@ def percept_from_see(
         observed_tick: Cycle whose state the see shows.
         heard: Messages heard since the previous percept.
         cycle_s: Cycle length [s], to turn per-cycle changes into per-second rates.
+        neck_rad: The player's neck angle when the see was sampled [rad], CCW: the see's
+            directions are relative to the head (body + neck), and the percept says so.
     """
     ball: SeenBall | None = None
     seen: list[SeenPlayer] = []
@@ -88,7 +91,7 @@ def percept_from_see(
             seen.append(SeenPlayer(obj.distance, _angle(obj.direction), obj.team, obj.unum))
         elif (kind == "f" or kind == "g") and len(name) > 1:
             marks.append(SeenLandmark(name, obj.distance, _angle(obj.direction)))
-    return Percept(player, tick, observed_tick, ball, tuple(seen), heard, tuple(marks))
+    return Percept(player, tick, observed_tick, ball, tuple(seen), heard, tuple(marks), neck_rad)
 
 
 def heard_from_hear(info: HearInfo, listener: PlayerRef) -> Heard | None:
@@ -123,6 +126,7 @@ def percept_from_state(
     tick: int,
     heard: tuple[Heard, ...] = (),
     landmarks: LandmarkMode = "goals",
+    neck: Sequence[float] | None = None,
 ) -> Percept:
     """The structured fast path: the percept a see at `time` gives, without any text.
 
@@ -131,7 +135,14 @@ def percept_from_state(
     picks what the percept's landmarks hold: ``"goals"`` (default, cheap), ``"all"`` flags and
     goals, or ``"none"``. It draws the same random numbers as the full see, so for the same
     generator state it equals the text route's percept (restricted to the same landmarks).
+    `neck` (per row, CCW; None: all 0) turns the view, and the percept carries the
+    observer's neck angle.
     """
-    info = observe(observer, x, y, vx, vy, heading, players, time, params, rng, landmarks=landmarks)
+    info = observe(
+        observer, x, y, vx, vy, heading, players, time, params, rng, landmarks=landmarks, neck=neck
+    )
     cycle_s = params.simulator_step_ms / 1000.0
-    return percept_from_see(info, players[observer - 1], tick, time, heard, cycle_s=cycle_s)
+    neck_rad = 0.0 if neck is None else neck[observer]
+    return percept_from_see(
+        info, players[observer - 1], tick, time, heard, cycle_s=cycle_s, neck_rad=neck_rad
+    )

@@ -362,7 +362,9 @@ class _Builder:
         out: list[Percept] = []
         for k, row in enumerate(self.layout.observers.tolist()):
             ball, others, marks = self.objects(k, pairs, qds, draws)
-            out.append(_make_percept(players[row - 1], time, time, ball, others, heard[k], marks))
+            out.append(
+                _make_percept(players[row - 1], time, time, ball, others, heard[k], marks, 0.0)
+            )
         return out
 
     def objects(

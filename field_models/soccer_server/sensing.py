@@ -41,8 +41,9 @@ and the goals come out the same in every mode that shows them.
 
 Choices: 1996 sees carry no changes and use a reduced landmark set (``SensingParams``
 fields ``report_changes``, ``landmark_set``); see timing follows the server's asynchronous
-timer (synch-see mode is not modelled); the neck angle is always 0 (the 1996 servers had no
-neck and our action set has no ``turn_neck``); player entries never carry a pointing
+timer (synch-see mode is not modelled); the view points along body + neck (``observe``'s
+`neck`, 0 where left out: the 1996 servers had no neck), and a seen player's head direction is
+its body + neck relative to the observer's view; player entries never carry a pointing
 direction, goalie or tackle mark. The flag loop, the costliest part of a full see, is written
 out inline.
 
@@ -148,6 +149,7 @@ def observe(
     rng: Rng,
     *,
     landmarks: LandmarkMode = "all",
+    neck: Sequence[float] | None = None,
 ) -> SeeInfo:
     """What player row `observer` sees now: the content of its see message (§3).
 
@@ -165,6 +167,9 @@ def observe(
         landmarks: ``"all"`` flags, goals and lines (the full message); ``"goals"`` only the
             goals; ``"none"`` no landmarks. Every mode gives the same ball, players and goals
             (same random numbers); the lean ones cost a fraction of the full see.
+        neck: Per-object neck angle relative to the body [rad], CCW (None: every neck is 0).
+            The observer looks along heading + neck (§3.1): every direction is relative to
+            that, and a seen player's head direction is its own heading + neck.
 
     Returns:
         The objects in message order: flags and goals, ball, players, lines.
@@ -177,6 +182,8 @@ def observe(
     ox, osy = x[observer], -y[observer]
     ovx, ovy = vx[observer], -vy[observer]
     oth = -heading[observer]
+    if neck is not None and neck[observer] != 0.0:  # a zero neck leaves every number as it was
+        oth = -wrap_angle(heading[observer] + neck[observer])
     draws = rng.random(1 + 2 * n).tolist()
     objects: list[SeenObject] = []
     if landmarks not in LANDMARK_MODES:
@@ -198,6 +205,7 @@ def observe(
             players[row - 1],
             draws[2 * row - 1],
             draws[2 * row],
+            0.0 if neck is None else -neck[row],
         )
         if seen is not None:
             objects.append(seen)
@@ -339,8 +347,12 @@ def _see_player(
     who: PlayerRef,
     u_team: float,
     u_unum: float,
+    its_neck: float = 0.0,
 ) -> SeenObject | None:
-    """Another player (``sendHighPlayer`` / ``sendLowPlayer``); `me`/`it` = (x, y, vx, vy, th)."""
+    """Another player (``sendHighPlayer`` / ``sendLowPlayer``); `me`/`it` = (x, y, vx, vy, th).
+
+    `its_neck` is the seen player's neck angle in the server's sign (its head is th + neck).
+    """
     ox, oy, ovx, ovy, oth = me
     px, py, pvx, pvy, pth = it
     dx, dy = px - ox, py - oy
@@ -365,7 +377,12 @@ def _see_player(
     dist_chg, dir_chg = see_changes(c, dx, dy, pvx - ovx, pvy - ovy, d, qd)
     rel = wrap_angle(pth - oth)
     body = see_direction(c, rel) if c.body else None
-    head = body if c.head else None  # no neck: head = body
+    if not c.head:
+        head = None
+    elif its_neck == 0.0:
+        head = body
+    else:
+        head = see_direction(c, wrap_angle(pth + its_neck - oth))
     return SeenObject("p", qd, direction, dist_chg, dir_chg, who.team, who.number, body, head)
 
 

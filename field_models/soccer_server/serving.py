@@ -100,7 +100,7 @@ class ServedGame(CommandHandling):
         assert client.ref is not None and client.sensing is not None
         info = observe(
             m.row(client.ref), m.x, m.y, m.vx, m.vy, m.heading, m.players, m.cycle,
-            client.sensing, self._see_rng, landmarks="all",
+            client.sensing, self._see_rng, landmarks="all", neck=m.neck,
         )  # fmt: skip
         return render_see(self._named(info), client.sensing.protocol_version)
 

@@ -2,8 +2,9 @@
 
 Every command a client sends after joining (rcssserver 19.0.0's ``src/player.cpp``,
 ``src/coach.cpp``, ``src/monitor.cpp``): a player's body commands (the first of a cycle wins),
-``say``, ``move``, ``change_view``, ``sense_body``, ``score``, ``done``, ``bye``; the trainer's
-``move``, ``change_mode``, ``look``, ``eye``, ``ear``, ``recover``, ``start``, ``check_ball``,
+``say``, ``turn_neck`` (the first of a cycle wins), ``move``, ``change_view``, ``sense_body``,
+``score``, ``done``, ``bye``; the trainer's ``move``, ``change_mode``, ``look``, ``eye``,
+``ear``, ``recover``, ``start``, ``check_ball``,
 ``team_names``, ``say``, ``done``; a monitor's ``dispstart`` and ``dispbye``. What the model does
 not have is answered ``(error unknown_command)``, a malformed command
 ``(error illegal_command_form)`` or the server's more specific error; nothing raises out of
@@ -16,7 +17,7 @@ import math
 
 from field_models.commands import CommandParseError
 from field_models.commands import parse_command as parse_action
-from field_models.protocol import LEFT, RIGHT, PlayerRef, Say
+from field_models.protocol import LEFT, RIGHT, PlayerRef, Say, TurnNeck
 from field_models.soccer_server.cycle_rules import PLAY_MODES
 from field_models.soccer_server.hearing import say_allowed
 from field_models.soccer_server.messages import SExpr
@@ -40,7 +41,6 @@ _WIDTHS = ("narrow", "normal", "wide")
 _QUALITIES = ("high", "low")
 NOT_MODELLED = frozenset(
     (
-        "turn_neck",
         "catch",
         "tackle",
         "pointto",
@@ -83,13 +83,17 @@ class CommandHandling(ClientRoster):
 
     def _player_command(self, client: Client, tree: list[SExpr], text: str) -> None:
         name = tree[0]
-        if name in ("turn", "dash", "kick", "say"):
+        if name in ("turn", "dash", "kick", "say", "turn_neck"):
             try:
                 action = parse_action(text)
             except CommandParseError as exc:
                 raise CommandError(ILLEGAL_FORM, exc.reason) from None
             if isinstance(action, Say):
                 self._say(client, action.text)
+            elif isinstance(action, TurnNeck):
+                assert client.ref is not None
+                if self.model.turn_neck(self.model.row(client.ref), action.angle_rad):
+                    client.counts[COUNTERS.index("turn_neck")] += 1
             elif client.pending is None:
                 client.pending = action  # the first body command of a cycle wins (§1.1)
         elif name == "move":

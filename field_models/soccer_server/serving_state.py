@@ -219,6 +219,7 @@ class GameState:
             *_INITIAL_STAMINA[:2],
             _INITIAL_STAMINA[2],
             tuple(client.counts),
+            m.neck[row],
         )
         return render_sense_body(self.time, client.version, sense)
 

@@ -344,11 +344,12 @@ class BodySense:
 
     Attributes:
         vx, vy: The player's stored velocity [m/cycle], our frame.
-        heading: Body angle [rad], our frame (the head is the body: no neck).
+        heading: Body angle [rad], our frame.
         quality, width: The view mode (``high``/``low``, ``narrow``/``normal``/``wide``).
         stamina, effort, capacity: Reported as the server's initial values (not modelled).
         counts: Commands carried out: kick, dash, turn, say, turn_neck, catch, move,
             change_view, change_focus (in that order).
+        neck: Neck angle relative to the body [rad], our frame (``head_angle``).
     """
 
     vx: float
@@ -360,6 +361,7 @@ class BodySense:
     effort: float
     capacity: float
     counts: tuple[int, ...]
+    neck: float = 0.0
 
 
 def render_sense_body(time: int, version: float, s: BodySense) -> str:
@@ -374,12 +376,12 @@ def render_sense_body(time: int, version: float, s: BodySense) -> str:
     shown = round(speed * 100.0) / 100.0  # the server quantises the speed to 0.01
     if v >= 6:
         # Direction of motion relative to the head, server sign (y down): our angle negated.
-        rel = 0.0 if speed == 0.0 else math.atan2(s.vy, s.vx) - s.heading
+        rel = 0.0 if speed == 0.0 else math.atan2(s.vy, s.vx) - (s.heading + s.neck)
         rel = (rel + math.pi) % (2.0 * math.pi) - math.pi
         parts.append(f"(speed {_g(shown)} {round(-rel * _RAD2DEG) + 0})")
     else:
         parts.append(f"(speed {_g(shown)})")
-    parts.append("(head_angle 0)")
+    parts.append(f"(head_angle {round(-s.neck * _RAD2DEG) + 0})")
     kick, dash, turn, say, neck, catch, move, view, focus = s.counts
     parts.append(f"(kick {kick}) (dash {dash}) (turn {turn}) (say {say})")
     if v >= 6:

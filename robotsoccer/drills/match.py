@@ -55,7 +55,7 @@ from robotsoccer.skills.intercept import (
 from robotsoccer.skills.layer3 import TpotBallPolicy
 from robotsoccer.skills.passing import Chooser, PassEvaluator
 from robotsoccer.skills.team import TeamMind
-from robotsoccer.skills.team_setup import TeamSetup
+from robotsoccer.skills.team_setup import LOOK_MODES, TeamSetup
 
 HALF_TIME_S = 300.0
 """One half [s]: rcssserver's ``half_time`` (3000 cycles)."""
@@ -100,10 +100,13 @@ class MatchDrill(LayeredDrill):
         steady_turns: The minds reckon their turns into the heading between landmark fixes and
             do not turn back within a short hold (:attr:`~robotsoccer.skills.team_setup.TeamSetup.
             steady_turns`); False (default): the 1996 client's turning.
+        look: How the minds look (:data:`~robotsoccer.skills.team_setup.LOOK_MODES`):
+            ``body`` (default, the paper's client) or ``neck``: with the neck and view modes
+            (:mod:`robotsoccer.skills.team_look`), with the steady turns' rules besides.
 
     Raises:
         ValueError: An unknown team kind, a layered team without its model files, an unknown
-            team size, a half <= 0.
+            team size, a half <= 0, an unknown look.
     """
 
     name: str = "match"
@@ -119,6 +122,7 @@ class MatchDrill(LayeredDrill):
         half_time_s: float | str = HALF_TIME_S,
         transfer: bool | str = False,
         steady_turns: bool | str = False,
+        look: str = "body",
         tpot: str = "",
         explore: float | str = 0.0,
         learn: bool | str = False,
@@ -126,7 +130,10 @@ class MatchDrill(LayeredDrill):
         tpot_success: float | str = PASS_THRESHOLD,
         tpot_window: str = WINDOW_CHOICE,
     ) -> None:
-        self.steady_turns = flag("steady_turns", steady_turns)
+        if look not in LOOK_MODES:
+            raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {look!r}")
+        self.look = look
+        self.steady_turns = flag("steady_turns", steady_turns) or look == "neck"
         self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
         layered = bool({TeamKind.LAYERED, TeamKind.LAYER3} & set(self.kinds.values()))
         if layered and not (net and tree):
@@ -307,7 +314,7 @@ class MatchDrill(LayeredDrill):
 
     def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:
         """One team's plan on this field (module docstring)."""
-        return team_setup(facts, self.plan(facts), n, team, self.steady_turns)
+        return team_setup(facts, self.plan(facts), n, team, self.steady_turns, self.look)
 
     # ------------------------------------------------------------------ the coach
 

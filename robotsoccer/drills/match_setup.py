@@ -65,7 +65,12 @@ CARRY_SHARE = 0.6
 
 
 def team_setup(
-    facts: FieldFacts, plan: LaunchPlan, n: int, team: str, steady_turns: bool
+    facts: FieldFacts,
+    plan: LaunchPlan,
+    n: int,
+    team: str,
+    steady_turns: bool,
+    look: str = "body",
 ) -> TeamSetup:
     """One team of `n`'s plan on this field: homes, ranges, powers, the goalie's stance.
 
@@ -99,6 +104,7 @@ def team_setup(
         sensor_period_s=facts.sensor_period_s,
         ball_law=facts.ball,
         steady_turns=steady_turns,
+        look=look,
         push_kick=push,
         # The nearest a shot of layer 1's goal-mouth drill is at its trigger: the nearest
         # start, less the flight at the players' top speed (its fastest shot) during the

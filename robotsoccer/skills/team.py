@@ -71,6 +71,7 @@ import math
 from field_models.protocol import Action, Percept, Turn
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.team_ball import BallMind
+from robotsoccer.skills.team_look import look_target
 from robotsoccer.skills.team_setup import (
     CHASE_MARGIN_UNITS,
     REVERSE_HOLD_TICKS,
@@ -99,7 +100,21 @@ class TeamMind(BallMind):
     """
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
-        """One decision (module docstring), its turns remembered until percepts show them."""
+        """One decision (module docstring), its turns remembered until percepts show them.
+
+        Looking with the neck (:attr:`TeamSetup.look`), the mind reasons on the percept with
+        its directions from the body, and adds the neck turn and view of
+        :mod:`robotsoccer.skills.team_look` to the body's decision.
+        """
+        if self.setup.look != "neck":
+            return self._act(percept)
+        percept = self.head.sensed(percept)
+        actions = self._act(percept)
+        target = look_target(percept, self.localiser.pose, self._ball_xy, self._seen_tick)
+        return self.head.look(actions, target)
+
+    def _act(self, percept: Percept) -> tuple[Action, ...]:
+        """The body's decision on this percept (module docstring)."""
         if percept.observed_tick < self._hold_until:
             # The last turn is not over in what this percept shows (the robots' camera latency
             # and spin-up): deciding again would turn twice and swing about. The body goes on

@@ -19,6 +19,7 @@ from robotsoccer.skills.lead import (
 )
 from robotsoccer.skills.localise import Localiser, Pose
 from robotsoccer.skills.passing import PassEvaluator
+from robotsoccer.skills.team_look import NeckLook
 from robotsoccer.skills.team_setup import (
     FACING_RAD,
     MEET_SPEED_MPS,
@@ -73,6 +74,7 @@ class MindBase:
         self._lead_s: float | None = None  # the lead held while meeting a ball (pushing teams)
         self._held_lead: float | None = None  # ... as the last decision left it
         self._sighted_tick = -1  # the frame of the ball's last sighting on its track
+        self.head = NeckLook()  # its neck and view, when it looks with them (setup.look)
 
     def _meets(self, pose: Pose, ball_xy: tuple[float, float]) -> bool:
         """The ball rolls at the player and toward the player's own end (a shot, a clearance)."""

@@ -16,6 +16,7 @@ from robotsoccer.skills.lead import (
 )
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.team_base import MindBase
+from robotsoccer.skills.team_look import BACK_STEP_TOLERANCES, LOOK_COVER_RAD
 from robotsoccer.skills.team_setup import (
     BALL_SHIFT_X,
     BALL_SHIFT_Y,
@@ -98,10 +99,17 @@ class ChaseMind(MindBase):
             far = math.hypot(dx, dy) > tolerance
         if far:
             angle = wrap_angle(math.atan2(dy, dx) - pose.heading)
+            power = 80.0
+            near = math.hypot(dx, dy) <= BACK_STEP_TOLERANCES * tolerance
+            if self.setup.look == "neck" and near and abs(angle) > 0.5 * math.pi:
+                # A short step back: backwards, the smaller turn (the neck keeps the ball).
+                angle, power = wrap_angle(angle - math.pi), -power
             if abs(angle) > 2.0 * FACING_RAD:
-                return (Turn(angle), Dash(80.0))
-            return (Dash(80.0),)
-        if ball is not None and abs(ball.angle_rad) > FACING_RAD:
+                return (Turn(angle), Dash(power))
+            return (Dash(power),)
+        # Home: face the ball; looking with the neck, only when the head cannot keep it in view.
+        facing = LOOK_COVER_RAD if self.setup.look == "neck" else FACING_RAD
+        if ball is not None and abs(ball.angle_rad) > facing:
             return (Turn(ball.angle_rad),)
         return ()
 
@@ -129,6 +137,10 @@ class ChaseMind(MindBase):
             # a frame is a missed detection (specs/robot_physics.md), not a ball out of view.
             # Turning to look for it would turn away from play; the body keeps its command.
             return ()
+        if self.setup.look == "neck" and pose is not None and not (self.chasing and recent):
+            # The neck looks for the ball (team_look); the body walks home meanwhile. A chaser
+            # that lost the ball a moment ago goes after where it was, as below.
+            return self._go_home(percept, pose)
         if self.setup.steady_turns and recent and not self.chasing and pose is not None:
             # Steady turns: a player that turned away from the ball to go home trusts where it
             # saw it, and goes on home rather than turning back to look (and away again).

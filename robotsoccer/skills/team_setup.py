@@ -17,6 +17,8 @@ from field_models.protocol import Action, Percept
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.setplay import KickPowers
 
+LOOK_MODES = ("body", "neck")
+"""How a team mind looks (:attr:`TeamSetup.look`)."""
 REVERSE_HOLD_TICKS = 10
 """With steady turns, a turn the other way within this many ticks of the last needs ..."""
 REVERSE_MIN_RAD = math.radians(60.0)
@@ -122,6 +124,10 @@ class TeamSetup:
         goal_width_m: The goal's width [m] (a pushing team's goalie meets shots on target).
         turn_tolerance_rad: Meeting a ball, turns smaller than this are left out (layer 1's
             drill: three sigmas of the sensor's heading noise) [rad].
+        look: ``"body"``: the player looks where its body points (the paper's client, no
+            neck). ``"neck"`` (issue 28; with :attr:`steady_turns`): it looks with its neck and
+            view modes (:mod:`robotsoccer.skills.team_look`); a player off the ball keeps its
+            body pointed where it walks, and one that sees no ball walks home while it scans.
     """
 
     attack_right: bool
@@ -153,6 +159,11 @@ class TeamSetup:
     player_radius_m: float = 0.0
     goal_width_m: float = 0.0
     turn_tolerance_rad: float = 0.0
+    look: str = "body"
+
+    def __post_init__(self) -> None:
+        if self.look not in LOOK_MODES:
+            raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {self.look!r}")
 
     def turn_ticks(self, angle_rad: float) -> int:
         """Ticks until a percept shows a turn by `angle_rad` done: latency plus the spin.

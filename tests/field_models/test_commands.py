@@ -10,7 +10,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from field_models.commands import CommandParseError, parse_command, render_command
-from field_models.protocol import Dash, Kick, Say, Turn
+from field_models.protocol import ChangeView, Dash, Kick, Say, Turn, TurnNeck
 
 
 @pytest.mark.parametrize(
@@ -24,6 +24,9 @@ from field_models.protocol import Dash, Kick, Say, Turn
         ("(say hello world)", Say("hello world")),
         ('(say "pass (now)")', Say("pass (now)")),
         ("  (dash -30)\0", Dash(-30.0)),
+        ("(turn_neck 30)", TurnNeck(-math.radians(30))),
+        ("(change_view wide low)", ChangeView("wide", "low")),
+        ("(change_view narrow)", ChangeView("narrow", "high")),  # the server's default quality
     ],
 )
 def test_client_commands_parse_into_our_frame(text: str, action: object) -> None:
@@ -37,7 +40,16 @@ def test_client_commands_parse_into_our_frame(text: str, action: object) -> None
 
 @pytest.mark.parametrize(
     "action",
-    [Turn(0.5), Turn(-3.0), Dash(100.0), Dash(60.0, -math.pi / 2), Kick(80.0, 0.4), Say("hi")],
+    [
+        Turn(0.5),
+        Turn(-3.0),
+        Dash(100.0),
+        Dash(60.0, -math.pi / 2),
+        Kick(80.0, 0.4),
+        Say("hi"),
+        TurnNeck(-1.2),
+        ChangeView("normal", "low"),
+    ],
 )
 def test_render_and_parse_round_trip_to_the_printed_precision(action: object) -> None:
     text = render_command(action)  # type: ignore[arg-type]
@@ -57,6 +69,10 @@ def test_render_and_parse_round_trip_to_the_printed_precision(action: object) ->
         ("(turn nan)", "not a finite number"),
         ("(say)", "say without a message"),
         ("(say  )", "say without a message"),
+        ("(turn_neck)", "expected 1"),
+        ("(change_view)", "expected 1 or 2"),
+        ("(change_view huge)", "view width 'huge'"),
+        ("(change_view wide medium)", "view quality 'medium'"),
     ],
 )
 def test_bad_command_text_is_refused_with_the_reason(text: str, why: str) -> None:
@@ -80,3 +96,11 @@ def test_a_quoted_say_with_a_leading_space_round_trips() -> None:
     assert said == Say(" x")
     assert parse_command(render_command(said)) == said
     assert render_command(Say("hi")) == "(say hi)"  # bare where that is safe, as before
+
+
+def test_neck_and_view_commands_print_as_the_server_reads_them() -> None:
+    assert render_command(TurnNeck(math.radians(30))) == "(turn_neck -30)"
+    assert render_command(ChangeView("wide", "high")) == "(change_view wide high)"
+    assert parse_command("(change_view wide high)") == ChangeView("wide", "high")
+    with pytest.raises(ValueError, match="view width 'huge': expected one of"):
+        ChangeView("huge")

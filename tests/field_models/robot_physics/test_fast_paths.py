@@ -40,7 +40,7 @@ REFS = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1), PlayerRef(LEFT, 2))
         (SeenPlayer, (1.25, -0.5, "left", 3)),
         (SeenBall, (0.75, 2.0, None, None)),
         (SeenLandmark, ("g r", 4.5, 0.125)),
-        (Percept, (REFS[0], 12, 4, SeenBall(1.0, 0.5), (SeenPlayer(2.0, 0.1),), (), ())),
+        (Percept, (REFS[0], 12, 4, SeenBall(1.0, 0.5), (SeenPlayer(2.0, 0.1),), (), (), 0.0)),
         (Command, (7, REFS[1], Primitive.TURN, 1.5, 24, 3, 0.0)),
         (RobotDetection, (REFS[2], 0.1, -0.2, 3.0)),
         (Frame, (8, 12, None, ())),

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from field_models.protocol import LEFT, RIGHT, Dash, Kick, PlayerRef, Say, Turn
+from field_models.protocol import LEFT, RIGHT, Action, Dash, Kick, PlayerRef, Say, Turn
 from field_models.robot_physics.camera import BallDetection, Frame, RobotDetection
 from field_models.robot_physics.config import KickerConfig, RobotPhysicsPreset, load_preset
 from field_models.robot_physics.firmware import Firmware
@@ -464,3 +464,28 @@ def test_wheels_go_out_at_once_held_and_replace_the_pending_actions() -> None:
     assert (c.primitive, c.value, c.rate) == (Primitive.WHEELS, 0.2, -0.1)
     assert c.duration_ticks == 2 * PERIOD and host.pending(A) == ()
     assert "WHEELS +0.20 -0.10 m/s" in host.drain_events()[-1].text
+
+
+def test_robots_accept_and_ignore_a_neck_turn_and_a_view_change() -> None:
+    """An overhead camera has no head to turn (host docstring): the same client runs on both."""
+    from field_models.protocol import ChangeView, TurnNeck
+    from field_models.registry import make_arena
+    from field_models.seeding import TrialRngs
+
+    def history(extra: tuple[Action, ...]) -> list[object]:
+        arena = make_arena("robot_physics", "small_size_1997", (A, C), TrialRngs.for_trial(3, 0))
+        arena.place_player(A, 0.0, 0.0, 0.0)
+        arena.place_player(C, 0.5, 0.5, 0.0)
+        out: list[object] = []
+        for tick in range(60):
+            for percept in arena.step():
+                assert percept.neck_rad == 0.0
+                out.append(percept)
+                if percept.player == A and tick % 7 == 0:
+                    arena.submit(A, (Turn(0.4), *extra, Dash(60.0)))
+                elif percept.player == A and tick % 7 == 3:
+                    arena.submit(A, extra)  # a decision of only these is no decision
+            out.append(arena.truth())
+        return out
+
+    assert history((TurnNeck(0.5), ChangeView("wide", "low"))) == history(())

@@ -73,13 +73,19 @@ def test_player_commands_move_the_model_and_unmodelled_ones_are_answered() -> No
     g.receive(trainer, "(move (player T 1) -10 0 0)(move (ball) -9 0)")
     g.drain()
     g.receive(a, "(kick 100 0)(dash 100)")  # the first body command of a cycle wins
-    g.receive(a, "(turn_neck 30)")
+    g.receive(a, "(turn_neck 30)(turn_neck 50)")  # goes with the kick; the first one wins
+    g.receive(a, "(catch 0)")
     assert texts(g, a) == ["(error unknown_command)"]
     g.step()
     ball, _ = g.truth()
     assert ball.x > -9.0 + 2.0  # kicked
     sense = [t for t in texts(g, a) if t.startswith("(sense_body")]
     assert "(kick 1) (dash 0)" in sense[0]
+    assert "(head_angle 30)" in sense[0] and "(turn_neck 1)" in sense[0]
+    g.receive(a, "(turn_neck 100)")  # the neck stops at maxneckang
+    g.step()
+    sense = [t for t in texts(g, a) if t.startswith("(sense_body")]
+    assert "(head_angle 90)" in sense[0] and "(turn_neck 2)" in sense[0]
 
 
 def test_trainer_move_look_and_modes_follow_the_server_frame() -> None:
