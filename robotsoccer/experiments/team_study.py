@@ -461,6 +461,13 @@ def run_team_study(
     """Train (or take `table`), plot, play the series; write ``<out>/report.md``."""
     base = base.with_options(**plan.drill_options())
     lines = [f"## Layer 3: TPOT-RL on {base.field_model} ({plan.name} plan), seed {base.seed}", ""]
+    if plan.guard or plan.loss:
+        lines += [
+            f"Rule: every spell on the ball, SUCCESS cut {plan.success:g}, reward window "
+            f"`{plan.window}`, shot-range guard {'on' if plan.guard else 'off'}, loss penalty "
+            f"{plan.loss:g} (`robotsoccer/skills/layer3.py`).",
+            "",
+        ]
     if table is None:
         log(f"training: {plan.training_games} games against the baseline")
         training = train(base, plan, out, workers=workers, log=log)
