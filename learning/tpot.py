@@ -270,6 +270,17 @@ def reward(
     return -Q_MAX * (x0 - mean) / span if span > 0.0 else 0.0
 
 
+def loss_penalty(penalty: float, lost_after_s: float, horizon_s: float = HORIZON_S) -> float:
+    """What the opponents' gaining the ball `lost_after_s` after an action costs it.
+
+    ``penalty * (1 - t / horizon)``: a ball lost at once costs the whole `penalty`, one lost
+    at the window's end nothing (a loss long after the action says little about it).
+    """
+    if penalty < 0.0 or horizon_s <= 0.0:
+        raise ValueError(f"penalty must be >= 0 and horizon_s > 0, got {penalty}, {horizon_s}")
+    return penalty * max(0.0, 1.0 - max(lost_after_s, 0.0) / horizon_s)
+
+
 def epsilon_at(game: int, games: int, start: float, end: float) -> float:
     """The exploration rate of training game `game` of `games`: linear from start to end."""
     if games < 1 or not 0 <= game < games:

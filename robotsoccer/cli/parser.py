@@ -172,6 +172,26 @@ def build_parser() -> argparse.ArgumentParser:
         "studies') or horizon (only at 30 s, a goal or play stopping: TPOT-RL's fixed window)",
     )
     team.add_argument(
+        "--shot-guard",
+        action="store_true",
+        help="with --every: the goal is a shot only within the teams' shooting range, beyond "
+        "it an advance toward the goal (a pass toward it, else a dribble)",
+    )
+    team.add_argument(
+        "--loss-penalty",
+        type=float,
+        default=0.0,
+        help="reward possession: an opponent's touch closes a choice's reward, which loses up "
+        "to this much (0..1; default 0: the ball's advance alone)",
+    )
+    team.add_argument(
+        "--games-per-round",
+        type=_positive_int,
+        default=None,
+        help="training games that share one table before it learns from them (default 4); "
+        "up to this many play at once, so a many-core machine needs it at least its workers",
+    )
+    team.add_argument(
         "--training-games",
         type=_positive_int,
         default=None,

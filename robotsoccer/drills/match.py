@@ -13,7 +13,9 @@ table instead (:mod:`robotsoccer.skills.layer3`, option ``tpot``: the table file
 its exploration rate; ``learn``: record its rewards as the trial's data, for training;
 ``tpot_every``: it decides on every spell on the ball, shot and dribble included, TPOT-RL's own
 rule; ``tpot_success``: the tree's least confidence for e = SUCCESS; ``tpot_window``: when its
-rewards close, ``choice`` or ``horizon``).
+rewards close, ``choice`` or ``horizon``; ``tpot_guard``: the goal is a shot only within the
+teams' shooting range; ``tpot_loss``: the penalty of a ball the opponents gain, which also
+closes a reward: the coach relays each new opponent touch).
 
 **Size.** ``players`` per side: by default 11 on an open field (the Soccer Server) and 5 on a
 walled table (the robots). Formation homes are in units
@@ -97,6 +99,9 @@ class MatchDrill(LayeredDrill):
         tpot_window: When layer 3's rewards close (:data:`learning.tpot.REWARD_WINDOWS`):
             ``choice`` (also at the player's next choice) or ``horizon`` (only at the horizon,
             a goal, play stopping or full time).
+        tpot_guard: Layer 3's shot-range guard (needs ``tpot_every``): the goal destination is
+            a shot only within the teams' shooting range.
+        tpot_loss: Layer 3's loss penalty in [0, 1] (0: the ball's advance alone).
         steady_turns: The minds reckon their turns into the heading between landmark fixes and
             do not turn back within a short hold (:attr:`~robotsoccer.skills.team_setup.TeamSetup.
             steady_turns`); False (default): the 1996 client's turning.
@@ -129,6 +134,8 @@ class MatchDrill(LayeredDrill):
         tpot_every: bool | str = False,
         tpot_success: float | str = PASS_THRESHOLD,
         tpot_window: str = WINDOW_CHOICE,
+        tpot_guard: bool | str = False,
+        tpot_loss: float | str = 0.0,
     ) -> None:
         if look not in LOOK_MODES:
             raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {look!r}")
@@ -150,6 +157,10 @@ class MatchDrill(LayeredDrill):
             known = ", ".join(REWARD_WINDOWS)
             raise ValueError(f"tpot_window must be one of {known}, got {tpot_window!r}")
         self.tpot_window = tpot_window
+        self.tpot_guard = flag("tpot_guard", tpot_guard)
+        if self.tpot_guard and not self.tpot_every:
+            raise ValueError("tpot_guard needs tpot_every (the goal is a shot only then)")
+        self.tpot_loss = bounded("tpot_loss", _number("tpot_loss", tpot_loss), 0.0, 1.0)
         self.policies: dict[str, TpotBallPolicy] = {}
         self._tick = 0
         self.net = net if layered else ""
@@ -310,6 +321,8 @@ class MatchDrill(LayeredDrill):
             shot_power=setup.powers.shot,
             dribble_power=setup.powers.dribble,
             window=self.tpot_window,
+            shot_guard=self.tpot_guard,
+            loss_penalty=self.tpot_loss,
         )
 
     def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:
@@ -339,6 +352,12 @@ class MatchDrill(LayeredDrill):
             for ball_policy in self.policies.values():
                 ball_policy.stopped(arena.tick)
         holder = referee.last_touch
+        if self.policies and holder is not None and holder != before:
+            # A new touch (the possession count's rule): the other team lost the ball, which
+            # closes its layer 3's rewards when they value possession (TpotBallPolicy.lost).
+            for team, ball_policy in self.policies.items():
+                if team != holder.team:
+                    ball_policy.lost(arena.tick)
         if holder is not None:
             self._possession[holder.team] += 1
             if before is not None and holder != before and holder.team == before.team:

@@ -93,6 +93,11 @@ class TeamPlan:
         window: When a reward closes (drill option ``tpot_window``,
             :data:`learning.tpot.REWARD_WINDOWS`): ``choice`` (the first studies') or
             ``horizon`` (Stone & Veloso 1999's fixed window after the action).
+        guard: The shot-range guard (drill option ``tpot_guard``; needs ``every``): the goal
+            destination is a shot only within the teams' shooting range, else an advance
+            toward the goal (:mod:`robotsoccer.skills.layer3`).
+        loss: The loss penalty of the possession reward (drill option ``tpot_loss``; 0: the
+            ball's advance alone, the first studies').
     """
 
     name: str
@@ -107,6 +112,8 @@ class TeamPlan:
     every: bool = False
     success: float = 0.5
     window: str = WINDOW_CHOICE
+    guard: bool = False
+    loss: float = 0.0
 
     def __post_init__(self) -> None:
         if self.training_games < 1 or self.games_per_round < 1 or self.series_games < 0:
@@ -115,18 +122,31 @@ class TeamPlan:
             raise ValueError("curve_block must be >= 1")
         if not 0.0 <= self.success <= 1.0:
             raise ValueError(f"success must be in [0, 1], got {self.success}")
+        if self.guard and not self.every:
+            raise ValueError("the shot-range guard needs every (the goal is a shot only then)")
+        if not 0.0 <= self.loss <= 1.0:
+            raise ValueError(f"loss must be in [0, 1], got {self.loss}")
         if self.window not in REWARD_WINDOWS:
             raise ValueError(
                 f"window must be one of {', '.join(REWARD_WINDOWS)}, got {self.window!r}"
             )
 
     def drill_options(self) -> dict[str, Any]:
-        """The match drill's layer-3 options this plan plays with."""
-        return {
+        """The match drill's layer-3 options this plan plays with.
+
+        The guard and the loss penalty are named only when set, so the earlier studies' specs
+        stay as they were.
+        """
+        options: dict[str, Any] = {
             "tpot_every": self.every,
             "tpot_success": self.success,
             "tpot_window": self.window,
         }
+        if self.guard:
+            options["tpot_guard"] = True
+        if self.loss:
+            options["tpot_loss"] = self.loss
+        return options
 
     @property
     def rounds(self) -> int:
@@ -441,6 +461,13 @@ def run_team_study(
     """Train (or take `table`), plot, play the series; write ``<out>/report.md``."""
     base = base.with_options(**plan.drill_options())
     lines = [f"## Layer 3: TPOT-RL on {base.field_model} ({plan.name} plan), seed {base.seed}", ""]
+    if plan.guard or plan.loss:
+        lines += [
+            f"Rule: every spell on the ball, SUCCESS cut {plan.success:g}, reward window "
+            f"`{plan.window}`, shot-range guard {'on' if plan.guard else 'off'}, loss penalty "
+            f"{plan.loss:g} (`robotsoccer/skills/layer3.py`).",
+            "",
+        ]
     if table is None:
         log(f"training: {plan.training_games} games against the baseline")
         training = train(base, plan, out, workers=workers, log=log)

@@ -37,6 +37,17 @@ Two destinations then change meaning so that the choice covers what the layered 
   dribble power, the player keeping the ball (the layered team's dribble is the dribble toward
   the goal, or the centre ahead).
 
+**The shot-range guard** (``shot_guard``, with ``every_ball``): the goal destination is a shot
+only where the layered team would shoot, by the teams' one rule
+(:func:`~robotsoccer.skills.team_setup.in_shooting_range` on
+:func:`~robotsoccer.skills.team_setup.goal_direction`: the goal's flag, else the pose, within
+the team's shooting range); beyond it the destination means *advance toward the goal*, as the
+hand-written team does out of range: a pass to the teammate the tree rates best within
+:data:`SECTOR_RAD` of the goal's direction (SUCCESS or FAILURE), else a dribble toward the goal
+(MISS, *keep*). Without it a choice of the goal from anywhere was a shot at the shot power
+(the first every-ball studies: 84% of their goal choices were such long shots). The corners
+and the other destinations are passes or keeps with or without the guard.
+
 The SUCCESS cut (``threshold``) is then a study setting: with the layered team's 0.5 the tree
 rated every pass it was asked about at least 0.5 (FAILURE never occurred, |U| = 2 in effect);
 the study sets it where FAILURE does occur (:mod:`robotsoccer.experiments.team_study`).
@@ -55,6 +66,17 @@ The reward is fixed by a goal (the referee's call, which rcssserver sends to eve
   by play stopping (the referee's call of a restart: :meth:`TpotBallPolicy.stopped`), as the
   ball's place after a restart says nothing about the kick before it.
 
+**Possession** (``loss_penalty`` > 0; 0 is the ball's advance alone, the earlier studies'):
+the opponents' gaining the ball also closes a window: the match drill relays each new touch of
+the ball by an opponent (the coach's possession rule, the one its possession share counts:
+the player nearest the ball within control reach touched it; :meth:`TpotBallPolicy.lost`),
+and the reward is then the ball's advance over the player's sightings up to that moment, less
+:func:`learning.tpot.loss_penalty`, ``loss_penalty * (1 - t / HORIZON_S)`` for a loss t after
+the action, clipped to ``[-1, +1]``. So a kick pays for the ground the team gains *while it keeps
+the ball*, and a kick the opponents pick up at once costs up to ``loss_penalty`` (TPOT-RL's
+reward is the team's over the window after the action; this adds the team's possession to it).
+A goal within the window still fixes the reward alone.
+
 While learning, each fixed reward becomes an :class:`~learning.tpot.Experience`; the table
 itself changes only between games (the training runner applies the games' experiences in a
 fixed order: results do not depend on how many workers played them).
@@ -72,6 +94,7 @@ from learning.tpot import (
     HORIZON_S,
     MISS,
     N_ACTIONS,
+    Q_MAX,
     REWARD_WINDOWS,
     SUCCESS,
     WINDOW_CHOICE,
@@ -79,11 +102,13 @@ from learning.tpot import (
     TpotTable,
     UniformSource,
     choose,
+    loss_penalty,
     reward,
 )
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.passing import PassEvaluator, view_arrays
 from robotsoccer.skills.setplay import opponent_in_path
+from robotsoccer.skills.team_setup import goal_direction, in_shooting_range
 
 DESTINATIONS: tuple[tuple[str, float, float], ...] = (
     ("goal", 1.0, 0.0),
@@ -124,10 +149,13 @@ class Options:
     Attributes:
         features: e(s, a) per destination.
         directions: Kick direction per destination, relative to the body [rad].
+        shot: The goal destination is a shot now (``every_ball``, and in range under the
+            shot-range guard).
     """
 
     features: tuple[int, ...]
     directions: tuple[float, ...]
+    shot: bool = False
 
 
 @dataclass(slots=True)
@@ -166,9 +194,14 @@ class TpotBallPolicy:
         shot_power: The shot's kick power (``every_ball``).
         dribble_power: The dribble's kick power (``every_ball``: keep).
         window: When a reward closes (module docstring): ``choice`` or ``horizon``.
+        shot_guard: The goal destination is a shot only within the shooting range, else an
+            advance toward the goal (``every_ball``; module docstring).
+        loss_penalty: What the opponents' gaining the ball costs at once, >= 0 (0: the
+            ball's advance alone; module docstring, "Possession").
 
     Raises:
-        ValueError: A table whose actions are not the :data:`DESTINATIONS`; an unknown window.
+        ValueError: A table whose actions are not the :data:`DESTINATIONS`; an unknown window;
+            a negative loss penalty; the guard without ``every_ball``.
 
     Attributes:
         experiences: The fixed rewards, in the order fixed (when learning).
@@ -197,7 +230,13 @@ class TpotBallPolicy:
         shot_power: float = 100.0,
         dribble_power: float = 0.0,
         window: str = WINDOW_CHOICE,
+        shot_guard: bool = False,
+        loss_penalty: float = 0.0,
     ) -> None:
+        if not 0.0 <= loss_penalty <= Q_MAX:
+            raise ValueError(f"loss_penalty must be in [0, {Q_MAX:g}], got {loss_penalty}")
+        if shot_guard and not every_ball:
+            raise ValueError("the shot-range guard needs every_ball (the goal is a shot only then)")
         if window not in REWARD_WINDOWS:
             raise ValueError(f"window must be one of {', '.join(REWARD_WINDOWS)}, got {window!r}")
         if table.actions != N_ACTIONS:
@@ -223,6 +262,8 @@ class TpotBallPolicy:
         self.shot_power = shot_power
         self.dribble_power = dribble_power
         self.window = window
+        self.shot_guard = shot_guard
+        self.loss_penalty = loss_penalty
         self.experiences: list[Experience] = []
         self.choices = [0] * N_ACTIONS
         # Open rewards per player, oldest first (more than one only with the horizon window).
@@ -241,12 +282,22 @@ class TpotBallPolicy:
         scores = {i: self._confidence(percept, i, s) for i, s in mates}
         features: list[int] = []
         directions: list[float] = []
+        shot = self.every_ball
         for action in range(N_ACTIONS):
             dx, dy = destination_xy(
                 action, self.attack_right, self.half_length_m, self.half_width_m
             )
             bearing = wrap_angle(math.atan2(dy - pose.y, dx - pose.x) - pose.heading)
-            if self.every_ball and action == SHOOT_ACTION:
+            if self.every_ball and action == SHOOT_ACTION and self.shot_guard:
+                goal = goal_direction(percept, pose, self.attack_right, (dx, dy))
+                shot = goal is not None and in_shooting_range(goal, self.shoot_range_m)
+                if goal is not None and shot:
+                    blocked = opponent_in_path(percept, goal[1], self.blocked_m)
+                    features.append(FAILURE if blocked else SUCCESS)
+                    directions.append(goal[1])
+                    continue
+                # Out of range: an advance toward the goal, a pass or keep as below.
+            elif self.every_ball and action == SHOOT_ACTION:
                 features.append(self._shot_feature(percept, pose, dx, dy, bearing))
                 directions.append(bearing)
                 continue
@@ -262,7 +313,7 @@ class TpotBallPolicy:
             confidence, seen = max(near, key=lambda c: c[0])
             features.append(SUCCESS if confidence >= self.threshold else FAILURE)
             directions.append(seen.angle_rad)
-        return Options(tuple(features), tuple(directions))
+        return Options(tuple(features), tuple(directions), shot)
 
     def _shot_feature(
         self, percept: Percept, pose: Pose, gx: float, gy: float, bearing: float
@@ -276,7 +327,7 @@ class TpotBallPolicy:
         """(intent, kick) of destination `action` (module docstring: shoot, pass, keep)."""
         name = DESTINATIONS[action][0]
         direction = options.directions[action]
-        if self.every_ball and action == SHOOT_ACTION:
+        if action == SHOOT_ACTION and options.shot:
             return ("tpot shoot", Kick(self.shot_power, direction))
         if self.every_ball and options.features[action] == MISS:
             return (f"tpot keep {name}", Kick(self.dribble_power, direction))
@@ -340,6 +391,18 @@ class TpotBallPolicy:
                 after = (tick - pending.tick) * self.dt_s
                 self._record(pending, 1 if scored else -1, after)
 
+    def lost(self, tick: int) -> None:
+        """An opponent touched the ball at `tick` (the coach's possession rule).
+
+        With a loss penalty this fixes every pending reward as lost (module docstring,
+        "Possession"); without one it changes nothing.
+        """
+        if self.loss_penalty <= 0.0:
+            return
+        for number in sorted(self._pending):
+            for pending in self._pending.pop(number):
+                self._record(pending, 0, (tick - pending.tick) * self.dt_s, lost=True)
+
     def stopped(self, tick: int) -> None:
         """The referee stopped play (a restart); closes every reward with the horizon window.
 
@@ -358,7 +421,7 @@ class TpotBallPolicy:
         for pending in self._pending.pop(number, []):
             self._record(pending, 0, (tick - pending.tick) * self.dt_s)
 
-    def _record(self, pending: _Pending, goal: int, after_s: float) -> None:
+    def _record(self, pending: _Pending, goal: int, after_s: float, lost: bool = False) -> None:
         r = reward(
             pending.x0,
             pending.samples,
@@ -367,6 +430,8 @@ class TpotBallPolicy:
             own_goal_x=-self.half_length_m,
             opponent_goal_x=self.half_length_m,
         )
+        if lost:
+            r = max(-Q_MAX, r - loss_penalty(self.loss_penalty, after_s))
         self.experiences.append(Experience(pending.number, pending.feature, pending.action, r))
 
     def _along(self, xy: tuple[float, float]) -> float:

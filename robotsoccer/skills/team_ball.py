@@ -25,6 +25,8 @@ from robotsoccer.skills.team_setup import (
     MIN_PASS_UNITS,
     PUSH_LINE_SHARE,
     SEARCH_TURN_RAD,
+    goal_direction,
+    in_shooting_range,
 )
 
 
@@ -40,7 +42,7 @@ class BallMind(ChaseMind):
             if layer3 is not None:
                 return layer3
         goal = self._goal_direction(percept, pose)
-        if goal is not None and goal[0] <= setup.shoot_range_m:
+        if goal is not None and in_shooting_range(goal, setup.shoot_range_m):
             self.intent = "shoot"
             if self._spell_kicked != "shoot":
                 self.shots += 1
@@ -85,16 +87,7 @@ class BallMind(ChaseMind):
 
     def _goal_direction(self, percept: Percept, pose: Pose | None) -> tuple[float, float] | None:
         """(distance [m], angle [rad]) of the opponents' goal: seen, else from the pose."""
-        mark = percept.landmark("g r" if self.setup.attack_right else "g l")
-        if mark is not None:
-            return (mark.distance_m, mark.angle_rad)
-        if pose is None:
-            return None
-        gx, gy = self.setup.goal_xy
-        return (
-            math.hypot(gx - pose.x, gy - pose.y),
-            wrap_angle(math.atan2(gy - pose.y, gx - pose.x) - pose.heading),
-        )
+        return goal_direction(percept, pose, self.setup.attack_right, self.setup.goal_xy)
 
     def _choose_receiver(self, percept: Percept, pose: Pose | None) -> tuple[int, float] | None:
         """(number or 0, direction [rad]) of the pass, or None: no one to pass to."""

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from typing import Protocol
 
 from field_models.arena import BallLaw
-from field_models.protocol import Action, Percept
+from field_models.protocol import Action, Percept, wrap_angle
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.setplay import KickPowers
 
@@ -183,3 +183,34 @@ class TeamSetup:
     def own_goal_xy(self) -> tuple[float, float]:
         """The team's own goal centre [m]."""
         return (-self.goal_xy[0], 0.0)
+
+
+def goal_direction(
+    percept: Percept, pose: Pose | None, attack_right: bool, goal_xy: tuple[float, float]
+) -> tuple[float, float] | None:
+    """(distance [m], angle [rad]) of the opponents' goal: its seen flag, else from the pose.
+
+    The flag is the sensor's own reading (``g r`` at +x, ``g l`` at -x); without it the pose
+    gives the way to `goal_xy`; None when neither is known.
+    """
+    mark = percept.landmark("g r" if attack_right else "g l")
+    if mark is not None:
+        return (mark.distance_m, mark.angle_rad)
+    if pose is None:
+        return None
+    gx, gy = goal_xy
+    return (
+        math.hypot(gx - pose.x, gy - pose.y),
+        wrap_angle(math.atan2(gy - pose.y, gx - pose.x) - pose.heading),
+    )
+
+
+def in_shooting_range(goal: tuple[float, float] | None, shoot_range_m: float) -> bool:
+    """The teams' one shooting rule: the goal known and within `shoot_range_m`.
+
+    `goal` is :func:`goal_direction`'s answer; `shoot_range_m` the team's
+    :attr:`TeamSetup.shoot_range_m`.
+    The layered and baseline minds shoot by it, and layer 3's shot-range guard asks it
+    (:mod:`robotsoccer.skills.layer3`), so both teams shoot from the same distances.
+    """
+    return goal is not None and goal[0] <= shoot_range_m

@@ -151,3 +151,13 @@ def test_a_table_may_hold_another_number_of_actions_and_its_file_says_so(tmp_pat
     assert load_table(path).actions == 3
     with pytest.raises(ValueError, match="actions must be >= 1"):
         TpotTable.empty(1, actions=0)
+
+
+def test_the_loss_penalty_falls_linearly_to_nothing_at_the_horizon() -> None:
+    from learning.tpot import HORIZON_S, loss_penalty
+
+    assert loss_penalty(0.5, 0.0) == pytest.approx(0.5)
+    assert loss_penalty(0.5, HORIZON_S / 2) == pytest.approx(0.25)
+    assert loss_penalty(0.5, HORIZON_S) == 0.0 and loss_penalty(0.5, 2 * HORIZON_S) == 0.0
+    with pytest.raises(ValueError, match="penalty"):
+        loss_penalty(-0.1, 1.0)

@@ -178,3 +178,28 @@ def test_match_plays_layer3_with_its_table_and_refuses_a_missing_or_corrupt_one(
     capsys.readouterr()
     options = dict(json.loads((out / "results.json").read_text())["spec"]["drill_options"])
     assert options["tpot_window"] == "horizon"  # it plays with the window it learned with
+    assert "tpot_guard" not in options and "tpot_loss" not in options  # older tables as before
+    plan = {"every": True, "success": 0.95, "window": "horizon", "guard": True, "loss": 0.5}
+    table = save_table(TpotTable.empty(11, {"plan": plan}), tmp_path / "g.npz")
+    out = tmp_path / "mg"
+    assert main([*args, "--tpot", str(table), "--out", str(out)]) == 0
+    capsys.readouterr()
+    options = dict(json.loads((out / "results.json").read_text())["spec"]["drill_options"])
+    assert options["tpot_guard"] is True and options["tpot_loss"] == 0.5  # its guard and reward
+
+
+def test_learn_team_refuses_a_guard_without_every_or_a_loss_penalty_out_of_range(
+    tmp_path, capsys
+) -> None:
+    from tests.robotsoccer.drills.test_passing import _tree_file
+    from tests.robotsoccer.skills.test_intercept import net_file
+
+    net = net_file(tmp_path / "net.npz", preset="soccer_server_1996")
+    tree = _tree_file(tmp_path, "soccer_server")
+    args = ["learn", "team", "--net", str(net), "--tree", str(tree), "--out", str(tmp_path / "t")]
+    assert main([*args, "--shot-guard"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "guard needs every" in err[0]
+    assert main([*args, "--every", "--loss-penalty", "1.5"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "loss must be in [0, 1]" in err[0]

@@ -100,6 +100,10 @@ def cmd_learn_team(args: argparse.Namespace) -> int:
     plan = plan_for(args.quick, args.every, args.window)
     if args.training_games is not None:
         plan = replace(plan, training_games=args.training_games)
+    if args.games_per_round is not None:
+        plan = replace(plan, games_per_round=args.games_per_round)
+    if args.shot_guard or args.loss_penalty:
+        plan = replace(plan, guard=args.shot_guard, loss=args.loss_penalty)
     base = match_base(args.field, args.field_preset, args.seed, net, tree)
     check_spec(base.with_options(left="layered", right="baseline"))
     if args.table is not None:
@@ -108,6 +112,8 @@ def cmd_learn_team(args: argparse.Namespace) -> int:
         load_table(args.table)  # a corrupt or foreign table fails here, in one line
     tag = f"learn-team-{args.field}-{Path(preset).stem}" + ("-every" if args.every else "")
     tag += "-horizon" if args.window == "horizon" else ""
+    tag += "-guard" if args.shot_guard else ""
+    tag += f"-loss{args.loss_penalty:g}" if args.loss_penalty else ""
     tag += "-quick" if args.quick else ""
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)

@@ -56,7 +56,8 @@ def layer3_options(table: Path | None) -> dict[str, Any]:
     """The match drill's options for a layer3 team playing `table`.
 
     The table's provenance says how it learned (every spell on the ball or only where blocked,
-    its SUCCESS cut, its reward window); it plays the same way.
+    its SUCCESS cut, its reward window, shot-range guard and loss penalty); it plays the same
+    way.
 
     Raises:
         UsageError: No table given.
@@ -77,12 +78,18 @@ def layer3_options(table: Path | None) -> dict[str, Any]:
         )
     plan = learned.provenance.get("plan", {})
     plan = plan if isinstance(plan, dict) else {}
-    return {
+    options: dict[str, Any] = {
         "tpot": str(table),
         "tpot_every": bool(plan.get("every", False)),
         "tpot_success": float(plan.get("success", PASS_THRESHOLD)),
         "tpot_window": str(plan.get("window", "choice")),
     }
+    # Named only when set, as the study names them (team_study.TeamPlan.drill_options).
+    if plan.get("guard", False):
+        options["tpot_guard"] = True
+    if plan.get("loss", 0.0):
+        options["tpot_loss"] = float(plan["loss"])
+    return options
 
 
 def cmd_match(args: argparse.Namespace) -> int:

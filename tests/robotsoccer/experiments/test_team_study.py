@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -124,3 +125,41 @@ def test_plan_for_takes_the_window_and_refuses_an_unknown_one() -> None:
         plan_for(True, True, "episode")
     with pytest.raises(ValueError, match="tpot_window must be one of"):
         MatchDrill(left="baseline", tpot_window="episode")
+
+
+def test_guard_and_loss_train_the_same_whatever_the_worker_count_and_are_recorded(
+    tmp_path: Path,
+) -> None:
+    net, tree = files(tmp_path)
+    base = match_base("soccer_server", None, 5, net, tree)
+    horizon = TeamPlan("tiny-every", 4, 2, 8.0, 0.5, 0.1, 2, 5.0, 2, True, 0.95, "horizon")
+    guarded = replace(horizon, guard=True, loss=0.5)
+    assert "tpot_guard" not in horizon.drill_options()  # the earlier plans' specs unchanged
+    assert guarded.drill_options().items() >= {"tpot_guard": True, "tpot_loss": 0.5}.items()
+    one = train(base, guarded, tmp_path / "one", workers=1, log=lambda _: None)
+    two = train(base, guarded, tmp_path / "two", workers=2, log=lambda _: None)
+    assert one.table.n.sum() > 0, "the tiny plan must learn something to compare"
+    assert np.array_equal(one.table.q, two.table.q) and np.array_equal(one.table.n, two.table.n)
+    saved = load_table(one.path).provenance["plan"]
+    assert saved["guard"] is True and saved["loss"] == 0.5
+    with pytest.raises(ValueError, match="guard needs every"):
+        replace(horizon, every=False, guard=True)
+    with pytest.raises(ValueError, match="tpot_guard needs tpot_every"):
+        MatchDrill(left="baseline", tpot_guard=True)
+
+
+def test_a_losing_touch_closes_a_learning_match_s_rewards_with_the_penalty(tmp_path: Path) -> None:
+    net, tree = files(tmp_path)
+    table = save_table(TpotTable.empty(11), tmp_path / "eleven.npz")
+    spec = TrialSpec(drill="match", field_model="soccer_server", seed=2).with_options(
+        left="layer3", right="baseline", net=str(net), tree=str(tree), half_time_s=20.0,
+        tpot=str(table), learn=True, explore=0.5, tpot_every=True, tpot_window="horizon",
+    )  # fmt: skip
+    penalised = spec.with_options(tpot_loss=1.0)
+    plain = [e.reward for _, e in layer3_experiences(run_trial(spec, 0).data)]
+    full = [e.reward for _, e in layer3_experiences(run_trial(penalised, 0).data)]
+    # The same game (the penalty changes no kick): the same choices, and every reward the
+    # opponents' touch closed lost up to the whole penalty.
+    assert len(plain) == len(full) and plain
+    assert all(f <= p + 1e-12 for p, f in zip(plain, full, strict=True))
+    assert any(f < p - 0.1 for p, f in zip(plain, full, strict=True))

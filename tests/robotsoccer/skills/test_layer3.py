@@ -7,7 +7,16 @@ import math
 import numpy as np
 import pytest
 
-from field_models.protocol import LEFT, RIGHT, Kick, Percept, PlayerRef, SeenBall, SeenPlayer
+from field_models.protocol import (
+    LEFT,
+    RIGHT,
+    Kick,
+    Percept,
+    PlayerRef,
+    SeenBall,
+    SeenLandmark,
+    SeenPlayer,
+)
 from learning.tpot import FAILURE, MISS, N_ACTIONS, SUCCESS, TpotTable
 from robotsoccer.skills.layer3 import DESTINATIONS, TpotBallPolicy, destination_xy
 from robotsoccer.skills.localise import Pose
@@ -194,7 +203,9 @@ def test_the_mind_asks_its_ball_policy_only_where_it_would_pass_and_once_a_spell
     assert blocked.asked == 1 and mind.passes == 1
 
 
-def every_policy(confidence: float, threshold: float = 0.5) -> TpotBallPolicy:
+def every_policy(
+    confidence: float, threshold: float = 0.5, **extra: bool | float | str
+) -> TpotBallPolicy:
     """A policy with TPOT-RL's own rule: shoot and keep among the destinations."""
     return TpotBallPolicy(
         TpotTable.empty(11),
@@ -213,6 +224,7 @@ def every_policy(confidence: float, threshold: float = 0.5) -> TpotBallPolicy:
         blocked_m=8.0,
         shot_power=100.0,
         dribble_power=20.0,
+        **extra,  # type: ignore[arg-type]
     )
 
 
@@ -280,3 +292,83 @@ def test_with_every_ball_the_mind_asks_on_every_spell_even_free_or_in_range() ->
     mind = TeamMind(7, setup(), ball_policy=policy)
     mind.act(team_percept(40.0, 0.0, 0.0, ball=ball))  # in range: the layered rule would shoot
     assert policy.asked == 2 and mind.intent == "tpot test" and mind.shots == 0
+
+
+def test_the_shot_range_guard_makes_the_goal_an_advance_toward_it_out_of_range() -> None:
+    guarded = every_policy(0.97, threshold=0.95, shot_guard=True)
+    far = Pose(0.0, 0.0, 0.0)  # 52.5 m from the goal: beyond the 25 m range
+    options = guarded.options(percept(), far)
+    assert not options.shot and options.features[0] == MISS
+    intent, kick = guarded.kick(0, options)  # no teammate toward the goal: dribble toward it
+    assert intent == "tpot keep goal" and kick == Kick(20.0, pytest.approx(0.0))
+    mate = SeenPlayer(15.0, math.radians(5.0), LEFT, 9)  # ahead, toward the goal
+    options = guarded.options(percept(mate), far)
+    assert options.features[0] == SUCCESS  # the tree's verdict on the pass toward the goal
+    intent, kick = guarded.kick(0, options)
+    assert intent == "tpot goal" and kick == Kick(80.0, pytest.approx(math.radians(5.0)))
+    # Unguarded, the same choice is a long shot (the first every-ball studies).
+    unguarded = every_policy(0.97, threshold=0.95)
+    assert unguarded.kick(0, unguarded.options(percept(mate), far))[0] == "tpot shoot"
+    # In range the guard changes nothing: a shot, judged by the path.
+    near = Pose(35.0, 0.0, 0.0)
+    options = guarded.options(percept(), near)
+    assert options.shot and options.features[0] == SUCCESS
+    assert guarded.kick(0, options) == ("tpot shoot", Kick(100.0, pytest.approx(0.0)))
+
+
+def test_the_guard_and_the_mind_share_one_range_rule_the_seen_goal_first() -> None:
+    from robotsoccer.skills.team_setup import goal_direction, in_shooting_range
+
+    pose = Pose(20.0, 0.0, 0.0)  # 32.5 m by the pose: out of range
+    seen_near = Percept(
+        PlayerRef(LEFT, 7), 10, 10, SeenBall(0.5, 0.0), landmarks=(SeenLandmark("g r", 24.0, 0.1),)
+    )
+    goal = goal_direction(seen_near, pose, True, (HALF_L, 0.0))
+    assert goal == (24.0, 0.1) and in_shooting_range(goal, 25.0)  # the flag's reading wins
+    assert not in_shooting_range(goal_direction(percept(), pose, True, (HALF_L, 0.0)), 25.0)
+    assert not in_shooting_range(None, 25.0)
+    guarded = every_policy(0.9, shot_guard=True)
+    assert guarded.options(seen_near, pose).shot  # the guard reads the same flag
+    assert not guarded.options(percept(), pose).shot
+
+
+def test_the_guard_needs_every_ball_and_the_loss_penalty_its_bounds() -> None:
+    with pytest.raises(ValueError, match="every_ball"):
+        TpotBallPolicy(
+            TpotTable.empty(11),
+            attack_right=True,
+            half_length_m=HALF_L,
+            half_width_m=HALF_W,
+            unit_m=1.0,
+            pass_range_m=30.0,
+            pass_power=80.0,
+            dt_s=0.1,
+            evaluator=Fixed(0.9),
+            threshold=0.5,
+            rng=np.random.default_rng(0),
+            shot_guard=True,
+        )
+    with pytest.raises(ValueError, match="loss_penalty"):
+        every_policy(0.9, loss_penalty=1.5)
+
+
+def test_an_opponent_touch_closes_rewards_with_the_loss_penalty_only_when_one_is_set() -> None:
+    p = every_policy(0.9, learn=True, window="horizon", loss_penalty=0.5)
+    p.decide(7, percept(tick=0), Pose(0.0, 0.0, 0.0), (0.0, 0.0))
+    p.observe(7, 10, (26.25, 0.0))  # half way to the opponents' goal
+    p.lost(100)  # an opponent touched it 10 s after the kick
+    p.observe(7, 110, (-52.5, 0.0))  # what happens after the loss is not this kick's
+    # advance 0.5 less 0.5 * (1 - 10/30)
+    assert [e.reward for e in p.experiences] == pytest.approx([0.5 - 0.5 * (2.0 / 3.0)])
+    p.decide(7, percept(tick=200), Pose(-40.0, 0.0, 0.0), (-40.0, 0.0))
+    p.observe(7, 201, (-52.5, 0.0))
+    p.lost(200)  # lost at once, the ball back at the own goal line: clipped at -1
+    assert p.experiences[-1].reward == pytest.approx(-1.0)
+    # Without a penalty a touch closes nothing (the earlier studies' reward).
+    q = every_policy(0.9, learn=True, window="horizon")
+    q.decide(7, percept(tick=0), Pose(0.0, 0.0, 0.0), (0.0, 0.0))
+    q.observe(7, 10, (26.25, 0.0))
+    q.lost(100)
+    assert q.experiences == []
+    q.finish(110)
+    assert [e.reward for e in q.experiences] == pytest.approx([0.5])
