@@ -28,8 +28,10 @@ REVERSE_HOLD_S = 1.0
 Soccer Server's 100 ms cycles, the same time on every field (on the robots' 4.2 ms ticks the
 10-tick hold is 42 ms, shorter than one turn: README, "The robots: do new frames ...")."""
 REVERSE_MIN_BAND_RAD = math.radians(120.0)
-"""With the dead band, a turn back within the hold needs more than this (measured on the robots,
-2 games each: 60° left 43 reversals per robot-minute, 120° 19-23, 179° 16)."""
+"""With the dead band, a turn back within the hold needs more than this (a ball or a point that
+jumped behind still turns the player). Measured on the robots' baseline match, 2 games a
+preset, before the push approach drove with the dead band: 60° left 42-43 reversals per
+robot-minute, 120° 19-23, 179° 16."""
 BACK_SWITCH_RAD = math.radians(30.0)
 """With the dead band, a player driving forwards (backwards) to a point switches to backwards
 (forwards) only when the point is this far behind (ahead of) its side."""
@@ -140,9 +142,9 @@ class TeamSetup:
             body pointed where it walks, and one that sees no ball walks home while it scans.
         dead_band: Drive on a small heading error instead of re-turning at every percept (issue
             28 item 5, the robots' dithering; :meth:`~robotsoccer.skills.team_base.MindBase.
-            _drive_to`): a player going somewhere turns only when driving on would miss it by
-            more than its tolerance, steps back (drives backwards) to a point just behind it,
-            slows going home so that it can stop there within the loop's latency
+            _drive_to`): a player going home, or round the ball to push it, turns only when
+            driving on would miss its point by more than its tolerance, drives backwards to a
+            point behind it, slows so that it can stop there within the loop's latency
             (:meth:`arrive_power`), stays home until twice the tolerance away, and a turn the
             other way within :data:`REVERSE_HOLD_S` of the last is left out unless it exceeds
             :data:`REVERSE_MIN_BAND_RAD` (not while meeting a ball: layer 1 re-aims at every
