@@ -212,13 +212,14 @@ def main() -> None:
     parser.add_argument(
         "--lead-net",
         default="/work/main/runs/learn-lead-seed0/models/robot_physics/lead_net.npz",
-        help="the lead study's robot lead net",
+        help="the lead study's robot lead net ('none': no lead net row)",
     )
     parser.add_argument("--out", type=Path, default=Path("runs/robot-supersession"))
     args = parser.parse_args()
     if args.trials < 0 or args.games < 1 or args.series < 0 or not args.half_time > 0.0:
         parser.error("--trials and --series must be >= 0, --games >= 1, --half-time > 0")
-    if args.trials and not Path(args.lead_net).is_file():
+    with_net = bool(args.trials) and args.lead_net != "none"
+    if with_net and not Path(args.lead_net).is_file():
         parser.error(f"no lead net at {args.lead_net}")
     # The lead study's robot drill (shots across the goal mouth; `robotsoccer learn lead`).
     drill = (*LEAD_DRILLS["robot_physics"][1], ("decision", "lead"))
@@ -226,7 +227,7 @@ def main() -> None:
     runs: list[tuple[str, TrialSpec, int]] = []
     for behaviour, options, presets in (
         ("straight", (("behaviour", "straight"),), PRESETS if args.trials else ()),
-        ("lead net", net, PRESETS[1:] if args.trials else ()),  # the net learned on `_arc`
+        ("lead net", net, PRESETS[1:] if with_net else ()),  # the net learned on `_arc`
     ):
         for preset in presets:
             runs.append(
