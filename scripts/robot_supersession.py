@@ -19,7 +19,14 @@ on each thinking robot's true heading every 100 ms, the Soccer Server's cycle):
 Rates are per robot-minute of thinking robots; shares of the commands the host sent come with
 n and a 95% Wilson interval. Nothing here changes a result: the same trials give the same rows.
 
+The match rows come with the team minds' default turning, ``steady_turns`` and ``dead_band``
+(the fix of issue 28 item 5, :attr:`~robotsoccer.skills.team_setup.TeamSetup.dead_band`);
+``--series N`` adds what the dead band costs: N baseline games of a dead-band team against a
+default one per preset, the dead band left in the first half of the games and right in the
+rest (seeds 0 ..), with its goal difference and possession share per game (95% intervals).
+
     python scripts/robot_supersession.py --trials 200 --half-time 30 --out runs/robot-supersession
+    python scripts/robot_supersession.py --trials 0 --games 4 --series 40 --out runs/dead-band
 """
 
 from __future__ import annotations
@@ -32,6 +39,7 @@ from pathlib import Path
 
 from field_models.protocol import Percept
 from robotsoccer.cli.options import LEAD_DRILLS
+from robotsoccer.experiments.match import mean_interval
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.cycle import TurnReversals
 from robotsoccer.stats import wilson_interval
@@ -63,8 +71,8 @@ class Counts:
             setattr(self, f.name, getattr(self, f.name) + getattr(other, f.name))
 
 
-def instrument(spec: TrialSpec, index: int) -> tuple[str, Counts]:
-    """Run trial `index` of `spec` as the runner does; its label and counters."""
+def instrument(spec: TrialSpec, index: int) -> tuple[str, Counts, dict[str, float]]:
+    """Run trial `index` of `spec` as the runner does; its label, counters and measures."""
     rngs, drill, arena = build_trial(spec, index)
     drill.setup(arena, rngs)
     minds = drill.minds(arena, rngs)
@@ -94,7 +102,7 @@ def instrument(spec: TrialSpec, index: int) -> tuple[str, Counts]:
         stale=sum(fw.stale for fw in firmware),
         reversals=reversals.count,
     )
-    return ("" if verdict is None else verdict.label), counts
+    return ("" if verdict is None else verdict.label), counts, drill.measures()
 
 
 def measure(spec: TrialSpec, trials: int) -> tuple[Counts, dict[str, int], float]:
@@ -102,7 +110,7 @@ def measure(spec: TrialSpec, trials: int) -> tuple[Counts, dict[str, int], float
     total, labels = Counts(), dict[str, int]()
     start = time.perf_counter()
     for index in range(trials):
-        label, counts = instrument(spec, index)
+        label, counts, _ = instrument(spec, index)
         total.add(counts)
         labels[label] = labels.get(label, 0) + 1
     return total, labels, time.perf_counter() - start
@@ -142,30 +150,84 @@ HEADER = (
 )
 
 
+def series(preset: str, games: int, half_time_s: float) -> tuple[str, dict[str, object]]:
+    """`games` baseline games, a dead-band team against a default one (module docstring).
+
+    Returns a markdown row (the dead-band team's goal difference, goals each and possession
+    share per game with 95% intervals, and the robots' reversals per robot-minute) and its data.
+    """
+    differences, banded, default, possession = [], [], [], []
+    total = Counts()
+    for index in range(games):
+        side = "left" if index < (games + 1) // 2 else "right"
+        options: tuple[tuple[str, DrillOption], ...] = (
+            ("left", "baseline"),
+            ("right", "baseline"),
+            ("half_time_s", half_time_s),
+            ("dead_band", side),
+        )
+        spec = TrialSpec("match", "robot_physics", preset, drill_options=options)
+        _, counts, measures = instrument(spec, index)
+        total.add(counts)
+        mine, theirs = ("l", "r") if side == "left" else ("r", "l")
+        banded.append(measures[f"goals_{mine}"])
+        default.append(measures[f"goals_{theirs}"])
+        differences.append(banded[-1] - default[-1])
+        possession.append(100.0 * measures[f"possession_{mine}"])
+
+    def cell(values: list[float], sign: str = "") -> str:
+        m = mean_interval(values)
+        return f"{m.value:{sign}.2f} [{m.low:{sign}.2f}, {m.high:{sign}.2f}]"
+
+    rate = total.reversals / total.robot_minutes if total.robot_minutes else 0.0
+    line = (
+        f"| `{preset}` | {games} | {cell(differences, '+')} | {cell(banded)} | {cell(default)} | "
+        f"{cell(possession)} | {rate:.1f} |"
+    )
+    data = {
+        "games": games,
+        "goal_difference": differences,
+        "goals_dead_band": banded,
+        "goals_default": default,
+        "possession_dead_band_pct": possession,
+        **asdict(total),
+    }
+    return line, data
+
+
+SERIES_HEADER = (
+    "| preset | games | dead band − default goals/game [95%] | dead-band goals/game | "
+    "default goals/game | dead-band possession % [95%] | reversals /robot-min (both teams) |"
+    "\n|" + "---|" * 7
+)
+
+
 def main() -> None:
     """Run the drills and the match; write a markdown table and the counts as JSON."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--trials", type=int, default=200, help="interception trials per row")
     parser.add_argument("--half-time", type=float, default=30.0, help="match half [s]")
     parser.add_argument("--games", type=int, default=1, help="matches (seeds 0 ..)")
+    parser.add_argument("--series", type=int, default=0, help="dead band v default games")
     parser.add_argument(
         "--lead-net",
         default="/work/main/runs/learn-lead-seed0/models/robot_physics/lead_net.npz",
-        help="the lead study's robot lead net",
+        help="the lead study's robot lead net ('none': no lead net row)",
     )
     parser.add_argument("--out", type=Path, default=Path("runs/robot-supersession"))
     args = parser.parse_args()
-    if args.trials < 1 or args.games < 1 or not args.half_time > 0.0:
-        parser.error("--trials and --games must be >= 1 and --half-time > 0")
-    if not Path(args.lead_net).is_file():
+    if args.trials < 0 or args.games < 1 or args.series < 0 or not args.half_time > 0.0:
+        parser.error("--trials and --series must be >= 0, --games >= 1, --half-time > 0")
+    with_net = bool(args.trials) and args.lead_net != "none"
+    if with_net and not Path(args.lead_net).is_file():
         parser.error(f"no lead net at {args.lead_net}")
     # The lead study's robot drill (shots across the goal mouth; `robotsoccer learn lead`).
     drill = (*LEAD_DRILLS["robot_physics"][1], ("decision", "lead"))
     net = (("behaviour", "net"), ("model", str(args.lead_net)))
     runs: list[tuple[str, TrialSpec, int]] = []
     for behaviour, options, presets in (
-        ("straight", (("behaviour", "straight"),), PRESETS),
-        ("lead net", net, PRESETS[1:]),  # the net was trained on `_arc`
+        ("straight", (("behaviour", "straight"),), PRESETS if args.trials else ()),
+        ("lead net", net, PRESETS[1:] if with_net else ()),  # the net learned on `_arc`
     ):
         for preset in presets:
             runs.append(
@@ -183,8 +245,9 @@ def main() -> None:
         ("half_time_s", float(args.half_time)),
     )
     steady = (*match, ("steady_turns", True))
+    banded = (*match, ("dead_band", True))
     for preset in PRESETS:
-        for how, options in (("", match), (", steady turns", steady)):
+        for how, options in (("", match), (", steady turns", steady), (", dead band", banded)):
             runs.append(
                 (
                     f"match baseline v baseline 5 v 5{how}, `{preset}`",
@@ -199,6 +262,13 @@ def main() -> None:
         lines.append(row(name, counts, labels))
         data[name] = {"trials": n, "labels": labels, "wall_s": wall, **asdict(counts)}
         print(lines[-1], f"({n} trials, {wall:.0f} s)", flush=True)
+    if args.series:
+        lines += ["", SERIES_HEADER]
+        for preset in PRESETS:
+            start = time.perf_counter()
+            line, data[f"series {preset}"] = series(preset, args.series, float(args.half_time))
+            lines.append(line)
+            print(line, f"({time.perf_counter() - start:.0f} s)", flush=True)
     (args.out / "table.md").write_text("\n".join(lines) + "\n")
     (args.out / "counts.json").write_text(json.dumps(data, indent=2) + "\n")
 

@@ -78,6 +78,25 @@ class TeamKind(StrEnum):
     LAYER3 = "layer3"
 
 
+DEAD_BAND_VALUES = ("false", "true", LEFT, RIGHT)
+"""What the match's ``dead_band`` option takes (:func:`dead_band_teams`)."""
+
+
+def dead_band_teams(value: bool | str) -> frozenset[str]:
+    """The teams whose minds use the dead band: True both, ``left``/``right`` one, False none.
+
+    Raises:
+        ValueError: Any other value, naming the allowed ones.
+    """
+    text = str(value).lower() if isinstance(value, bool | str) else ""
+    if text not in DEAD_BAND_VALUES:
+        known = ", ".join(DEAD_BAND_VALUES)
+        raise ValueError(f"dead_band must be one of {known}, got {value!r}")
+    if text in (LEFT, RIGHT):
+        return frozenset((text,))
+    return frozenset((LEFT, RIGHT)) if text == "true" else frozenset()
+
+
 class MatchDrill(LayeredDrill):
     """A match (module docstring).
 
@@ -108,6 +127,11 @@ class MatchDrill(LayeredDrill):
         look: How the minds look (:data:`~robotsoccer.skills.team_setup.LOOK_MODES`):
             ``body`` (default, the paper's client) or ``neck``: with the neck and view modes
             (:mod:`robotsoccer.skills.team_look`), with the steady turns' rules besides.
+        dead_band: The minds drive on a small heading error, slow to stop at home and hold a
+            turn back for a second (:attr:`~robotsoccer.skills.team_setup.TeamSetup.
+            dead_band`; issue 28 item 5, the robots' dithering): True for both teams,
+            ``left`` or ``right`` for one (to measure what it costs); False (default): as
+            before.
 
     Raises:
         ValueError: An unknown team kind, a layered team without its model files, an unknown
@@ -128,6 +152,7 @@ class MatchDrill(LayeredDrill):
         transfer: bool | str = False,
         steady_turns: bool | str = False,
         look: str = "body",
+        dead_band: bool | str = False,
         tpot: str = "",
         explore: float | str = 0.0,
         learn: bool | str = False,
@@ -141,6 +166,7 @@ class MatchDrill(LayeredDrill):
             raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {look!r}")
         self.look = look
         self.steady_turns = flag("steady_turns", steady_turns) or look == "neck"
+        self.dead_band = dead_band_teams(dead_band)
         self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
         layered = bool({TeamKind.LAYERED, TeamKind.LAYER3} & set(self.kinds.values()))
         if layered and not (net and tree):
@@ -327,7 +353,9 @@ class MatchDrill(LayeredDrill):
 
     def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:
         """One team's plan on this field (module docstring)."""
-        return team_setup(facts, self.plan(facts), n, team, self.steady_turns, self.look)
+        plan = self.plan(facts)
+        dead_band = team in self.dead_band
+        return team_setup(facts, plan, n, team, self.steady_turns, self.look, dead_band)
 
     # ------------------------------------------------------------------ the coach
 

@@ -71,6 +71,7 @@ def team_setup(
     team: str,
     steady_turns: bool,
     look: str = "body",
+    dead_band: bool = False,
 ) -> TeamSetup:
     """One team of `n`'s plan on this field: homes, ranges, powers, the goalie's stance.
 
@@ -105,6 +106,8 @@ def team_setup(
         ball_law=facts.ball,
         steady_turns=steady_turns,
         look=look,
+        dead_band=dead_band,
+        top_speed_mps=facts.player_top_speed_mps,
         push_kick=push,
         # The nearest a shot of layer 1's goal-mouth drill is at its trigger: the nearest
         # start, less the flight at the players' top speed (its fastest shot) during the

@@ -74,8 +74,6 @@ from robotsoccer.skills.team_ball import BallMind
 from robotsoccer.skills.team_look import look_target
 from robotsoccer.skills.team_setup import (
     CHASE_MARGIN_UNITS,
-    REVERSE_HOLD_TICKS,
-    REVERSE_MIN_RAD,
 )
 
 
@@ -132,7 +130,7 @@ class TeamMind(BallMind):
         if self.ball_policy is not None:
             seen = percept.ball is not None and self.localiser.pose is not None
             self.ball_policy.observe(self.number, percept.tick, self._ball_xy if seen else None)
-        if self.setup.steady_turns:
+        if self.setup.steady_turns or (self.setup.dead_band and self._lead_s is None):
             actions = self._steady(percept.tick, actions)
         for action in actions:
             if isinstance(action, Turn) and self._lead_s is None:
@@ -142,16 +140,21 @@ class TeamMind(BallMind):
         return actions
 
     def _steady(self, tick: int, actions: tuple[Action, ...]) -> tuple[Action, ...]:
-        """Leave out a small turn back within the hold; reckon the turn kept into the heading."""
+        """Leave out a small turn back within the hold; reckon the turn kept into the heading.
+
+        The hold is :meth:`~robotsoccer.skills.team_setup.TeamSetup.reverse_hold_ticks`; only
+        steady turns reckon (the dead band alone leaves the localiser as it was).
+        """
         for i, action in enumerate(actions):
             if not isinstance(action, Turn):
                 continue
             angle = action.angle_rad
-            back = self._last_turn[1] * angle < 0.0 and abs(angle) <= REVERSE_MIN_RAD
-            if back and tick - self._last_turn[0] <= REVERSE_HOLD_TICKS:
+            back = self._last_turn[1] * angle < 0.0 and abs(angle) <= self.setup.reverse_min_rad()
+            if back and tick - self._last_turn[0] <= self.setup.reverse_hold_ticks():
                 return actions[:i] + actions[i + 1 :]
             self._last_turn = (tick, angle)
-            self.localiser.turned(angle)
+            if self.setup.steady_turns:
+                self.localiser.turned(angle)
             break
         return actions
 

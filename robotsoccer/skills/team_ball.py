@@ -173,7 +173,10 @@ class BallMind(ChaseMind):
         target = self._inside(target)
         self.intent = "approach"
         angle = wrap_angle(math.atan2(target[1] - pose.y, target[0] - pose.x) - pose.heading)
-        return self._run_to(angle, math.hypot(target[0] - pose.x, target[1] - pose.y))
+        distance = math.hypot(target[0] - pose.x, target[1] - pose.y)
+        if setup.dead_band:  # at full power it overshoots its point and turns round (measured)
+            return self._drive_to(angle, distance, setup.reach_m, 100.0)
+        return self._run_to(angle, distance)
 
     def _meet(
         self, percept: Percept, pose: Pose, ball_xy: tuple[float, float]

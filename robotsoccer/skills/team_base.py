@@ -21,6 +21,7 @@ from robotsoccer.skills.localise import Localiser, Pose
 from robotsoccer.skills.passing import PassEvaluator
 from robotsoccer.skills.team_look import NeckLook
 from robotsoccer.skills.team_setup import (
+    BACK_SWITCH_RAD,
     FACING_RAD,
     MEET_SPEED_MPS,
     MEMORY_TICKS,
@@ -74,6 +75,7 @@ class MindBase:
         self._lead_s: float | None = None  # the lead held while meeting a ball (pushing teams)
         self._held_lead: float | None = None  # ... as the last decision left it
         self._sighted_tick = -1  # the frame of the ball's last sighting on its track
+        self._backing = False  # with the dead band: driving to its point backwards
         self.head = NeckLook()  # its neck and view, when it looks with them (setup.look)
 
     def _meets(self, pose: Pose, ball_xy: tuple[float, float]) -> bool:
@@ -136,10 +138,44 @@ class MindBase:
         return abs(crossing) <= 0.5 * self.setup.goal_width_m
 
     def _run_to(self, angle: float, distance_m: float) -> tuple[Action, ...]:
-        """Turn toward `angle` and run (on arcs where the host drives them)."""
+        """Turn toward `angle` and run (on arcs where the host drives them).
+
+        With the dead band it runs on, unturned, while it would pass within a reach of the
+        point (:meth:`_drive_to`).
+        """
         angle = wrap_angle(angle)
-        if abs(angle) <= FACING_RAD:
+        if abs(angle) <= FACING_RAD or self._on_course(angle, distance_m, self.setup.reach_m):
             return (Dash(100.0),)
         if distance_m <= NEAR_REACHES * self.setup.reach_m:
             return (Turn(angle),)  # near: run on only once facing it, or it circles
         return (Turn(angle), Dash(100.0))
+
+    def _on_course(self, angle: float, distance_m: float, tolerance_m: float) -> bool:
+        """Dead band: driving on passes within `tolerance_m` of the point, so a turn gains little.
+
+        The point is `distance_m` away at `angle` from the heading (issue 28 item 5).
+        """
+        ahead = abs(angle) < 0.5 * math.pi
+        return self.setup.dead_band and ahead and distance_m * abs(math.sin(angle)) <= tolerance_m
+
+    def _drive_to(
+        self, angle: float, distance_m: float, tolerance_m: float, power: float
+    ) -> tuple[Action, ...]:
+        """Go a point `distance_m` away at `angle` (wrapped) with the dead band.
+
+        The dash slows to what stops there within the loop's latency
+        (:meth:`~robotsoccer.skills.team_setup.TeamSetup.arrive_power`); a point behind is
+        driven to backwards (the robots drive as fast either way), and the player keeps its way
+        of driving until the point is :data:`BACK_SWITCH_RAD` past the side (at the side,
+        switching would turn it 180° between two frames); it turns only off course
+        (:meth:`_on_course`) and beyond twice :data:`FACING_RAD`, as without the dead band.
+        """
+        angle = wrap_angle(angle)
+        power = min(power, self.setup.arrive_power(distance_m))
+        side = 0.5 * math.pi + (-BACK_SWITCH_RAD if self._backing else BACK_SWITCH_RAD)
+        self._backing = abs(angle) > side
+        if self._backing:
+            angle, power = wrap_angle(angle - math.pi), -power
+        if abs(angle) <= 2.0 * FACING_RAD or self._on_course(angle, distance_m, tolerance_m):
+            return (Dash(power),)
+        return (Turn(angle), Dash(power))

@@ -92,11 +92,14 @@ class ChaseMind(MindBase):
         dx, dy = tx - pose.x, ty - pose.y
         self.intent = "home"
         tolerance = self.setup.home_tolerance_m
-        if self.setup.steady_turns:  # hysteresis: home until twice the tolerance away
+        if self.setup.steady_turns or self.setup.dead_band:  # home until twice the tolerance away
             self._at_home = math.hypot(dx, dy) <= tolerance * (2.0 if self._at_home else 1.0)
             far = not self._at_home
         else:
             far = math.hypot(dx, dy) > tolerance
+        if far and self.setup.dead_band:
+            angle = math.atan2(dy, dx) - pose.heading
+            return self._drive_to(angle, math.hypot(dx, dy), tolerance, 80.0)
         if far:
             angle = wrap_angle(math.atan2(dy, dx) - pose.heading)
             power = 80.0

@@ -23,6 +23,18 @@ REVERSE_HOLD_TICKS = 10
 """With steady turns, a turn the other way within this many ticks of the last needs ..."""
 REVERSE_MIN_RAD = math.radians(60.0)
 """... more than this (a ball that moved behind the player still turns it)."""
+REVERSE_HOLD_S = 1.0
+"""With the dead band, the steady turns' hold in seconds: :data:`REVERSE_HOLD_TICKS` of the
+Soccer Server's 100 ms cycles, the same time on every field (on the robots' 4.2 ms ticks the
+10-tick hold is 42 ms, shorter than one turn: README, "The robots: do new frames ...")."""
+REVERSE_MIN_BAND_RAD = math.radians(120.0)
+"""With the dead band, a turn back within the hold needs more than this (a ball or a point that
+jumped behind still turns the player). Measured on the robots' baseline match, 2 games a
+preset, before the push approach drove with the dead band: 60° left 42-43 reversals per
+robot-minute, 120° 19-23, 179° 16."""
+BACK_SWITCH_RAD = math.radians(30.0)
+"""With the dead band, a player driving forwards (backwards) to a point switches to backwards
+(forwards) only when the point is this far behind (ahead of) its side."""
 MEMORY_TICKS = 20
 """With steady turns, a ball seen this recently is trusted where it was (going home)."""
 SEARCH_TURN_RAD = math.radians(60.0)
@@ -128,6 +140,16 @@ class TeamSetup:
             neck). ``"neck"`` (issue 28; with :attr:`steady_turns`): it looks with its neck and
             view modes (:mod:`robotsoccer.skills.team_look`); a player off the ball keeps its
             body pointed where it walks, and one that sees no ball walks home while it scans.
+        dead_band: Drive on a small heading error instead of re-turning at every percept (issue
+            28 item 5, the robots' dithering; :meth:`~robotsoccer.skills.team_base.MindBase.
+            _drive_to`): a player going home, or round the ball to push it, turns only when
+            driving on would miss its point by more than its tolerance, drives backwards to a
+            point behind it, slows so that it can stop there within the loop's latency
+            (:meth:`arrive_power`), stays home until twice the tolerance away, and a turn the
+            other way within :data:`REVERSE_HOLD_S` of the last is left out unless it exceeds
+            :data:`REVERSE_MIN_BAND_RAD` (not while meeting a ball: layer 1 re-aims at every
+            percept). False (default): every result as before.
+        top_speed_mps: A player's top speed running straight [m/s] (the dead band's arrival).
     """
 
     attack_right: bool
@@ -160,6 +182,8 @@ class TeamSetup:
     goal_width_m: float = 0.0
     turn_tolerance_rad: float = 0.0
     look: str = "body"
+    dead_band: bool = False
+    top_speed_mps: float = 0.0
 
     def __post_init__(self) -> None:
         if self.look not in LOOK_MODES:
@@ -173,6 +197,30 @@ class TeamSetup:
         """
         spin = math.sqrt(abs(angle_rad) / self.spin_accel_radps2)
         return math.ceil((self.latency_s + spin) / self.dt_s)
+
+    def reverse_hold_ticks(self) -> int:
+        """Ticks after a turn within which a small turn back is left out (steady turns)."""
+        if self.dead_band:
+            return math.ceil(REVERSE_HOLD_S / self.dt_s - 1e-9)
+        return REVERSE_HOLD_TICKS
+
+    def reverse_min_rad(self) -> float:
+        """The least turn back that the steady turns' hold lets through [rad]."""
+        return REVERSE_MIN_BAND_RAD if self.dead_band else REVERSE_MIN_RAD
+
+    def arrive_power(self, distance_m: float) -> float:
+        """The dash power [0, 100] at which a player can still stop within `distance_m`.
+
+        A player sees itself `latency_s` late and decides again a sensor period later, then
+        brakes at its acceleration: v·L + v²/(2a) = d gives the top speed v that stops in d
+        (on the robots 80% power overshoots a 5 cm home by about 20 cm: a turn round and back).
+        """
+        accel = self.spin_accel_radps2 * self.player_radius_m
+        if accel <= 0.0 or self.top_speed_mps <= 0.0:
+            return 100.0
+        lag = self.latency_s + self.sensor_period_s
+        speed = accel * (math.sqrt(lag * lag + 2.0 * max(distance_m, 0.0) / accel) - lag)
+        return min(100.0, 100.0 * speed / self.top_speed_mps)
 
     @property
     def goal_xy(self) -> tuple[float, float]:
