@@ -79,6 +79,9 @@ def breakdown(spec: TrialSpec, index: int) -> dict[str, Counter[str]]:
         counts[kind_of[before]]["passes"] += 1
 
     TrialLoop(arena, drill, minds, observe, decided).run()
+    # The loop calls the observer before the coach's judge of each tick, so it sees each touch
+    # one tick late (the players' places a tick later too); once more for the last tick's.
+    observe(arena, [])
     measures = drill.measures()
     for side, team in (("l", left_team), ("r", None)):
         kind = str(options["left" if team is not None else "right"])
