@@ -68,12 +68,11 @@ from __future__ import annotations
 
 import math
 
-from field_models.protocol import Action, Dash, Percept, Turn
+from field_models.protocol import Action, Percept, Turn
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.team_ball import BallMind
 from robotsoccer.skills.team_look import look_target
 from robotsoccer.skills.team_setup import (
-    CHASE_INTENTS,
     CHASE_MARGIN_UNITS,
     REVERSE_HOLD_TICKS,
     REVERSE_MIN_RAD,
@@ -143,36 +142,18 @@ class TeamMind(BallMind):
         return actions
 
     def _steady(self, tick: int, actions: tuple[Action, ...]) -> tuple[Action, ...]:
-        """Leave out a small turn back within the hold; reckon the turn kept into the heading.
-
-        Looking with the neck, a chaser's turn back is left out only where it runs on without it
-        (:meth:`_keeps_turn`).
-        """
+        """Leave out a small turn back within the hold; reckon the turn kept into the heading."""
         for i, action in enumerate(actions):
             if not isinstance(action, Turn):
                 continue
             angle = action.angle_rad
             back = self._last_turn[1] * angle < 0.0 and abs(angle) <= REVERSE_MIN_RAD
             if back and tick - self._last_turn[0] <= REVERSE_HOLD_TICKS:
-                rest = actions[:i] + actions[i + 1 :]
-                if not self._keeps_turn(rest):
-                    return rest
+                return actions[:i] + actions[i + 1 :]
             self._last_turn = (tick, angle)
             self.localiser.turned(angle)
             break
         return actions
-
-    def _keeps_turn(self, rest: tuple[Action, ...]) -> bool:
-        """Looking with the neck, a chaser keeps a turn the hold would drop (the rest: `rest`).
-
-        Measured in the 1996 series (scripts/pass_breakdown.py, README): the hold dropped about
-        one turn in three of layer 1's net while it intercepted (§5: the player ran on past
-        the ball's path) and left a chaser near the ball with no command at all (it stood
-        while the ball rolled off). A chaser that keeps a dash without the turn runs on.
-        """
-        if self.setup.look != "neck" or self.intent not in CHASE_INTENTS:
-            return False
-        return self.intent == "intercept" or not any(isinstance(a, Dash) for a in rest)
 
     def _decide(self, percept: Percept) -> tuple[Action, ...]:
         # A lead is held only through an unbroken spell of meeting the ball (_meet sets it).

@@ -23,9 +23,6 @@ REVERSE_HOLD_TICKS = 10
 """With steady turns, a turn the other way within this many ticks of the last needs ..."""
 REVERSE_MIN_RAD = math.radians(60.0)
 """... more than this (a ball that moved behind the player still turns it)."""
-CHASE_INTENTS = ("chase", "intercept")
-"""Looking with the neck, a player whose decision has one of these intents (it runs after the
-ball) keeps every turn: the hold above is for players off the ball."""
 MEMORY_TICKS = 20
 """With steady turns, a ball seen this recently is trusted where it was (going home)."""
 SEARCH_TURN_RAD = math.radians(60.0)
@@ -130,9 +127,7 @@ class TeamSetup:
         look: ``"body"``: the player looks where its body points (the paper's client, no
             neck). ``"neck"`` (issue 28; with :attr:`steady_turns`): it looks with its neck and
             view modes (:mod:`robotsoccer.skills.team_look`); a player off the ball keeps its
-            body pointed where it walks, and one that sees no ball walks home while it scans;
-            a chaser keeps a turn back the steady hold would drop when it intercepts with
-            layer 1 or would be left with no dash (:data:`CHASE_INTENTS`).
+            body pointed where it walks, and one that sees no ball walks home while it scans.
     """
 
     attack_right: bool

@@ -9,7 +9,6 @@ import pytest
 from field_models.protocol import (
     LEFT,
     ChangeView,
-    Dash,
     Percept,
     PlayerRef,
     SeenBall,
@@ -21,7 +20,6 @@ from field_models.protocol import (
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial, run_trial
 from robotsoccer.skills.cycle import TurnReversals
-from robotsoccer.skills.team import TeamMind
 from robotsoccer.skills.team_look import NECK_MAX_RAD, NeckLook, look_target
 
 ME = PlayerRef(LEFT, 4)
@@ -109,36 +107,3 @@ def test_looking_with_the_neck_dithers_less_than_steady_turns(preset: str) -> No
     steady = _reversals(_match(preset, ("steady_turns", True)))
     neck = _reversals(_match(preset, ("look", "neck")))
     assert neck < 0.75 * steady
-
-
-def _a_mind(look: str) -> TeamMind:
-    spec = _match("soccer_server_1996", ("look", look), ("steady_turns", True))
-    rngs, drill, arena = build_trial(spec, 0)
-    drill.setup(arena, rngs)
-    mind = next(iter(drill.minds(arena, rngs).values()))
-    assert isinstance(mind, TeamMind)
-    return mind
-
-
-@pytest.mark.parametrize(
-    ("look", "intent", "actions", "kept"),
-    [
-        ("neck", "intercept", (Turn(-20 * DEG), Dash(100.0)), True),  # layer 1's net aims
-        ("neck", "chase", (Turn(-20 * DEG),), True),  # near the ball: else it stands still
-        ("neck", "chase", (Turn(-20 * DEG), Dash(100.0)), False),  # it runs on meanwhile
-        ("neck", "home", (Turn(-20 * DEG),), False),  # off the ball: the hold
-        ("body", "intercept", (Turn(-20 * DEG), Dash(100.0)), False),  # steady_turns as it was
-        ("body", "chase", (Turn(-20 * DEG),), False),
-    ],
-)
-def test_looking_with_the_neck_a_chaser_keeps_a_turn_back_the_hold_drops(
-    look: str, intent: str, actions: tuple[Turn | Dash, ...], kept: bool
-) -> None:
-    mind = _a_mind(look)
-    mind._last_turn = (100, 30 * DEG)
-    mind.intent = intent
-    out = mind._steady(105, actions)
-    assert (out == actions) is kept
-    if not kept:
-        assert out == actions[1:]
-    assert mind._steady(120, actions) == actions  # hold over
