@@ -134,12 +134,12 @@ def main() -> None:
         if args.half_time is not None:
             minds["half_time_s"] = args.half_time
         seeds = [int(seed) for seed in args.dither.split(",")]
-        games = dither(args.preset, seeds, minds)
-        for g in games:
+        rows = dither(args.preset, seeds, minds)
+        for g in rows:
             count = f"{g['reversals']:.0f} in {g['player_minutes']:.0f} player-minutes"
             rate = f"{g['per_player_minute']:.1f} reversals per player-minute ({count})"
             print(f"{args.preset} {minds or 'default'} seed {g['seed']}: {rate}")
-        total = sum(g["reversals"] for g in games) / sum(g["player_minutes"] for g in games)
+        total = sum(g["reversals"] for g in rows) / sum(g["player_minutes"] for g in rows)
         print(f"all seeds: {total:.1f} reversals per player-minute")
         return
     if args.net is None or args.tree is None or args.out is None:
