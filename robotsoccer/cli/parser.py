@@ -267,6 +267,15 @@ def build_parser() -> argparse.ArgumentParser:
         "of each side",
     )
     match.add_argument("--quiet", action="store_true", help="no progress")
+    match.add_argument(
+        "--option",
+        action="append",
+        default=[],
+        type=_drill_option,
+        metavar="NAME=VALUE",
+        help="a match option for both teams' minds, e.g. look=neck, steady_turns=true, "
+        "dead_band=true (repeatable; a team's own: left/right as the value where it takes one)",
+    )
     _run_options(match)
 
     setplay = command(

@@ -203,3 +203,26 @@ def test_learn_team_refuses_a_guard_without_every_or_a_loss_penalty_out_of_range
     assert main([*args, "--every", "--loss-penalty", "1.5"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "loss must be in [0, 1]" in err[0]
+
+
+def test_match_takes_the_minds_options_and_refuses_bad_ones(tmp_path, capsys) -> None:
+    base = ["match", "--left", "baseline", "--right", "baseline", "--half-time", "5", "--quiet"]
+    base += ["--workers", "1"]
+    neck = tmp_path / "neck"
+    args = [*base, "--field", "soccer_server", "--option", "look=neck", "--out", str(neck)]
+    assert main(args) == 0
+    manifest = json.loads((neck / "results.json").read_text())
+    assert ["look", "neck"] in manifest["spec"]["drill_options"]
+    band = [*base, "--field", "robot_physics", "--option", "dead_band=left"]
+    assert main([*band, "--out", str(tmp_path / "band")]) == 0
+    capsys.readouterr()
+    for option, message in (
+        ("look=sideways", "look: expected one of body, neck; got 'sideways'"),
+        ("players=3", "--option players: it has its own flag"),
+        ("bogus=1", "drill 'match' has no option 'bogus'"),
+    ):
+        out = tmp_path / option.split("=")[0]
+        args = [*base, "--field", "robot_physics", "--option", option, "--out", str(out)]
+        assert main(args) == 2
+        err = capsys.readouterr().err.strip()
+        assert message in err and "\n" not in err

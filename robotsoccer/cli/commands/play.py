@@ -92,6 +92,10 @@ def layer3_options(table: Path | None) -> dict[str, Any]:
     return options
 
 
+MATCH_FLAGS = frozenset({"left", "right", "players", "half_time_s", "net", "tree", "tpot"})
+"""Match options the command sets from its own flags, so ``--option`` may not name them."""
+
+
 def cmd_match(args: argparse.Namespace) -> int:
     """One match, or a series of layered against baseline with its report."""
     from robotsoccer.experiments.match import run_series, write_report
@@ -110,6 +114,11 @@ def cmd_match(args: argparse.Namespace) -> int:
         options |= layer3_options(args.tpot)
     elif args.tpot is not None:
         raise UsageError("--tpot is layer 3's table: name layer3 in --left or --right")
+    extra = dict(args.option)
+    flagged = sorted(set(extra) & (set(options) | MATCH_FLAGS))
+    if flagged:
+        raise UsageError(f"--option {flagged[0]}: it has its own flag (see robotsoccer match -h)")
+    options |= extra
     # A series is layered against baseline, or with layer 3 the two kinds named.
     teams = kinds if layer3 else ("layered", "baseline")
     kind = "series" if args.games > 1 else "match"
