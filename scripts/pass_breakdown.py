@@ -25,10 +25,10 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
-from field_models.arena import FieldOptions
 from field_models.protocol import Action, Kick, Percept, PlayerRef
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.experiments.match import mean_interval, series_specs
+from robotsoccer.experiments.team_study import match_base
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.stats import wilson_interval
 
@@ -110,13 +110,8 @@ def main() -> None:
         options["steady_turns"] = True
     if args.look != "body":
         options["look"] = args.look
-    base = TrialSpec(
-        drill="match",
-        field_model="soccer_server",
-        preset=args.preset,
-        seed=args.seed,
-        field=FieldOptions(),
-    ).with_options(**options)
+    base = match_base("soccer_server", args.preset, args.seed, args.net, args.tree)
+    base = base.with_options(**options)
     games = [breakdown(spec, i) for spec in series_specs(base) for i in range(args.games)]
     print(f"{args.preset} {options}: {len(games)} games (n per kind)")
     for kind in ("layered", "baseline"):

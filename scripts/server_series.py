@@ -28,6 +28,7 @@ from typing import Any
 from field_models.arena import FieldOptions
 from field_models.protocol import Percept
 from robotsoccer.experiments.match import mean_interval, run_series, series_specs, write_report
+from robotsoccer.experiments.team_study import match_base
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.cycle import TurnReversals
 
@@ -160,13 +161,8 @@ def main() -> None:
     options.update(minds)
     if args.transfer:
         options["transfer"] = True
-    base = TrialSpec(
-        drill="match",
-        field_model="soccer_server",
-        preset=args.preset,
-        seed=args.seed,
-        field=FieldOptions(),
-    ).with_options(**options)
+    base = match_base("soccer_server", args.preset, args.seed, args.net, args.tree)
+    base = base.with_options(**options)
     args.out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
     games = run_series(base, args.games, args.out, workers=args.workers, progress=False)
