@@ -439,19 +439,34 @@ class ShowPlayer:
     kicked: bool = False
 
 
-def render_show(
-    time: int,
-    mode: str,
-    teams: tuple[str | None, str | None],
-    score: tuple[int, int],
-    ball: BodyState,
-    slots: Sequence[ShowPlayer],
-    dt_s: float,
-    *,
-    visible_angle_deg: float,
-    version: int = 3,
-) -> str:
-    """A monitor's ``(show ...)`` (protocol 3; 4 adds the stamina capacity). 22 slots, l then r."""
+@dataclass(frozen=True, slots=True)
+class Show:
+    """What a monitor's show carries: the time, play mode, teams, score, ball and 22 slots.
+
+    Attributes:
+        time: Server time (cycle).
+        mode: Play mode name (``PLAY_MODE_IDS``; an unknown one shows as 0).
+        teams: Left and right team names (None: no team yet, shown as ``null``).
+        score: Left and right goals.
+        ball: The ball's state, our frame (velocities per second).
+        slots: The 22 player slots, left 1..11 then right 1..11.
+    """
+
+    time: int
+    mode: str
+    teams: tuple[str | None, str | None]
+    score: tuple[int, int]
+    ball: BodyState
+    slots: Sequence[ShowPlayer]
+
+
+def render_show(show: Show, dt_s: float, *, visible_angle_deg: float, version: int = 3) -> str:
+    """A monitor's ``(show ...)`` (protocol 3; 4 adds the stamina capacity). 22 slots, l then r.
+
+    `dt_s` is the cycle length [s] (velocities are shown per cycle) and `visible_angle_deg` the
+    players' view width.
+    """
+    time, mode, teams, score, ball = show.time, show.mode, show.teams, show.score, show.ball
     left, right = (name or "null" for name in teams)
     parts = [
         f"(show {time} (pm {PLAY_MODE_IDS.get(mode, 0)}) (tm {left} {right} {score[0]} {score[1]})"
@@ -459,7 +474,7 @@ def render_show(
     ]
     stamina = "(s 8000 1 1 130600)" if version >= 4 else "(s 8000 1 1)"
     view = f"(v h {_g(visible_angle_deg)})"
-    for i, slot in enumerate(slots):
+    for i, slot in enumerate(show.slots):
         side = "l" if i < PLAYERS_PER_TEAM else "r"
         unum = i % PLAYERS_PER_TEAM + 1
         st = slot.state
