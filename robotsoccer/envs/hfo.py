@@ -191,7 +191,7 @@ class HfoDrill:
 
     def team_setup(self, facts: FieldFacts, team: str, numbers: list[int]) -> TeamSetup:
         """The match's plan for one team on this field, with HFO's homes and goalie."""
-        base = MatchDrill("baseline", "baseline").team_setup(facts, 2, team)
+        base = MatchDrill(left="baseline", right="baseline").team_setup(facts, 2, team)
         unit = facts.unit_m
         sign = 1.0 if team == LEFT else -1.0
         x = ATTACK_HOME_X_UNITS if team == LEFT else -DEFENCE_HOME_X_UNITS

@@ -26,7 +26,8 @@ from field_models.arena import FieldOptions
 from field_models.protocol import PlayerRef
 from field_models.registry import FIELD_MODELS, field_facts
 from robotsoccer.drills.base import Drill
-from robotsoccer.drills.match import HALF_TIME_S, MatchDrill
+from robotsoccer.drills.match import MatchDrill
+from robotsoccer.drills.match_options import HALF_TIME_S
 from robotsoccer.envs.agents import controlled_players
 from robotsoccer.envs.play import PlayParallelEnv
 
@@ -74,8 +75,10 @@ class MatchParallelEnv(PlayParallelEnv):
         **options: Any,
     ) -> None:
         def drill() -> MatchDrill:
-            return MatchDrill(left, right, net, tree, players, half_time_s,
-                              steady_turns=steady_turns)  # fmt: skip
+            return MatchDrill(
+                left=left, right=right, net=net, tree=tree, players=players,
+                half_time_s=half_time_s, steady_turns=steady_turns,
+            )  # fmt: skip
 
         self._make_drill = drill
         probe = drill()  # its own checks, once, before anything is built
