@@ -26,12 +26,10 @@ from field_models.soccer_server.sensing_params import SensingParams
 from field_models.soccer_server.wire import (
     SLOTS,
     BodySense,
-    Show,
-    ShowPlayer,
     global_objects,
     render_sense_body,
-    render_show,
 )
+from field_models.soccer_server.wire_show import Show, ShowPlayer, render_show
 
 ClientKind = Literal["player", "trainer", "monitor"]
 """Who a client is."""

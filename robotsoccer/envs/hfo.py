@@ -59,8 +59,8 @@ from robotsoccer.drills.base import Drill, GoalWatch, Verdict
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.passing import control_reach
 from robotsoccer.drills.referee import TOUCH_PERIOD_S
-from robotsoccer.envs.agents import controlled_players
-from robotsoccer.envs.play import PlayParallelEnv, play_spec
+from robotsoccer.envs.agents import controlled_players, play_spec
+from robotsoccer.envs.play import PlayParallelEnv
 from robotsoccer.runs.spec import resolve_with
 from robotsoccer.skills.team import TeamMind
 from robotsoccer.skills.team_setup import TeamSetup

@@ -28,8 +28,8 @@ from field_models.registry import FIELD_MODELS
 from robotsoccer.drills.base import Drill
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.match_options import MatchOptions
-from robotsoccer.envs.agents import controlled_players
-from robotsoccer.envs.play import PlayParallelEnv, play_spec
+from robotsoccer.envs.agents import controlled_players, play_spec
+from robotsoccer.envs.play import PlayParallelEnv
 from robotsoccer.runs.spec import resolve
 
 MATCH_FIELDS = tuple(f.name for f in fields(MatchOptions))

@@ -63,7 +63,7 @@ from gymnasium import spaces
 from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
 
-from field_models.arena import Arena, FieldFacts, FieldOptions
+from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Action, Mind, Percept, PlayerRef
 from field_models.registry import make_arena
 from field_models.seeding import TrialRngs
@@ -81,7 +81,7 @@ from robotsoccer.envs.control_spaces import (
 from robotsoccer.envs.macros import Macro, MacroMind, checked_macro, macro_count, macro_mask
 from robotsoccer.envs.rendering import RENDER_MODES, ArenaView, check_render_mode
 from robotsoccer.runs.runner import TrialLoop
-from robotsoccer.runs.spec import ResolvedSpec, TrialSpec
+from robotsoccer.runs.spec import ResolvedSpec
 from robotsoccer.skills.team import TeamMind
 
 ACTION_MODES = ("commands", "primitives", "macro")
@@ -105,19 +105,6 @@ class _HeldActions:
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
         return self.actions
-
-
-def play_spec(
-    drill: str, field_model: str, preset: str | None, options: dict[str, Any]
-) -> TrialSpec:
-    """The spec a play environment resolves: `drill` on the field, every landmark seen.
-
-    Takes ``perfect_perception`` (the sensor without noise, misses or latency) out of
-    `options`, the environment's keywords, and leaves the rest to :class:`PlayParallelEnv`.
-    """
-    perfect = bool(options.pop("perfect_perception", False))
-    field = FieldOptions(perfect_perception=perfect, all_landmarks=True)
-    return TrialSpec(drill=drill, field_model=field_model, preset=preset, field=field)
 
 
 class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
