@@ -25,7 +25,8 @@ from field_models.protocol import Percept
 from field_models.seeding import TrialRngs
 from field_models.soccer_server import arena as arena_module
 from field_models.soccer_server.percepts import percept_from_state
-from field_models.soccer_server.percepts_many import Bodies, percepts_of
+from field_models.soccer_server.percepts_many import percepts_of
+from field_models.soccer_server.sensing import Bodies
 from robotsoccer.runs.runner import TrialSpec, run_trial
 
 Cycle = tuple[Any, ...]
@@ -39,7 +40,9 @@ def record_cycles(trials: int) -> list[Cycle]:
 
     def recording(observers: Any, bodies: Bodies, players: Any, *rest: Any) -> list[Percept]:
         params, _, time_, _, landmarks = rest
-        state = Bodies(*(list(column) for column in bodies))
+        # Copies of the columns, which the model goes on changing after the call.
+        b = bodies
+        state = Bodies(list(b.x), list(b.y), list(b.vx), list(b.vy), list(b.heading), b.neck)
         cycles.append((tuple(observers), state, players, params, time_, landmarks))
         return built(observers, bodies, players, *rest)
 
@@ -64,20 +67,7 @@ def one_at_a_time(cycle: Cycle, rng: Any) -> list[Percept]:
     """The one-player route, observer after observer."""
     observers, b, players, params, time_, landmarks = cycle
     return [
-        percept_from_state(
-            row,
-            b.x,
-            b.y,
-            b.vx,
-            b.vy,
-            b.heading,
-            players,
-            time_,
-            params,
-            rng,
-            tick=time_,
-            landmarks=landmarks,
-        )
+        percept_from_state(row, b, players, time_, params, rng, landmarks=landmarks)
         for row in observers
     ]
 

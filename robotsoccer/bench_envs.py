@@ -55,7 +55,7 @@ def bare_run(field_model: str, ticks: int, seed: int = 0) -> float:
     """CPU seconds of the same field and minds stepping `ticks` ticks without the env layer."""
     env = ScoreEnv(field_model)  # the same preset, options and players
     dt = env.facts.dt_s
-    drill = MatchDrill("baseline", "baseline", players=env.players_per_side,
+    drill = MatchDrill(left="baseline", right="baseline", players=env.players_per_side,
                        half_time_s=ticks * dt)  # fmt: skip
     drill.max_time_s = ticks * dt  # one half: no half-time restart
     rngs = TrialRngs(seed, 0)
@@ -125,7 +125,7 @@ def match_env_figures(field_model: str, half_time_s: float, seed: int = 0) -> di
         out[f"{action}_steps_per_s"] = round(steps / cpu)
         out[f"{action}_agent_steps_per_s"] = round(decisions / cpu)
         out[f"{action}_realtime_factor"] = round(ticks * dt / cpu, 1)
-    drill = MatchDrill("baseline", "baseline", half_time_s=half_time_s)
+    drill = MatchDrill(left="baseline", right="baseline", half_time_s=half_time_s)
     facts = MatchParallelEnv(field_model, half_time_s=half_time_s).facts
     rngs = TrialRngs(seed, 0)
     arena = make_arena(field_model, None, drill.players_for(facts), rngs, env.field_options)

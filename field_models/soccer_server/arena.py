@@ -77,9 +77,9 @@ from field_models.soccer_server.percepts import (
     percept_from_see,
     percept_from_state,
 )
-from field_models.soccer_server.percepts_many import Bodies, percepts_of
+from field_models.soccer_server.percepts_many import percepts_of
 from field_models.soccer_server.see_timing import SeeTimer, visual_send_interval
-from field_models.soccer_server.sensing import LandmarkMode, observe
+from field_models.soccer_server.sensing import Bodies, LandmarkMode, observe
 from field_models.soccer_server.sensing_params import SensingParams
 
 
@@ -253,10 +253,15 @@ class SoccerServerArena:
         """Player `i`'s percept of its see of this cycle, through its own view and neck."""
         m = self.model
         return percept_from_state(
-            i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, self._views[i],
-            self._see_rng, tick=cycle, heard=self._take_heard(i), landmarks=self._landmarks,
-            neck=m.neck,
-        )  # fmt: skip
+            i + 1,
+            Bodies(m.x, m.y, m.vx, m.vy, m.heading, neck=m.neck),
+            self.players,
+            cycle,
+            self._views[i],
+            self._see_rng,
+            heard=self._take_heard(i),
+            landmarks=self._landmarks,
+        )
 
     def _see_text(self, i: int, cycle: int) -> Percept:
         """Player `i`'s percept from the text of its see of this cycle (the trace route)."""
@@ -264,9 +269,14 @@ class SoccerServerArena:
         heard = self._take_heard(i)
         view = self._views[i]
         info = observe(
-            i + 1, m.x, m.y, m.vx, m.vy, m.heading, self.players, cycle, view,
-            self._see_rng, landmarks="all", neck=m.neck,
-        )  # fmt: skip
+            i + 1,
+            Bodies(m.x, m.y, m.vx, m.vy, m.heading, neck=m.neck),
+            self.players,
+            cycle,
+            view,
+            self._see_rng,
+            landmarks="all",
+        )
         ref = self.players[i]
         text = render_see(info, view.protocol_version)
         self._log(cycle, "see", text, ref)

@@ -27,12 +27,17 @@ route.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 
 from field_models.protocol import Heard, Percept, PlayerRef, SeenBall, SeenLandmark, SeenPlayer
 from field_models.seeding import Rng
 from field_models.soccer_server.hearing import HearInfo
-from field_models.soccer_server.sensing import LandmarkMode, SeeInfo, SeenObject, observe
+from field_models.soccer_server.sensing import (
+    Bodies,
+    LandmarkMode,
+    SeeInfo,
+    SeenObject,
+    observe,
+)
 from field_models.soccer_server.sensing_params import SensingParams
 
 _DEG2RAD = math.pi / 180.0
@@ -113,36 +118,29 @@ def heard_from_hear(info: HearInfo, listener: PlayerRef) -> Heard | None:
 
 def percept_from_state(
     observer: int,
-    x: Sequence[float],
-    y: Sequence[float],
-    vx: Sequence[float],
-    vy: Sequence[float],
-    heading: Sequence[float],
+    bodies: Bodies,
     players: tuple[PlayerRef, ...],
     time: int,
     params: SensingParams,
     rng: Rng,
     *,
-    tick: int,
     heard: tuple[Heard, ...] = (),
     landmarks: LandmarkMode = "goals",
-    neck: Sequence[float] | None = None,
 ) -> Percept:
     """The structured fast path: the percept a see at `time` gives, without any text.
 
-    Arguments are those of :func:`~.sensing.observe` (velocities in m/cycle); `time` is also
-    the percept's ``observed_tick`` and `tick` the cycle the client receives it. `landmarks`
-    picks what the percept's landmarks hold: ``"goals"`` (default, cheap), ``"all"`` flags and
-    goals, or ``"none"``. It draws the same random numbers as the full see, so for the same
-    generator state it equals the text route's percept (restricted to the same landmarks).
-    `neck` (per row, CCW; None: all 0) turns the view, and the percept carries the
-    observer's neck angle.
+    Arguments are those of :func:`~.sensing.observe` (velocities in m/cycle); `time` is the
+    percept's ``observed_tick`` and also its ``tick``: the arena's see reaches the client in the
+    cycle it shows (:func:`percept_from_see` takes a later one). `heard`: the messages heard
+    since the previous percept. `landmarks` picks what the percept's landmarks hold:
+    ``"goals"`` (default, cheap), ``"all"`` flags and goals, or ``"none"``. It draws the same
+    random numbers as the full see, so for the same generator state it equals the text route's
+    percept (restricted to the same landmarks). The bodies' `neck` (per row, CCW; None: all 0)
+    turns the view, and the percept carries the observer's neck angle.
     """
-    info = observe(
-        observer, x, y, vx, vy, heading, players, time, params, rng, landmarks=landmarks, neck=neck
-    )
+    info = observe(observer, bodies, players, time, params, rng, landmarks=landmarks)
     cycle_s = params.simulator_step_ms / 1000.0
-    neck_rad = 0.0 if neck is None else neck[observer]
+    neck_rad = 0.0 if bodies.neck is None else bodies.neck[observer]
     return percept_from_see(
-        info, players[observer - 1], tick, time, heard, cycle_s=cycle_s, neck_rad=neck_rad
+        info, players[observer - 1], time, time, heard, cycle_s=cycle_s, neck_rad=neck_rad
     )

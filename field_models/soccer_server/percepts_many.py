@@ -62,7 +62,7 @@ from field_models.soccer_server.see_numbers import (
     see_changes,
     see_consts,
 )
-from field_models.soccer_server.sensing import LANDMARK_MODES, LandmarkMode
+from field_models.soccer_server.sensing import LANDMARK_MODES, Bodies, LandmarkMode
 from field_models.soccer_server.sensing_params import SensingParams
 
 Array = npt.NDArray[np.float64]
@@ -85,24 +85,6 @@ When = tuple[int, Sequence[tuple[Heard, ...]]]
 """The cycle of the sees and, per observer, what it heard since its previous percept."""
 
 
-class Bodies(NamedTuple):
-    """Per-object state, our frame: row 0 the ball, rows 1..N the players (as ``observe``).
-
-    Attributes:
-        x: x [m].
-        y: y [m] (up).
-        vx: x velocity [m/cycle].
-        vy: y velocity [m/cycle].
-        heading: heading [rad], CCW from +x (row 0 unused).
-    """
-
-    x: Sequence[float]
-    y: Sequence[float]
-    vx: Sequence[float]
-    vy: Sequence[float]
-    heading: Sequence[float]
-
-
 def percepts_of(
     observers: Sequence[int],
     bodies: Bodies,
@@ -115,12 +97,13 @@ def percepts_of(
 ) -> list[Percept]:
     """The percepts of the sees at cycle `time` of the players in rows `observers`, in order.
 
-    Equal, field for field and bit for bit, to ``percept_from_state(row, ..., time, params,
-    rng, tick=time, heard=heard[k], landmarks=landmarks)`` for each row in turn.
+    Equal, field for field and bit for bit, to ``percept_from_state(row, bodies, players, time,
+    params, rng, heard=heard[k], landmarks=landmarks)`` for each row in turn.
 
     Args:
         observers: Rows of the observing players (1..N), in the order their sees are drawn.
-        bodies: Every object's state (row 0 the ball).
+        bodies: Every object's state (row 0 the ball). The arrays assume every head looks
+            along its body: with a neck turned the sees are built one at a time.
         players: Identities of rows 1..N.
         params: Sensing parameters.
         rng: The trial's sensing generator.
@@ -134,18 +117,11 @@ def percepts_of(
         return []
     c = see_consts(params)
     marks = () if landmarks == "none" else c.flags if landmarks == "all" else c.goals
-    if len(observers) * (n + len(marks)) < ARRAY_PAIRS_MIN:
+    turned = bodies.neck is not None and any(bodies.neck)
+    if turned or len(observers) * (n + len(marks)) < ARRAY_PAIRS_MIN:
         return [
             percept_from_state(
-                row,
-                *bodies,
-                players,
-                time,
-                params,
-                rng,
-                tick=time,
-                heard=heard[k],
-                landmarks=landmarks,
+                row, bodies, players, time, params, rng, heard=heard[k], landmarks=landmarks
             )
             for k, row in enumerate(observers)
         ]

@@ -41,8 +41,8 @@ and the goals come out the same in every mode that shows them.
 
 Choices: 1996 sees carry no changes and use a reduced landmark set (``SensingParams``
 fields ``report_changes``, ``landmark_set``); see timing follows the server's asynchronous
-timer (synch-see mode is not modelled); the view points along body + neck (``observe``'s
-`neck`, 0 where left out: the 1996 servers had no neck), and a seen player's head direction is
+timer (synch-see mode is not modelled); the view points along body + neck (:class:`Bodies`'
+``neck``, 0 where left out: the 1996 servers had no neck), and a seen player's head direction is
 its body + neck relative to the observer's view; player entries never carry a pointing
 direction, goalie or tackle mark. The flag loop, the costliest part of a full see, is written
 out inline.
@@ -136,30 +136,46 @@ class SeeInfo:
 # ----------------------------------------------------------------------------- see
 
 
+class Bodies(NamedTuple):
+    """What a see looks at: every object's state, our frame; row 0 the ball, rows 1..N players.
+
+    One record for the state arrays :func:`observe` and the percept routes read (as the models
+    hold them, e.g. :class:`~field_models.soccer_server.dynamics.SoccerServerModel`'s columns).
+
+    Attributes:
+        x: x [m].
+        y: y [m] (up).
+        vx: x velocity [m/cycle].
+        vy: y velocity [m/cycle].
+        heading: heading [rad], CCW from +x (row 0 unused).
+        neck: Neck angle relative to the body [rad], CCW (None: every neck is 0). The observer
+            looks along heading + neck (§3.1): every direction is relative to that, and a seen
+            player's head direction is its own heading + neck.
+    """
+
+    x: Sequence[float]
+    y: Sequence[float]
+    vx: Sequence[float]
+    vy: Sequence[float]
+    heading: Sequence[float]
+    neck: Sequence[float] | None = None
+
+
 def observe(
     observer: int,
-    x: Sequence[float],
-    y: Sequence[float],
-    vx: Sequence[float],
-    vy: Sequence[float],
-    heading: Sequence[float],
+    bodies: Bodies,
     players: tuple[PlayerRef, ...],
     time: int,
     params: SensingParams,
     rng: Rng,
     *,
     landmarks: LandmarkMode = "all",
-    neck: Sequence[float] | None = None,
 ) -> SeeInfo:
     """What player row `observer` sees now: the content of its see message (§3).
 
     Args:
         observer: Row of the observing player (1..N; row 0 is the ball).
-        x: Per-object x [m], our frame; row 0 = ball, rows 1..N = `players` in order.
-        y: Per-object y [m], our frame (up).
-        vx: Per-object x velocity [m/cycle].
-        vy: Per-object y velocity [m/cycle], our frame.
-        heading: Per-object heading [rad], CCW from +x (row 0 unused).
+        bodies: Every object's state (:class:`Bodies`: row 0 the ball, rows 1..N `players`).
         players: Identities of rows 1..N: ``players[i - 1]`` is row i.
         time: Server time stamped on the message (cycle).
         params: Sensing parameters.
@@ -167,9 +183,6 @@ def observe(
         landmarks: ``"all"`` flags, goals and lines (the full message); ``"goals"`` only the
             goals; ``"none"`` no landmarks. Every mode gives the same ball, players and goals
             (same random numbers); the lean ones cost a fraction of the full see.
-        neck: Per-object neck angle relative to the body [rad], CCW (None: every neck is 0).
-            The observer looks along heading + neck (§3.1): every direction is relative to
-            that, and a seen player's head direction is its own heading + neck.
 
     Returns:
         The objects in message order: flags and goals, ball, players, lines.
@@ -178,6 +191,7 @@ def observe(
     if not 1 <= observer <= n:
         raise ValueError(f"observer row {observer} outside 1..{n}")
     c = see_consts(params)
+    x, y, vx, vy, heading, neck = bodies
     # Server frame: y down, angles clockwise in ours. Negating y and the heading is exact.
     ox, osy = x[observer], -y[observer]
     ovx, ovy = vx[observer], -vy[observer]

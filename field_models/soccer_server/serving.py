@@ -44,7 +44,7 @@ import contextlib
 from field_models.protocol import LEFT, RIGHT
 from field_models.soccer_server.hearing import HearInfo, deliver_says
 from field_models.soccer_server.messages import render_hear, render_see
-from field_models.soccer_server.sensing import SeeInfo, observe
+from field_models.soccer_server.sensing import Bodies, SeeInfo, observe
 from field_models.soccer_server.serving_commands import CommandHandling
 from field_models.soccer_server.serving_state import COUNTERS, Client
 
@@ -99,9 +99,14 @@ class ServedGame(CommandHandling):
         m = self.model
         assert client.ref is not None and client.sensing is not None
         info = observe(
-            m.row(client.ref), m.x, m.y, m.vx, m.vy, m.heading, m.players, m.cycle,
-            client.sensing, self._see_rng, landmarks="all", neck=m.neck,
-        )  # fmt: skip
+            m.row(client.ref),
+            Bodies(m.x, m.y, m.vx, m.vy, m.heading, neck=m.neck),
+            m.players,
+            m.cycle,
+            client.sensing,
+            self._see_rng,
+            landmarks="all",
+        )
         return render_see(self._named(info), client.sensing.protocol_version)
 
     def _named(self, info: SeeInfo) -> SeeInfo:

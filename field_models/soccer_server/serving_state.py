@@ -26,11 +26,10 @@ from field_models.soccer_server.sensing_params import SensingParams
 from field_models.soccer_server.wire import (
     SLOTS,
     BodySense,
-    ShowPlayer,
     global_objects,
     render_sense_body,
-    render_show,
 )
+from field_models.soccer_server.wire_show import Show, ShowPlayer, render_show
 
 ClientKind = Literal["player", "trainer", "monitor"]
 """Who a client is."""
@@ -238,10 +237,9 @@ class GameState:
             kicked = client is not None and client.kicked_now
             slots.append(ShowPlayer(players.get(ref), shown, kicked))
         visible = math.degrees(2.0 * self.preset.sensing.view_half_angle_rad)
-        return render_show(
-            self.time, self.model.play_mode, (self.teams[0], self.teams[1]), self.score(),
-            ball, slots, self.dt_s, visible_angle_deg=visible, version=int(monitor.version),
-        )  # fmt: skip
+        teams = (self.teams[0], self.teams[1])
+        show = Show(self.time, self.model.play_mode, teams, self.score(), ball, slots)
+        return render_show(show, self.dt_s, visible_angle_deg=visible, version=int(monitor.version))
 
     def _name(self, client: Client) -> str:
         if client.ref is None:

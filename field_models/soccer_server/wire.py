@@ -18,10 +18,12 @@ served game (:mod:`~field_models.soccer_server.serving`) and the over-the-wire f
   and neck in integer degrees (rounded from protocol 8);
 * a monitor's ``show`` (``src/serializermonitor.cpp``, ``SerializerMonitorStdv3``/``v4``):
   ``(show T (pm ID) (tm L R SL SR) ((b) x y vx vy) ((l 1) type state x y vx vy body neck
-  (v h width) (s stamina effort recovery [capacity]) (c counts...)) ...)`` with all 22 slots.
+  (v h width) (s stamina effort recovery [capacity]) (c counts...)) ...)`` with all 22 slots,
+  in :mod:`~field_models.soccer_server.wire_show` beside this module.
 
 Coordinates on the wire are the server's: y down, angles clockwise in degrees, velocities per
-cycle. Our frame (y up, counter-clockwise radians, m/s) is converted here and nowhere else.
+cycle. Our frame (y up, counter-clockwise radians, m/s) is converted here (and in the show's
+module) and nowhere else.
 """
 
 from __future__ import annotations
@@ -428,59 +430,6 @@ def global_objects(
             f"{_g(-st.vy * dt_s)} {body + 0} 0)"
         )
     return " ".join(parts)
-
-
-@dataclass(frozen=True, slots=True)
-class ShowPlayer:
-    """One slot of a monitor's show: the player's state (None: not connected) and counts."""
-
-    state: BodyState | None
-    counts: tuple[int, ...]
-    kicked: bool = False
-
-
-def render_show(
-    time: int,
-    mode: str,
-    teams: tuple[str | None, str | None],
-    score: tuple[int, int],
-    ball: BodyState,
-    slots: Sequence[ShowPlayer],
-    dt_s: float,
-    *,
-    visible_angle_deg: float,
-    version: int = 3,
-) -> str:
-    """A monitor's ``(show ...)`` (protocol 3; 4 adds the stamina capacity). 22 slots, l then r."""
-    left, right = (name or "null" for name in teams)
-    parts = [
-        f"(show {time} (pm {PLAY_MODE_IDS.get(mode, 0)}) (tm {left} {right} {score[0]} {score[1]})"
-        f" ((b) {_p(ball.x)} {_p(-ball.y)} {_p(ball.vx * dt_s)} {_p(-ball.vy * dt_s)})"
-    ]
-    stamina = "(s 8000 1 1 130600)" if version >= 4 else "(s 8000 1 1)"
-    view = f"(v h {_g(visible_angle_deg)})"
-    for i, slot in enumerate(slots):
-        side = "l" if i < PLAYERS_PER_TEAM else "r"
-        unum = i % PLAYERS_PER_TEAM + 1
-        st = slot.state
-        if st is None:
-            sign = 1 if side == "l" else -1
-            head = f"(({side} {unum}) 0 0 {_p(-3.0 * unum * sign)} -37 0 0 0 0"
-        else:
-            bits = 0x1 | (0x2 if slot.kicked else 0)
-            body = (-st.heading * _RAD2DEG + 180.0) % 360.0 - 180.0
-            head = (
-                f"(({side} {unum}) 0 {bits:#x} {_p(st.x)} {_p(-st.y)} {_p(st.vx * dt_s)} "
-                f"{_p(-st.vy * dt_s)} {round(body, 3) + 0.0:g} 0"
-            )
-        counts = " ".join(str(c) for c in slot.counts)
-        parts.append(f" {head} {view} {stamina} (c {counts}))")
-    return "".join(parts) + ")"
-
-
-def _p(value: float) -> str:
-    """A position or velocity quantised to 0.0001 (``PREC``) and printed ``%g``."""
-    return f"{round(value, 4) + 0.0:g}"
 
 
 def team_side(ref: PlayerRef) -> str:

@@ -65,7 +65,7 @@ BENCH_TARGETS = {
 """What ``robotsoccer bench`` checks each figure against."""
 
 TEAM_KINDS = ("layered", "baseline", "layer3")
-"""The match drill's team kinds (:class:`robotsoccer.drills.match.TeamKind`)."""
+"""The match drill's team kinds (:class:`robotsoccer.drills.match_options.TeamKind`)."""
 SERVE_FIELD = "soccer_server"
 """The field model ``serve`` serves over UDP; its presets are what ``--field-preset`` names."""
 SERVE_PRESET = "rcssserver_19_async"

@@ -24,7 +24,10 @@ small-sided games), mirrored for the right team.
 
 **Referee** (:mod:`robotsoccer.drills.referee`): the Soccer Server's play modes on an open
 field, the table's restart rules on a walled one. The match lasts two halves of
-``half_time_s`` (default :data:`HALF_TIME_S`, rcssserver's ``half_time``).
+``half_time_s`` (default :data:`~robotsoccer.drills.match_options.HALF_TIME_S`, rcssserver's
+``half_time``).
+
+**Options**: one typed record, :class:`~robotsoccer.drills.match_options.MatchOptions`.
 
 **Labels** ``LEFT_WIN``, ``DRAW``, ``RIGHT_WIN``. **Measures**: goals, possession share
 (ticks in which the team touched the ball last), passes completed (the ball goes from one
@@ -35,17 +38,17 @@ per spell on the ball), kicks its players tried at all, per side.
 from __future__ import annotations
 
 import math
-from enum import StrEnum
+from typing import Any
 
 from field_models.arena import Arena, ArenaEvent, CountsCommands, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
-from learning.tpot import REWARD_WINDOWS, WINDOW_CHOICE, Experience, load_table
+from learning.tpot import Experience, load_table
 from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.match_options import MatchOptions, TeamKind
 from robotsoccer.drills.match_setup import FORMATIONS, GOALIE, KICKER, team_setup
 from robotsoccer.drills.passing import LayeredDrill, control_reach, load_evaluator
 from robotsoccer.drills.referee import PLAY_ON, SIDE, Referee
-from robotsoccer.options import bounded, choice, duration, flag
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.skills.intercept import (
     Behaviour,
@@ -57,149 +60,54 @@ from robotsoccer.skills.intercept import (
 from robotsoccer.skills.layer3 import TpotBallPolicy
 from robotsoccer.skills.passing import Chooser, PassEvaluator
 from robotsoccer.skills.team import TeamMind
-from robotsoccer.skills.team_setup import LOOK_MODES, TeamSetup
+from robotsoccer.skills.team_setup import TeamSetup
 
-HALF_TIME_S = 300.0
-"""One half [s]: rcssserver's ``half_time`` (3000 cycles)."""
 EXPERIENCE_FIELDS = 5
 """Numbers per layer-3 experience in a match's data: side (0 left), number, e, a, reward."""
-PASS_THRESHOLD = 0.5
-"""The layered team's pass threshold (:attr:`TeamMind.pass_threshold`'s default), layer 3's
-SUCCESS cut."""
 JITTER_UNITS = 1.0
 """Kick-off spots are moved by up to this in x and y from the ``placement`` stream."""
-
-
-class TeamKind(StrEnum):
-    """A team's behaviour (module docstring)."""
-
-    LAYERED = "layered"
-    BASELINE = "baseline"
-    LAYER3 = "layer3"
-
-
-DEAD_BAND_VALUES = ("false", "true", LEFT, RIGHT)
-"""What the match's ``dead_band`` option takes (:func:`dead_band_teams`)."""
-
-
-def dead_band_teams(value: bool | str) -> frozenset[str]:
-    """The teams whose minds use the dead band: True both, ``left``/``right`` one, False none.
-
-    Raises:
-        ValueError: Any other value, naming the allowed ones.
-    """
-    text = str(value).lower() if isinstance(value, bool | str) else ""
-    if text not in DEAD_BAND_VALUES:
-        known = ", ".join(DEAD_BAND_VALUES)
-        raise ValueError(f"dead_band must be one of {known}, got {value!r}")
-    if text in (LEFT, RIGHT):
-        return frozenset((text,))
-    return frozenset((LEFT, RIGHT)) if text == "true" else frozenset()
 
 
 class MatchDrill(LayeredDrill):
     """A match (module docstring).
 
+    Built from a :class:`~robotsoccer.drills.match_options.MatchOptions` record, or from its
+    fields as keywords (the registry's ``make_drill`` and a command line's ``--option
+    NAME=VALUE`` give them so); :data:`OPTIONS` names the record, whose fields are the drill's
+    option names.
+
     Args:
-        left: The left team's kind.
-        right: The right team's kind.
-        net: Layer 1's net, for a layered team.
-        tree: Layer 2's pass tree, for a layered team.
-        players: Players per side (0: 11 on an open field, 5 on a walled one).
-        half_time_s: One half [s].
-        transfer: Accept a net or tree trained on another field model or preset.
-        tpot: Layer 3's table (:func:`learning.tpot.save_table`), for a ``layer3`` team.
-        explore: Layer 3's exploration rate epsilon in [0, 1].
-        learn: Layer 3 records its rewards: :meth:`data` returns them
-            (:func:`layer3_experiences` reads them back).
-        tpot_every: Layer 3 decides on every spell on the ball (shoot and keep included),
-            not only where the layered team would ask the tree.
-        tpot_success: Layer 3's SUCCESS cut on the tree's confidence, in [0, 1].
-        tpot_window: When layer 3's rewards close (:data:`learning.tpot.REWARD_WINDOWS`):
-            ``choice`` (also at the player's next choice) or ``horizon`` (only at the horizon,
-            a goal, play stopping or full time).
-        tpot_guard: Layer 3's shot-range guard (needs ``tpot_every``): the goal destination is
-            a shot only within the teams' shooting range.
-        tpot_loss: Layer 3's loss penalty in [0, 1] (0: the ball's advance alone).
-        steady_turns: The minds reckon their turns into the heading between landmark fixes and
-            do not turn back within a short hold (:attr:`~robotsoccer.skills.team_setup.TeamSetup.
-            steady_turns`); False (default): the 1996 client's turning.
-        look: How the minds look (:data:`~robotsoccer.skills.team_setup.LOOK_MODES`):
-            ``body`` (default, the paper's client) or ``neck``: with the neck and view modes
-            (:mod:`robotsoccer.skills.team_look`), with the steady turns' rules besides.
-        dead_band: The minds drive on a small heading error, slow to stop at home and hold a
-            turn back for a second (:attr:`~robotsoccer.skills.team_setup.TeamSetup.
-            dead_band`; issue 28 item 5, the robots' dithering): True for both teams,
-            ``left`` or ``right`` for one (to measure what it costs); False (default): as
-            before.
+        options: The match's options; None: built from `keywords`.
+        **keywords: The options' fields by name, where `options` is not given.
 
     Raises:
-        ValueError: An unknown team kind, a layered team without its model files, an unknown
-            team size, a half <= 0, an unknown look.
+        ValueError: A bad option (:class:`~robotsoccer.drills.match_options.MatchOptions`), or
+            both a record and keywords.
     """
 
     name: str = "match"
     labels: tuple[str, ...] = ("LEFT_WIN", "DRAW", "RIGHT_WIN")
+    OPTIONS = MatchOptions
 
-    def __init__(
-        self,
-        left: TeamKind | str = TeamKind.LAYERED,
-        right: TeamKind | str = TeamKind.BASELINE,
-        net: str = "",
-        tree: str = "",
-        players: int | str = 0,
-        half_time_s: float | str = HALF_TIME_S,
-        transfer: bool | str = False,
-        steady_turns: bool | str = False,
-        look: str = "body",
-        dead_band: bool | str = False,
-        tpot: str = "",
-        explore: float | str = 0.0,
-        learn: bool | str = False,
-        tpot_every: bool | str = False,
-        tpot_success: float | str = PASS_THRESHOLD,
-        tpot_window: str = WINDOW_CHOICE,
-        tpot_guard: bool | str = False,
-        tpot_loss: float | str = 0.0,
-    ) -> None:
-        if look not in LOOK_MODES:
-            raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {look!r}")
-        self.look = look
-        self.steady_turns = flag("steady_turns", steady_turns) or look == "neck"
-        self.dead_band = dead_band_teams(dead_band)
-        self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
-        layered = bool({TeamKind.LAYERED, TeamKind.LAYER3} & set(self.kinds.values()))
-        if layered and not (net and tree):
-            raise ValueError("a layered team needs a net and a tree (options net=... tree=...)")
-        layer3 = TeamKind.LAYER3 in self.kinds.values()
-        if layer3 and not tpot:
-            raise ValueError("a layer3 team needs its table (option tpot=...)")
-        self.tpot = tpot if layer3 else ""
-        self.explore = bounded("explore", _number("explore", explore), 0.0, 1.0)
-        self.learn = flag("learn", learn)
-        self.tpot_every = flag("tpot_every", tpot_every)
-        self.tpot_success = bounded("tpot_success", _number("tpot_success", tpot_success), 0.0, 1.0)
-        if tpot_window not in REWARD_WINDOWS:
-            known = ", ".join(REWARD_WINDOWS)
-            raise ValueError(f"tpot_window must be one of {known}, got {tpot_window!r}")
-        self.tpot_window = tpot_window
-        self.tpot_guard = flag("tpot_guard", tpot_guard)
-        if self.tpot_guard and not self.tpot_every:
-            raise ValueError("tpot_guard needs tpot_every (the goal is a shot only then)")
-        self.tpot_loss = bounded("tpot_loss", _number("tpot_loss", tpot_loss), 0.0, 1.0)
+    def __init__(self, options: MatchOptions | None = None, /, **keywords: Any) -> None:
+        if options is not None and keywords:
+            raise ValueError("give the match drill an options record or keywords, not both")
+        self.options = o = options if options is not None else MatchOptions(**keywords)
+        self.look, self.steady_turns = o.look, o.steady_turns
+        self.dead_band = o.dead_band_teams()
+        self.kinds = {LEFT: o.left, RIGHT: o.right}
+        layered = o.layered()
+        self.tpot = o.tpot if o.has(TeamKind.LAYER3) else ""
+        self.learn = o.learn  # layer 3's other options reach it as o.tpot_settings()
         self.policies: dict[str, TpotBallPolicy] = {}
         self._tick = 0
-        self.net = net if layered else ""
-        self.model = tree if layered else ""
+        self.net = o.net if layered else ""
+        self.model = o.tree if layered else ""
         self.chooser = Chooser.TREE
-        self.size = int(players)
-        if self.size not in (0, *FORMATIONS):
-            known = ", ".join(str(n) for n in FORMATIONS)
-            raise ValueError(f"players must be 0 (the field's default) or one of {known}")
-        half = duration("half_time_s", half_time_s)
-        self.half_time_s = half
-        self.max_time_s = 2.0 * half
-        self.transfer = flag("transfer", transfer)
+        self.size = o.players
+        self.half_time_s = o.half_time_s
+        self.max_time_s = 2.0 * o.half_time_s
+        self.transfer = o.transfer
         self._checked: FieldFacts | None = None
         self.referee: Referee | None = None
         self.minds_by_ref: dict[PlayerRef, TeamMind] = {}
@@ -299,7 +207,7 @@ class MatchDrill(LayeredDrill):
             layered = self.kinds[team] in (TeamKind.LAYERED, TeamKind.LAYER3)
             ball_policy = None
             if self.kinds[team] is TeamKind.LAYER3 and tree is not None:
-                ball_policy = self._layer3_policy(setup, facts, tree, rngs)
+                ball_policy = self._layer3_policy(setup, tree, rngs)
                 self.policies[team] = ball_policy
             policy, lead = None, None
             if layered and model_decision(self.net) == "lead":
@@ -320,36 +228,15 @@ class MatchDrill(LayeredDrill):
         return minds
 
     def _layer3_policy(
-        self, setup: TeamSetup, facts: FieldFacts, tree: PassEvaluator, rngs: TrialRngs
+        self, setup: TeamSetup, tree: PassEvaluator, rngs: TrialRngs
     ) -> TpotBallPolicy:
         """One team's layer 3 (its own copy of the table: a game never changes the file)."""
         table = load_table(self.tpot)
         n = len(FORMATIONS[len(setup.home)])
         if table.positions != n:
             raise ValueError(f"{self.tpot}: a table for {table.positions} positions, not {n}")
-        return TpotBallPolicy(
-            table,
-            attack_right=setup.attack_right,
-            half_length_m=setup.half_length_m,
-            half_width_m=setup.half_width_m,
-            unit_m=setup.unit_m,
-            pass_range_m=setup.pass_range_m,
-            pass_power=setup.powers.passing,
-            dt_s=facts.dt_s,
-            evaluator=tree,
-            threshold=self.tpot_success,
-            rng=rngs["policy"],
-            epsilon=self.explore,
-            learn=self.learn,
-            every_ball=self.tpot_every,
-            shoot_range_m=setup.shoot_range_m,
-            blocked_m=setup.blocked_m,
-            shot_power=setup.powers.shot,
-            dribble_power=setup.powers.dribble,
-            window=self.tpot_window,
-            shot_guard=self.tpot_guard,
-            loss_penalty=self.tpot_loss,
-        )
+        settings = self.options.tpot_settings()
+        return TpotBallPolicy(table, setup, tree, rngs["policy"], settings)
 
     def team_setup(self, facts: FieldFacts, n: int, team: str) -> TeamSetup:
         """One team's plan on this field (module docstring)."""
@@ -468,13 +355,6 @@ class MatchDrill(LayeredDrill):
     def goalies(self) -> tuple[PlayerRef, ...]:
         """Each team's goalkeeper (:data:`~robotsoccer.drills.match_setup.GOALIE`), left, right."""
         return (PlayerRef(LEFT, GOALIE), PlayerRef(RIGHT, GOALIE))
-
-
-def _number(option: str, value: object) -> float:
-    try:
-        return float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise ValueError(f"{option} must be a number, got {value!r}") from None
 
 
 def layer3_experiences(data: tuple[float, ...]) -> list[tuple[str, Experience]]:

@@ -255,9 +255,7 @@ class SetPlayDrill(LayeredDrill):
                 [r.number for r in receivers],
                 self.chooser,
                 rng,
-                unit_m=facts.unit_m,
-                sensor_period_s=facts.sensor_period_s,
-                dt_s=facts.dt_s,
+                facts,
                 kick_power=None,  # the carrier kicks the pass itself (skills module docstring)
                 tree=tree,
             )

@@ -1,10 +1,16 @@
-"""Agent names of the play environments, and which players a ``controlled=`` option names."""
+"""Agent names of the play environments, which players a ``controlled=`` option names.
+
+And the spec a play environment resolves (:func:`play_spec`): its drill on the field.
+"""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
+from field_models.arena import FieldOptions
 from field_models.protocol import LEFT, RIGHT, PlayerRef
+from robotsoccer.runs.spec import TrialSpec
 
 
 def agent_name(ref: PlayerRef) -> str:
@@ -40,3 +46,17 @@ def controlled_players(
     if unknown:
         raise ValueError(f"unknown agents {unknown} in controlled (players: {list(by_name)})")
     return tuple(p for p in everyone if agent_name(p) in wanted)
+
+
+def play_spec(
+    drill: str, field_model: str, preset: str | None, options: dict[str, Any]
+) -> TrialSpec:
+    """The spec a play environment resolves: `drill` on the field, every landmark seen.
+
+    Takes ``perfect_perception`` (the sensor without noise, misses or latency) out of
+    `options`, the environment's keywords, and leaves the rest to
+    :class:`~robotsoccer.envs.play.PlayParallelEnv`.
+    """
+    perfect = bool(options.pop("perfect_perception", False))
+    field = FieldOptions(perfect_perception=perfect, all_landmarks=True)
+    return TrialSpec(drill=drill, field_model=field_model, preset=preset, field=field)

@@ -46,6 +46,7 @@ refused in one line.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -75,12 +76,63 @@ TIME_OUT = "TIME_OUT"
 """The label of an episode cut by the time limit (a truncation)."""
 
 
+@dataclass(frozen=True)
+class ControlOptions:
+    """The options of a control environment, checked (module docstring, "Options").
+
+    Attributes:
+        action: The action kind (:data:`~robotsoccer.envs.control_spaces.ACTION_KINDS`); None:
+            ``wheels`` on a field that drives wheels, else ``commands``.
+        frames_per_step: The learner's percepts per step (a whole number >= 1).
+        perfect_perception: The sensor without noise, misses or latency.
+        ideal_actuation: On the robots, no link latency, loss or rate limit and no watchdog.
+        privileged: Add the true state to the observation.
+        max_time_s: The time limit [s] (a truncation); None: the task's.
+        reward_weights: Weights replacing any of the task's (an unknown term is refused).
+        turn_step_rad: A discrete turn's angle [rad].
+        render_mode: None, ``"rgb_array"`` or ``"human"`` (:mod:`robotsoccer.envs.rendering`).
+        render_width: An ``"rgb_array"`` frame's width [pixels].
+
+    Raises:
+        ValueError: A `frames_per_step` that is not a whole number >= 1, a `max_time_s` that
+            is not a finite number > 0.
+    """
+
+    action: str | None = None
+    frames_per_step: int = 1
+    perfect_perception: bool = False
+    ideal_actuation: bool = False
+    privileged: bool = False
+    max_time_s: float | None = None
+    reward_weights: dict[str, float] | None = None
+    turn_step_rad: float = DEFAULT_TURN_STEP_RAD
+    render_mode: str | None = None
+    render_width: int = 480
+
+    def __post_init__(self) -> None:
+        steps = self.frames_per_step
+        if not isinstance(steps, int) or steps < 1:
+            raise ValueError(f"frames_per_step must be a whole number >= 1: {steps!r}")
+        limit = self.max_time_s
+        if limit is not None and not (math.isfinite(limit) and limit > 0.0):
+            raise ValueError(f"max_time_s must be a finite number > 0, got {limit!r}")
+
+
 class ControlEnv(gym.Env[Any, Any]):
     """What both tasks share: the episode loop, actions, observations, rewards, frames.
 
-    A task fills in the class attributes and the ``_task_*`` hooks. Arguments as in the
-    module docstring; `field_model` any registered one (default: the first), `preset` None
-    for the task's default.
+    A task fills in the class attributes and the ``_task_*`` hooks.
+
+    Args:
+        field_model: Any registered field model (default: the first).
+        preset: Its preset; None: the task's default.
+        options: The options (:class:`ControlOptions`); None: built from `keywords`.
+        **keywords: The options' fields by name (``action=``, ``frames_per_step=``, ...),
+            where `options` is not given: a Gymnasium ``make``'s keywords.
+
+    Raises:
+        ValueError: A bad option, or both a record and keywords; an unknown action kind for
+            the field, an unknown preset.
     """
 
     # Gymnasium's class attribute.
@@ -92,22 +144,13 @@ class ControlEnv(gym.Env[Any, Any]):
         self,
         field_model: str = FIELD_MODELS[0],
         preset: str | None = None,
-        *,
-        action: str | None = None,
-        frames_per_step: int = 1,
-        perfect_perception: bool = False,
-        ideal_actuation: bool = False,
-        privileged: bool = False,
-        max_time_s: float | None = None,
-        reward_weights: dict[str, float] | None = None,
-        turn_step_rad: float = DEFAULT_TURN_STEP_RAD,
-        render_mode: str | None = None,
-        render_width: int = 480,
+        options: ControlOptions | None = None,
+        **keywords: Any,
     ) -> None:
-        if not isinstance(frames_per_step, int) or frames_per_step < 1:
-            raise ValueError(f"frames_per_step must be a whole number >= 1: {frames_per_step!r}")
-        if max_time_s is not None and not (math.isfinite(max_time_s) and max_time_s > 0.0):
-            raise ValueError(f"max_time_s must be a finite number > 0, got {max_time_s!r}")
+        if options is not None and keywords:
+            raise ValueError("give the environment an options record or keywords, not both")
+        self.options = o = options if options is not None else ControlOptions(**keywords)
+        action, perfect_perception = o.action, o.perfect_perception
         self.field_model = field_model
         self.preset = preset or self._default_preset(field_model)
         self.field_options = FieldOptions(perfect_perception=perfect_perception, all_landmarks=True)
@@ -120,25 +163,25 @@ class ControlEnv(gym.Env[Any, Any]):
             raise ValueError(f"unknown action {action!r} (kinds: {', '.join(ACTION_KINDS)})")
         if self.action_kind == "wheels" and not drives:
             raise ValueError(f"action 'wheels' needs a field that drives wheels, not {field_model}")
-        self.frames_per_step = frames_per_step
-        self.ideal_actuation = ideal_actuation
-        self.privileged = privileged
-        self.turn_step_rad = float(turn_step_rad)
-        self.weights = reward_weights_for(self, reward_weights)
+        self.frames_per_step = o.frames_per_step
+        self.ideal_actuation = o.ideal_actuation
+        self.privileged = o.privileged
+        self.turn_step_rad = float(o.turn_step_rad)
+        self.weights = reward_weights_for(self, o.reward_weights)
         facts = self.facts
-        self.max_time_s = max_time_s or self._default_max_time_s(facts)
+        self.max_time_s = o.max_time_s or self._default_max_time_s(facts)
         self.max_ticks = max(1, round(self.max_time_s / facts.dt_s))
         period = min(facts.sensor_period_s, COMMAND_PERIOD_S)
         self.command_ticks = max(1, round(period / facts.dt_s))
         self.builder = ObservationBuilder(facts, *self._task_slots())
         self.action_space = action_space(self.action_kind)
         self.observation_space: spaces.Space[Any] = self.builder.space
-        if privileged:
+        if o.privileged:
             self.observation_space = spaces.Dict(
                 {"observation": self.builder.space, "state": state_space(len(self.players))}
             )
-        self.render_mode = render_mode
-        self._view = ArenaView(render_mode, render_width, title=type(self).__name__)
+        self.render_mode = o.render_mode
+        self._view = ArenaView(o.render_mode, o.render_width, title=type(self).__name__)
         self._experiment_seed: int | None = None
         self._next_episode = 0
         self._arena: Arena | None = None

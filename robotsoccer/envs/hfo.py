@@ -59,8 +59,9 @@ from robotsoccer.drills.base import Drill, GoalWatch, Verdict
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.passing import control_reach
 from robotsoccer.drills.referee import TOUCH_PERIOD_S
-from robotsoccer.envs.agents import controlled_players
+from robotsoccer.envs.agents import controlled_players, play_spec
 from robotsoccer.envs.play import PlayParallelEnv
+from robotsoccer.runs.spec import resolve_with
 from robotsoccer.skills.team import TeamMind
 from robotsoccer.skills.team_setup import TeamSetup
 
@@ -91,31 +92,63 @@ MAX_SIDE = 5
 """The most attackers, and defenders, a side may have."""
 
 
+@dataclasses.dataclass(frozen=True)
+class HfoTask:
+    """What half-field offense poses: the sides and the episode's limits (module docstring).
+
+    Attributes:
+        offense: Attackers, 1 … :data:`MAX_SIDE`.
+        defense: Defenders besides the goalie, 0 … :data:`MAX_SIDE`.
+        goalie: Whether the defence has a goalie (``right_1``).
+        max_time_s: The time limit [s] (None: :data:`MAX_TIME_PERIODS` sensor periods).
+        untouched_time_s: Ends an episode whose ball nobody touched this long [s] (None:
+            :data:`UNTOUCHED_PERIODS` sensor periods).
+
+    Raises:
+        ValueError: Counts out of range, no goalie and no defender, a time that is not a
+            finite number > 0.
+    """
+
+    offense: int = 2
+    defense: int = 1
+    goalie: bool = True
+    max_time_s: float | None = None
+    untouched_time_s: float | None = None
+
+    def __post_init__(self) -> None:
+        _count("offense", self.offense, 1)
+        _count("defense", self.defense, 0)
+        if not isinstance(self.goalie, bool):
+            raise ValueError(f"goalie must be True or False, got {self.goalie!r}")
+        if self.defense == 0 and not self.goalie:
+            raise ValueError("the defence needs a goalie or at least one defender")
+        for name in ("max_time_s", "untouched_time_s"):
+            value = getattr(self, name)
+            ok = value is None or (
+                isinstance(value, int | float) and math.isfinite(value) and value > 0
+            )
+            if not ok:
+                raise ValueError(f"{name} must be None or a finite number > 0, got {value!r}")
+
+
+HFO_FIELDS = tuple(f.name for f in dataclasses.fields(HfoTask))
+"""The task's names: the environment's keywords that go to its record."""
+
+
 class HfoDrill:
     """The half-field offense as a drill: placement, team minds, the judge (module docstring).
 
     Args:
-        offense: Attackers.
-        defense: Defenders besides the goalie.
-        goalie: Whether the defence has a goalie (``right_1``).
-        max_time_s: The time limit [s]; None: :data:`MAX_TIME_PERIODS` sensor periods.
-        untouched_time_s: The untouched limit [s]; None: :data:`UNTOUCHED_PERIODS` periods.
+        task: The sides and the limits (:class:`HfoTask`).
     """
 
     name: str = "hfo"
     labels: tuple[str, ...] = OUTCOMES
 
-    def __init__(
-        self,
-        offense: int,
-        defense: int,
-        goalie: bool,
-        max_time_s: float | None,
-        untouched_time_s: float | None,
-    ) -> None:
-        self.offense, self.defense, self.goalie = offense, defense, goalie
-        self.max_time_s = max_time_s if max_time_s is not None else math.inf
-        self.untouched_time_s = untouched_time_s
+    def __init__(self, task: HfoTask) -> None:
+        self.offense, self.defense, self.goalie = task.offense, task.defense, task.goalie
+        self.max_time_s = task.max_time_s if task.max_time_s is not None else math.inf
+        self.untouched_time_s = task.untouched_time_s
         self.score = [0, 0]
         self.last_touch: PlayerRef | None = None
         self._goals: GoalWatch | None = None
@@ -191,7 +224,7 @@ class HfoDrill:
 
     def team_setup(self, facts: FieldFacts, team: str, numbers: list[int]) -> TeamSetup:
         """The match's plan for one team on this field, with HFO's homes and goalie."""
-        base = MatchDrill("baseline", "baseline").team_setup(facts, 2, team)
+        base = MatchDrill(left="baseline", right="baseline").team_setup(facts, 2, team)
         unit = facts.unit_m
         sign = 1.0 if team == LEFT else -1.0
         x = ATTACK_HOME_X_UNITS if team == LEFT else -DEFENCE_HOME_X_UNITS
@@ -259,19 +292,17 @@ class HalfFieldOffenseEnv(PlayParallelEnv):
     Args:
         field_model: A registered field model (default: the first registered).
         preset: Its preset; None: the model's default.
-        offense: Attackers, 1 … :data:`MAX_SIDE`.
-        defense: Defenders besides the goalie, 0 … :data:`MAX_SIDE`.
-        goalie: Whether the defence has a goalie.
+        task: The sides and the limits (:class:`HfoTask`); None: built from the keywords that
+            name its fields (``offense``, ``defense``, ``goalie``, ``max_time_s``,
+            ``untouched_time_s``), HFO's 2 v 1 and a goalie where they leave one out.
         controlled: ``"offense"``, ``"defense"``, ``"all"`` or a list of agent names.
-        max_time_s: The time limit [s] (None: :data:`MAX_TIME_PERIODS` sensor periods).
-        untouched_time_s: Ends an episode whose ball nobody touched this long [s] (None:
-            :data:`UNTOUCHED_PERIODS` sensor periods).
-        **options: ``action``, ``reward_weights``, ``perfect_perception``, ``turn_step_rad``,
-            ``render_mode`` (:class:`~robotsoccer.envs.play.PlayParallelEnv`).
+        **options: The task's fields by name, where `task` is not given; and ``action``,
+            ``reward_weights``, ``perfect_perception``, ``turn_step_rad``, ``render_mode``
+            (:class:`~robotsoccer.envs.play.PlayParallelEnv`).
 
     Raises:
-        ValueError: Counts out of range, a time that is not a finite number > 0, an unknown
-            agent, action mode, reward term or render mode.
+        ValueError: A bad task (:class:`HfoTask`), both a record and the task's keywords, an
+            unknown agent, action mode, reward term or render mode.
     """
 
     metadata: dict[str, Any] = {  # noqa: RUF012
@@ -283,36 +314,25 @@ class HalfFieldOffenseEnv(PlayParallelEnv):
         self,
         field_model: str = FIELD_MODELS[0],
         preset: str | None = None,
+        task: HfoTask | None = None,
         *,
-        offense: int = 2,
-        defense: int = 1,
-        goalie: bool = True,
         controlled: str | Sequence[str] = "offense",
-        max_time_s: float | None = None,
-        untouched_time_s: float | None = None,
         **options: Any,
     ) -> None:
-        _count("offense", offense, 1)
-        _count("defense", defense, 0)
-        if not isinstance(goalie, bool):
-            raise ValueError(f"goalie must be True or False, got {goalie!r}")
-        if defense == 0 and not goalie:
-            raise ValueError("the defence needs a goalie or at least one defender")
-        for name, value in (("max_time_s", max_time_s), ("untouched_time_s", untouched_time_s)):
-            ok = value is None or (
-                isinstance(value, int | float) and math.isfinite(value) and value > 0
-            )
-            if not ok:
-                raise ValueError(f"{name} must be None or a finite number > 0, got {value!r}")
-        self.counts = (offense, defense, goalie)
-        self.limits = (max_time_s, untouched_time_s)
-        everyone = self._new_drill().players()
+        given = {name: options.pop(name) for name in HFO_FIELDS if name in options}
+        if task is not None and given:
+            raise ValueError("give half-field offense a task record or keywords, not both")
+        self.task = task if task is not None else HfoTask(**given)
+        self.counts = (self.task.offense, self.task.defense, self.task.goalie)
+        # HFO's own drill, not a registered one: the environment makes each episode's.
+        spec = play_spec("hfo", field_model, preset, options)
+        resolved = resolve_with(spec, self._new_drill())
         teams = {"offense": LEFT, "defense": RIGHT}
-        chosen = controlled_players(controlled, everyone, teams)
-        super().__init__(field_model, preset, everyone, chosen, **options)
+        chosen = controlled_players(controlled, resolved.players, teams)
+        super().__init__(resolved, chosen, **options)
 
     def _new_drill(self) -> Drill:
-        return HfoDrill(*self.counts, *self.limits)
+        return HfoDrill(self.task)
 
     def _score(self, drill: Drill) -> tuple[int, int]:
         hfo = _hfo(drill)

@@ -42,13 +42,14 @@ import numpy as np
 from gymnasium import spaces
 
 from field_models.protocol import Mind, Percept, PlayerRef
-from field_models.registry import FIELD_MODELS, field_facts
+from field_models.registry import FIELD_MODELS
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.intercept_plan import DEFENDER
 from robotsoccer.envs.checks import checked_seed, checked_turns
 from robotsoccer.envs.rendering import RENDER_MODES, ArenaView
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
+from robotsoccer.runs.spec import resolve
 from robotsoccer.skills.intercept import TA_CLIP_RAD, DefenderMind
 
 MAX_DISTANCE_UNITS = 60.0
@@ -104,7 +105,7 @@ class InterceptEnv(gym.Env[np.ndarray, np.ndarray]):
             low=np.array([-TA_CLIP_RAD], dtype=np.float32),
             high=np.array([TA_CLIP_RAD], dtype=np.float32),
         )
-        self.unit_m = field_facts(field_model, self.spec_.preset_name).unit_m
+        self.unit_m = resolve(self.spec_).facts.unit_m  # the drill's options checked here too
         self._experiment_seed: int | None = None
         self._next_trial = 0
         self._episode: _Episode | None = None

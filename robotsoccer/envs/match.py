@@ -20,15 +20,20 @@ then empties. Shorter matches: ``half_time_s``.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import fields
 from typing import Any
 
-from field_models.arena import FieldOptions
 from field_models.protocol import PlayerRef
-from field_models.registry import FIELD_MODELS, field_facts
+from field_models.registry import FIELD_MODELS
 from robotsoccer.drills.base import Drill
-from robotsoccer.drills.match import HALF_TIME_S, MatchDrill
-from robotsoccer.envs.agents import controlled_players
+from robotsoccer.drills.match import MatchDrill
+from robotsoccer.drills.match_options import MatchOptions
+from robotsoccer.envs.agents import controlled_players, play_spec
 from robotsoccer.envs.play import PlayParallelEnv
+from robotsoccer.runs.spec import resolve
+
+MATCH_FIELDS = tuple(f.name for f in fields(MatchOptions))
+"""The match's option names: the keywords that go to its options record."""
 
 
 class MatchParallelEnv(PlayParallelEnv):
@@ -37,20 +42,21 @@ class MatchParallelEnv(PlayParallelEnv):
     Args:
         field_model: A registered field model (default: the first registered).
         preset: Its preset; None: the model's default.
-        players: Players per side (0: the match's default for the field, 11 on an open field,
-            5 on the robots' table; else one of the match's formation sizes).
-        left: The left team's minds for its players not controlled (``baseline``, ``layered``).
-        right: The right team's.
-        net: Layer 1's net, for a layered team.
-        tree: Layer 2's pass tree, for a layered team.
-        half_time_s: One half [s] (default: rcssserver's 300 s).
+        match: The match's options (:class:`~robotsoccer.drills.match_options.MatchOptions`);
+            None: built from the keywords that name its fields, with both teams ``baseline``
+            where they leave a team out.
         controlled: ``"all"``, ``"left"``, ``"right"`` or a list of agent names.
-        steady_turns: The team minds' steady turns (:class:`~robotsoccer.drills.match.MatchDrill`).
-        **options: ``action``, ``reward_weights``, ``perfect_perception``, ``turn_step_rad``,
+        **options: The match's options by name, where `match` is not given: ``players`` (0:
+            the match's default for the field, 11 on an open field, 5 on the robots' table;
+            else one of the match's formation sizes), ``left`` and ``right`` (the minds of the
+            players not controlled: ``baseline``, or ``layered`` with ``net`` and ``tree``),
+            ``half_time_s`` (default: rcssserver's 300 s), ``steady_turns``, ...; and
+            ``perfect_perception``, ``action``, ``reward_weights``, ``turn_step_rad``,
             ``render_mode`` (:class:`PlayParallelEnv`).
 
     Raises:
-        ValueError: Any option the match refuses, an unknown agent name in `controlled`.
+        ValueError: Any option the match refuses, both a record and the match's keywords, an
+            unknown agent name in `controlled`.
     """
 
     metadata: dict[str, Any] = {  # noqa: RUF012
@@ -62,32 +68,24 @@ class MatchParallelEnv(PlayParallelEnv):
         self,
         field_model: str = FIELD_MODELS[0],
         preset: str | None = None,
+        match: MatchOptions | None = None,
         *,
-        players: int = 0,
-        left: str = "baseline",
-        right: str = "baseline",
-        net: str = "",
-        tree: str = "",
-        half_time_s: float = HALF_TIME_S,
         controlled: str | Sequence[str] = "all",
-        steady_turns: bool = False,
         **options: Any,
     ) -> None:
-        def drill() -> MatchDrill:
-            return MatchDrill(left, right, net, tree, players, half_time_s,
-                              steady_turns=steady_turns)  # fmt: skip
-
-        self._make_drill = drill
-        probe = drill()  # its own checks, once, before anything is built
-        perfect = bool(options.get("perfect_perception", False))
-        facts = field_facts(field_model, preset, FieldOptions(perfect_perception=perfect,
-                                                              all_landmarks=True))  # fmt: skip
-        everyone = probe.players_for(facts)
-        super().__init__(field_model, preset, everyone, controlled_players(controlled, everyone),
-                         **options)  # fmt: skip
+        given = {name: options.pop(name) for name in MATCH_FIELDS if name in options}
+        if match is not None and given:
+            raise ValueError("give the match environment an options record or keywords, not both")
+        if match is None:  # its own checks, once, before anything is built
+            match = MatchOptions(**{"left": "baseline", "right": "baseline", **given})
+        drill_options = {name: getattr(match, name) for name in MATCH_FIELDS}
+        spec = play_spec("match", field_model, preset, options).with_options(**drill_options)
+        resolved = resolve(spec)
+        everyone = resolved.players
+        super().__init__(resolved, controlled_players(controlled, everyone), **options)
 
     def _new_drill(self) -> Drill:
-        return self._make_drill()
+        return self.resolved.new_drill()
 
     def _score(self, drill: Drill) -> tuple[int, int]:
         referee = _match(drill).referee

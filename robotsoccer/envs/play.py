@@ -63,9 +63,9 @@ from gymnasium import spaces
 from gymnasium.utils import seeding
 from pettingzoo import ParallelEnv
 
-from field_models.arena import Arena, FieldFacts, FieldOptions
+from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Action, Mind, Percept, PlayerRef
-from field_models.registry import field_facts, make_arena
+from field_models.registry import make_arena
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Drill, Verdict
 from robotsoccer.envs.agents import agent_name
@@ -81,6 +81,7 @@ from robotsoccer.envs.control_spaces import (
 from robotsoccer.envs.macros import Macro, MacroMind, checked_macro, macro_count, macro_mask
 from robotsoccer.envs.rendering import RENDER_MODES, ArenaView, check_render_mode
 from robotsoccer.runs.runner import TrialLoop
+from robotsoccer.runs.spec import ResolvedSpec
 from robotsoccer.skills.team import TeamMind
 
 ACTION_MODES = ("commands", "primitives", "macro")
@@ -113,12 +114,13 @@ class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
     the score and the last touch; this class runs the loop and the agents' side.
 
     Args:
-        field_model: A registered field model.
-        preset: Its preset; None: the model's default.
+        resolved: What is played, resolved once (:class:`~robotsoccer.runs.spec.ResolvedSpec`):
+            the field model and preset, its settings (the play environments see every
+            landmark; ``perfect_perception``: the sensor without noise, misses or latency), its
+            facts and the players on it, in order.
         controlled: The controlled players.
         action: An action mode (:data:`ACTION_MODES`).
         reward_weights: Weights replacing the defaults of :data:`DEFAULT_WEIGHTS`.
-        perfect_perception: The sensor without noise, misses or latency.
         turn_step_rad: A discrete TURN_LEFT/TURN_RIGHT's turn [rad].
         render_mode: None, ``"rgb_array"`` or ``"human"``.
 
@@ -135,14 +137,11 @@ class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
 
     def __init__(
         self,
-        field_model: str,
-        preset: str | None,
-        players: tuple[PlayerRef, ...],
+        resolved: ResolvedSpec,
         controlled: tuple[PlayerRef, ...],
         *,
         action: str = "commands",
         reward_weights: dict[str, float] | None = None,
-        perfect_perception: bool = False,
         turn_step_rad: float = DEFAULT_TURN_STEP_RAD,
         render_mode: str | None = None,
     ) -> None:
@@ -154,11 +153,12 @@ class PlayParallelEnv(ParallelEnv[str, Observation, Any]):
             raise ValueError(f"turn_step_rad must be in (0, pi], got {turn_step_rad!r}")
         self.render_mode = check_render_mode(render_mode)
         self._view = ArenaView(render_mode, title=self.metadata["name"])
-        self.field_model = field_model
-        self.preset = preset
-        self.field_options = FieldOptions(perfect_perception=perfect_perception,
-                                          all_landmarks=True)  # fmt: skip
-        self.facts: FieldFacts = field_facts(field_model, preset, self.field_options)
+        self.resolved = resolved
+        self.field_model = resolved.spec.field_model
+        self.preset = resolved.spec.preset
+        self.field_options = resolved.options
+        self.facts: FieldFacts = resolved.facts
+        players = resolved.players
         self.action_mode = action
         self.weights = _weights(reward_weights)
         self.turn_step_rad = float(turn_step_rad)

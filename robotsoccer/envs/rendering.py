@@ -70,21 +70,26 @@ class ArenaView:
 
     def show(self, arena: Arena) -> None:
         """``"human"``: log `arena`'s truth to the viewer (a new recording for a new arena)."""
+        from robotsoccer.replay.field_recorder import Scene
         from robotsoccer.replay.recording import TrialRecorder  # rerun loads late
 
         facts = arena.facts
         if arena is not self._recorded_arena:
             self.close()
             self._episodes += 1
+            # No sensor period: the live view keeps each percept until the next one.
+            scene = Scene(
+                facts.pitch,
+                arena.players,
+                facts.dt_s,
+                facts.player_shape,
+                title=f"{self.title}, episode {self._episodes}",
+            )
             self._recorder = TrialRecorder(
                 self.recording_path or Path("live.rrd"),
-                pitch=facts.pitch,
-                players=arena.players,
-                dt_s=facts.dt_s,
+                scene,
                 recording_id=f"{self.title}-episode{self._episodes}",
-                player_shape=facts.player_shape,
                 chunk_frames=1,
-                title=f"{self.title}, episode {self._episodes}",
                 viewer=self.recording_path is None,
             )
             self._recorded_arena = arena

@@ -83,7 +83,7 @@ class ScoreEnv(ControlEnv):
     def _new_drill(self) -> MatchDrill:
         # Halves longer than any episode: the referee never calls half time in one.
         half = 2.0 * (getattr(self, "max_time_s", None) or SCORE_TIME_S) + 1.0
-        return MatchDrill("baseline", "baseline", players=self.players_per_side,
+        return MatchDrill(left="baseline", right="baseline", players=self.players_per_side,
                           half_time_s=half)  # fmt: skip
 
     def _task_players(self, facts: FieldFacts) -> tuple[PlayerRef, ...]:

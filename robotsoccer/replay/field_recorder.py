@@ -23,13 +23,14 @@ from __future__ import annotations
 import math
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from types import TracebackType
 from typing import TYPE_CHECKING, Self
 
 import numpy as np
 
-from field_models.arena import ArenaEvent, PlayerShape
+from field_models.arena import ArenaEvent, FieldFacts, PlayerShape
 from field_models.protocol import Action, BodyState, Percept, Pitch, PlayerRef, Truth
 from robotsoccer.replay.geometry import DrawSizes, draw_sizes, outline_template, view_bounds
 from robotsoccer.replay.palette import (
@@ -55,6 +56,39 @@ PERCEPT_LIFETIME_PERIODS = 1.5
 """A percept is shown until this many sensor periods have passed without a newer one."""
 
 
+@dataclass(frozen=True, slots=True)
+class Scene:
+    """What a recording draws: the pitch, its players, their clock and look, and its title.
+
+    Attributes:
+        pitch: Field geometry, drawn once as static geometry.
+        players: Players on the field, in a fixed order (labels, per-team entities, and the
+            colour of each player's percepts).
+        dt_s: Length of one tick [s]; ``sim_time`` = tick × dt_s.
+        player_shape: ``"square"`` (robots, side 2·pitch.player_radius_m) or ``"circle"``
+            (Soccer Server players of radius pitch.player_radius_m).
+        sensor_period_s: Time between two percepts of one player [s]; a player's percept is
+            cleared from the view once :data:`PERCEPT_LIFETIME_PERIODS` of these pass without
+            a newer one. None: percepts stay until the next one.
+        title: First line of the legend (e.g. the drill, field model and trial); empty: the
+            recording id.
+    """
+
+    pitch: Pitch
+    players: tuple[PlayerRef, ...]
+    dt_s: float
+    player_shape: PlayerShape = "square"
+    sensor_period_s: float | None = None
+    title: str = ""
+
+    @classmethod
+    def of(cls, facts: FieldFacts, players: tuple[PlayerRef, ...], title: str = "") -> Scene:
+        """The scene of a field's trial: its pitch, tick, players' shape and sensor period."""
+        return cls(
+            facts.pitch, players, facts.dt_s, facts.player_shape, facts.sensor_period_s, title
+        )
+
+
 class FieldRecorder(ABC):
     """Writes one run to a rerun ``.rrd`` file, headless (notes/tooling.md §1).
 
@@ -63,20 +97,11 @@ class FieldRecorder(ABC):
 
     Args:
         path: Output ``.rrd`` file; its folder is created if missing.
-        pitch: Field geometry, drawn once as static geometry.
-        players: Players on the field, in a fixed order (labels, per-team entities, and the
-            colour of each player's percepts).
-        dt_s: Length of one tick [s]; ``sim_time`` = tick × dt_s.
+        scene: What is drawn (:class:`Scene`).
         recording_id: Rerun recording id (e.g. experiment and trial), shown by the viewer.
         application_id: Rerun application id.
-        player_shape: ``"square"`` (robots, side 2·pitch.player_radius_m) or ``"circle"``
-            (Soccer Server players of radius pitch.player_radius_m).
         every_ticks: Record the truth only on ticks that are multiples of this.
         chunk_frames: Recorded ticks buffered before one ``send_columns`` batch.
-        sensor_period_s: Time between two percepts of one player [s]; a player's percept is
-            cleared from the view once :data:`PERCEPT_LIFETIME_PERIODS` of these pass without
-            a newer one. None: percepts stay until the next one.
-        title: First line of the legend (e.g. the drill, field model and trial).
         viewer: Stream to a rerun viewer instead of writing `path` (an environment's
             ``render_mode="human"``): with a display, the viewer beside this interpreter is
             spawned (or reused, when one listens); without one, the stream goes to rerun's
@@ -94,19 +119,15 @@ class FieldRecorder(ABC):
     def __init__(
         self,
         path: Path,
+        scene: Scene,
         *,
-        pitch: Pitch,
-        players: tuple[PlayerRef, ...],
-        dt_s: float,
         recording_id: str,
         application_id: str = "robotsoccer",
-        player_shape: PlayerShape = "square",
         every_ticks: int = 1,
         chunk_frames: int = 1000,
-        sensor_period_s: float | None = None,
-        title: str = "",
         viewer: bool = False,
     ) -> None:
+        pitch, dt_s, sensor_period_s = scene.pitch, scene.dt_s, scene.sensor_period_s
         if not dt_s > 0.0:
             raise ValueError(f"dt_s must be > 0, got {dt_s}")
         if every_ticks < 1:
@@ -116,16 +137,17 @@ class FieldRecorder(ABC):
         if sensor_period_s is not None and not sensor_period_s > 0.0:
             raise ValueError(f"sensor_period_s must be > 0, got {sensor_period_s}")
         self.sizes = self._draw_sizes(pitch)
-        self._template = outline_template(player_shape, self.sizes.player_m)
+        self._template = outline_template(scene.player_shape, self.sizes.player_m)
         self.path = Path(path)
+        self.scene = scene
         self.pitch = pitch
-        self.players = tuple(players)
+        self.players = tuple(scene.players)
         self.dt_s = dt_s
         self.every_ticks = every_ticks
         self.chunk_frames = chunk_frames
         self.sensor_period_s = sensor_period_s
-        self.title = title or recording_id
-        self._player_shape = player_shape
+        self.title = scene.title or recording_id
+        self._player_shape = scene.player_shape
         # Whole ticks a percept stays current; the small epsilon keeps an exact multiple exact.
         self._percept_life: int | None = (
             None

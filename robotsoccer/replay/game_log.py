@@ -52,6 +52,7 @@ def rrd_from_rcg(path: Path, out: Path | None = None) -> Path:
     Raises:
         ValueError: The game log is malformed (the message names the file and line).
     """
+    from robotsoccer.replay.field_recorder import Scene
     from robotsoccer.replay.match_recording import MatchRecorder  # rerun loads late
 
     game = read_rcg(path)
@@ -61,17 +62,10 @@ def rrd_from_rcg(path: Path, out: Path | None = None) -> Path:
     players: list[PlayerRef] = sorted({ref for f in frames for ref in f.truth.players})
     dt_s = float(game.server_params.get("simulator_step", "100")) / 1000.0
     target = out or path.with_name(path.name + ".rrd")
+    title = f"{game.teams[0]} v {game.teams[1]}: game log {path.name}"
+    scene = Scene(pitch_of(game.server_params), tuple(players), dt_s, "circle", dt_s, title)
     with MatchRecorder(
-        target,
-        pitch=pitch_of(game.server_params),
-        players=tuple(players),
-        dt_s=dt_s,
-        player_shape="circle",
-        sensor_period_s=dt_s,
-        teams=game.teams,
-        selected=None,
-        title=f"{game.teams[0]} v {game.teams[1]}: game log {path.name}",
-        recording_id=f"rcg-{path.stem}",
+        target, scene, teams=game.teams, selected=None, recording_id=f"rcg-{path.stem}"
     ) as recorder:
         for frame in frames:
             recorder.log_frame(frame)

@@ -61,9 +61,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from field_models.arena import ArenaEvent, PlayerShape
+from field_models.arena import ArenaEvent
 from field_models.protocol import LEFT, RIGHT, BodyState, Percept, Pitch, PlayerRef
-from robotsoccer.replay.field_recorder import FieldRecorder
+from robotsoccer.replay.field_recorder import FieldRecorder, Scene
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.replay.geometry import DrawSizes, draw_sizes, egocentric_to_field, view_bounds
 from robotsoccer.replay.match_drawing import (
@@ -104,16 +104,12 @@ class MatchRecorder(FieldRecorder):
 
     Args:
         path: Output ``.rrd`` file; its folder is created if missing.
-        pitch: Field geometry.
-        players: Players on the field, in a fixed order; their teams must be ``LEFT`` and
-            ``RIGHT`` (the score is (left, right)).
-        dt_s: Length of one tick [s]; ``sim_time`` = tick × dt_s.
-        player_shape: ``"square"`` (robots) or ``"circle"`` (Soccer Server players).
-        sensor_period_s: Time between two percepts of a player [s]; the selected player's
-            perceived ball (and its line of sight) vanish 1.5 periods after its latest percept.
+        scene: What is drawn (:class:`~robotsoccer.replay.field_recorder.Scene`): the players'
+            teams must be ``LEFT`` and ``RIGHT`` (the score is (left, right)); the selected
+            player's perceived ball (and its line of sight) vanish 1.5 sensor periods after its
+            latest percept.
         teams: Display names of the left and the right team (e.g. ``("layered", "baseline")``).
         selected: The player whose percepts are drawn and who is highlighted; None: nobody.
-        title: First line of the legend (e.g. the match and its seed).
         recording_id: Rerun recording id.
         every_ticks: Record the truth (and the trail, halo, score series) only on ticks that
             are multiples of this; score and play-mode changes are caught on every tick.
@@ -133,20 +129,16 @@ class MatchRecorder(FieldRecorder):
     def __init__(
         self,
         path: Path,
+        scene: Scene,
         *,
-        pitch: Pitch,
-        players: tuple[PlayerRef, ...],
-        dt_s: float,
-        player_shape: PlayerShape,
-        sensor_period_s: float,
         teams: tuple[str, str],
         selected: PlayerRef | None,
-        title: str,
         recording_id: str,
         every_ticks: int = 1,
         trail_ticks: int | None = None,
         chunk_frames: int = 1000,
     ) -> None:
+        pitch, players, dt_s = scene.pitch, scene.players, scene.dt_s
         if not dt_s > 0.0:
             raise ValueError(f"dt_s must be > 0, got {dt_s}")
         if trail_ticks is None:
@@ -174,15 +166,10 @@ class MatchRecorder(FieldRecorder):
         self._status = StrokeRows()
         super().__init__(
             path,
-            pitch=pitch,
-            players=players,
-            dt_s=dt_s,
+            scene,
             recording_id=recording_id,
-            player_shape=player_shape,
             every_ticks=every_ticks,
             chunk_frames=chunk_frames,
-            sensor_period_s=sensor_period_s,
-            title=title,
         )
         self._scoreboard = Scoreboard(pitch, self.team_names, self._teams)
 

@@ -57,11 +57,8 @@ Positions are stored as float32 (rerun's ``Vec2D``).
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import TYPE_CHECKING
 
-from field_models.arena import PlayerShape
-from field_models.protocol import Pitch, PlayerRef
 from robotsoccer.replay.field_recorder import PERCEPT_LIFETIME_PERIODS, FieldRecorder
 from robotsoccer.replay.geometry import pitch_lines
 from robotsoccer.replay.lettering import text_strokes
@@ -96,40 +93,13 @@ class TrialRecorder(FieldRecorder):
 
     Use it as a context manager, or call :meth:`close` at the end: the file's footer is only
     written when the stream disconnects, and ``rerun rrd verify`` fails without it. The
-    arguments are :class:`~robotsoccer.replay.field_recorder.FieldRecorder`'s.
+    arguments are :class:`~robotsoccer.replay.field_recorder.FieldRecorder`'s: the path, the
+    :class:`~robotsoccer.replay.field_recorder.Scene` drawn, the ids and the cadence.
     """
 
-    def __init__(
-        self,
-        path: Path,
-        *,
-        pitch: Pitch,
-        players: tuple[PlayerRef, ...],
-        dt_s: float,
-        recording_id: str,
-        application_id: str = "robotsoccer",
-        player_shape: PlayerShape = "square",
-        every_ticks: int = 1,
-        chunk_frames: int = 1000,
-        sensor_period_s: float | None = None,
-        title: str = "",
-        viewer: bool = False,
-    ) -> None:
-        self._outcome: tuple[int, str, str] | None = None
-        super().__init__(
-            path,
-            pitch=pitch,
-            players=players,
-            dt_s=dt_s,
-            recording_id=recording_id,
-            application_id=application_id,
-            player_shape=player_shape,
-            every_ticks=every_ticks,
-            chunk_frames=chunk_frames,
-            sensor_period_s=sensor_period_s,
-            title=title,
-            viewer=viewer,
-        )
+    _outcome: tuple[int, str, str] | None = None
+    """The outcome once logged (tick, label, text); a class default, so the base class's
+    ``__init__``, which builds the legend, finds none."""
 
     def _blueprint(self) -> rrb.Blueprint:
         """The field beside the legend and the events, side panels collapsed, on ``sim_time``.

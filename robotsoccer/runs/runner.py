@@ -274,6 +274,7 @@ def _play_recorded(
     :func:`~robotsoccer.replay.recording.recording_name` (``trial_<index>_<LABEL>.rrd``) once
     the verdict is known and the file is closed; an interrupted trial leaves only the part file.
     """
+    from robotsoccer.replay.field_recorder import Scene
     from robotsoccer.replay.recording import TrialRecorder, recording_name  # rerun loads late
 
     assert spec.record_dir is not None
@@ -282,17 +283,12 @@ def _play_recorded(
     partial = folder / f"trial_{index:04d}.rrd.part"
     folder.mkdir(parents=True, exist_ok=True)
     every = max(1, round(1.0 / 60.0 / facts.dt_s))  # draw at ≤ 60 Hz: enough to watch
+    title = f"{spec.drill} drill on {spec.field_model} ({spec.preset_name}), seed {spec.seed}"
     recorder = TrialRecorder(
         partial,
-        pitch=facts.pitch,
-        players=arena.players,
-        dt_s=facts.dt_s,
+        Scene.of(facts, arena.players, f"{title}, trial {index}"),
         recording_id=f"{spec.drill}-{spec.field_model}-seed{spec.seed}-trial{index}",
-        player_shape=facts.player_shape,
         every_ticks=every,
-        sensor_period_s=facts.sensor_period_s,
-        title=f"{spec.drill} drill on {spec.field_model} ({spec.preset_name}), "
-        f"seed {spec.seed}, trial {index}",
     )
 
     def observe(a: Arena, percepts: list[Percept]) -> None:
@@ -351,6 +347,7 @@ def _play_match_recorded(
     part names and renamed once the match is over (``match_<index>_<LABEL>.rrd`` / ``.rcg``).
     The left team's last player's percepts are drawn beside the truth.
     """
+    from robotsoccer.replay.field_recorder import Scene
     from robotsoccer.replay.match_recording import MatchRecorder  # rerun loads late
     from robotsoccer.replay.rcg_write import RcgWriter, log_team_name
 
@@ -362,17 +359,15 @@ def _play_match_recorded(
     teams = match.team_names()
     selected = arena.players[len(arena.players) // 2 - 1]  # the left team's last: a forward
     every = max(1, round(1.0 / 30.0 / facts.dt_s))  # draw at <= 30 Hz: enough to watch
+    title = (
+        f"{teams[0]} v {teams[1]} on {spec.field_model} ({spec.preset_name}), "
+        f"seed {spec.seed}, game {index}"
+    )
     recorder = MatchRecorder(
         folder / f"{stem}.rrd.part",
-        pitch=facts.pitch,
-        players=arena.players,
-        dt_s=facts.dt_s,
-        player_shape=facts.player_shape,
-        sensor_period_s=facts.sensor_period_s,
+        Scene.of(facts, arena.players, title),
         teams=teams,
         selected=selected,
-        title=f"{teams[0]} v {teams[1]} on {spec.field_model} ({spec.preset_name}), "
-        f"seed {spec.seed}, game {index}",
         recording_id=f"match-{spec.field_model}-seed{spec.seed}-game{index}",
         every_ticks=every,
     )

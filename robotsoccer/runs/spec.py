@@ -110,7 +110,19 @@ def resolve(spec: TrialSpec) -> ResolvedSpec:
     Raises:
         ValueError: An unknown drill or field model, a bad option or preset.
     """
-    drill = make_drill(spec.drill, dict(spec.drill_options))
+    return resolve_with(spec, make_drill(spec.drill, dict(spec.drill_options)))
+
+
+def resolve_with(spec: TrialSpec, drill: Drill) -> ResolvedSpec:
+    """`spec` resolved with `drill` in place of the one its name and options make (not cached).
+
+    For a drill the registry does not make (an environment's own, such as half-field offense):
+    its field settings and players count as a registered drill's do, and the caller makes
+    each trial's drill itself (:meth:`ResolvedSpec.new_drill` makes only registered ones).
+
+    Raises:
+        ValueError: An unknown field model or a bad preset.
+    """
     options = field_options(spec, drill)
     facts = field_facts(spec.field_model, spec.preset, options)
     sized = getattr(drill, "players_for", None)  # a drill whose team size follows the field

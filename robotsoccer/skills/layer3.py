@@ -108,7 +108,7 @@ from learning.tpot import (
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.passing import PassEvaluator, view_arrays
 from robotsoccer.skills.setplay import opponent_in_path
-from robotsoccer.skills.team_setup import goal_direction, in_shooting_range
+from robotsoccer.skills.team_setup import TeamSetup, goal_direction, in_shooting_range
 
 DESTINATIONS: tuple[tuple[str, float, float], ...] = (
     ("goal", 1.0, 0.0),
@@ -170,29 +170,16 @@ class _Pending:
     samples: list[float] = field(default_factory=list)
 
 
-class TpotBallPolicy:
-    """One team's layer 3 (module docstring).
+@dataclass(frozen=True, slots=True)
+class TpotSettings:
+    """How one team's layer 3 plays and learns: the study's settings (module docstring).
 
-    Args:
-        table: The Q-values (a row per uniform number).
-        attack_right: The team attacks +x.
-        half_length_m: Half the pitch's length [m].
-        half_width_m: Half its width [m].
-        unit_m: One drill unit [m].
-        pass_range_m: The longest pass [m].
-        pass_power: The kick's power.
-        dt_s: One tick [s].
-        evaluator: Layer 2's tree.
-        threshold: Its least success confidence for SUCCESS.
-        rng: The exploration's stream.
+    Attributes:
+        threshold: The tree's least success confidence for SUCCESS, in [0, 1].
         epsilon: Exploration rate (0: greedy, in play).
         learn: Record experiences (training games).
         every_ball: Decide on every spell on the ball, shoot and keep included (module
             docstring); False: only where the layered team would ask the tree.
-        shoot_range_m: The team's shooting range [m] (``every_ball``).
-        blocked_m: An opponent this near in the path blocks a shot [m] (``every_ball``).
-        shot_power: The shot's kick power (``every_ball``).
-        dribble_power: The dribble's kick power (``every_ball``: keep).
         window: When a reward closes (module docstring): ``choice`` or ``horizon``.
         shot_guard: The goal destination is a shot only within the shooting range, else an
             advance toward the goal (``every_ball``; module docstring).
@@ -200,8 +187,44 @@ class TpotBallPolicy:
             ball's advance alone; module docstring, "Possession").
 
     Raises:
-        ValueError: A table whose actions are not the :data:`DESTINATIONS`; an unknown window;
-            a negative loss penalty; the guard without ``every_ball``.
+        ValueError: An unknown window; a loss penalty outside [0, Q_MAX]; the guard without
+            ``every_ball``.
+    """
+
+    threshold: float = 0.5
+    epsilon: float = 0.0
+    learn: bool = False
+    every_ball: bool = False
+    window: str = WINDOW_CHOICE
+    shot_guard: bool = False
+    loss_penalty: float = 0.0
+
+    def __post_init__(self) -> None:
+        loss = self.loss_penalty
+        if not 0.0 <= loss <= Q_MAX:
+            raise ValueError(f"loss_penalty must be in [0, {Q_MAX:g}], got {loss}")
+        if self.shot_guard and not self.every_ball:
+            raise ValueError("the shot-range guard needs every_ball (the goal is a shot only then)")
+        if self.window not in REWARD_WINDOWS:
+            known = ", ".join(REWARD_WINDOWS)
+            raise ValueError(f"window must be one of {known}, got {self.window!r}")
+
+
+class TpotBallPolicy:
+    """One team's layer 3 (module docstring).
+
+    Args:
+        table: The Q-values (a row per uniform number).
+        setup: The team's plan on this field: its attack direction, the pitch, its pass range
+            and kick powers, its shooting range and blocked distance (``every_ball``), the
+            tick.
+        evaluator: Layer 2's tree.
+        rng: The exploration's stream.
+        settings: How it plays and learns (:class:`TpotSettings`; default: greedy, the
+            first study's rules).
+
+    Raises:
+        ValueError: A table whose actions are not the :data:`DESTINATIONS`.
 
     Attributes:
         experiences: The fixed rewards, in the order fixed (when learning).
@@ -211,59 +234,33 @@ class TpotBallPolicy:
     def __init__(
         self,
         table: TpotTable,
-        *,
-        attack_right: bool,
-        half_length_m: float,
-        half_width_m: float,
-        unit_m: float,
-        pass_range_m: float,
-        pass_power: float,
-        dt_s: float,
+        setup: TeamSetup,
         evaluator: PassEvaluator,
-        threshold: float,
         rng: UniformSource,
-        epsilon: float = 0.0,
-        learn: bool = False,
-        every_ball: bool = False,
-        shoot_range_m: float = 0.0,
-        blocked_m: float = 0.0,
-        shot_power: float = 100.0,
-        dribble_power: float = 0.0,
-        window: str = WINDOW_CHOICE,
-        shot_guard: bool = False,
-        loss_penalty: float = 0.0,
+        settings: TpotSettings = TpotSettings(),
     ) -> None:
-        if not 0.0 <= loss_penalty <= Q_MAX:
-            raise ValueError(f"loss_penalty must be in [0, {Q_MAX:g}], got {loss_penalty}")
-        if shot_guard and not every_ball:
-            raise ValueError("the shot-range guard needs every_ball (the goal is a shot only then)")
-        if window not in REWARD_WINDOWS:
-            raise ValueError(f"window must be one of {', '.join(REWARD_WINDOWS)}, got {window!r}")
         if table.actions != N_ACTIONS:
             raise ValueError(
                 f"a table of {table.actions} actions, not the field's {N_ACTIONS} destinations"
             )
         self.table = table
-        self.attack_right = attack_right
-        self.half_length_m = half_length_m
-        self.half_width_m = half_width_m
-        self.unit_m = unit_m
-        self.pass_range_m = pass_range_m
-        self.pass_power = pass_power
-        self.dt_s = dt_s
         self.evaluator = evaluator
-        self.threshold = threshold
         self.rng = rng
-        self.epsilon = epsilon
-        self.learn = learn
-        self.every_ball = every_ball
-        self.shoot_range_m = shoot_range_m
-        self.blocked_m = blocked_m
-        self.shot_power = shot_power
-        self.dribble_power = dribble_power
-        self.window = window
-        self.shot_guard = shot_guard
-        self.loss_penalty = loss_penalty
+        self.settings = settings
+        # The plan's numbers and the settings the decisions read, by the module docstring's names.
+        self.attack_right = setup.attack_right
+        self.half_length_m, self.half_width_m = setup.half_length_m, setup.half_width_m
+        self.unit_m, self.dt_s = setup.unit_m, setup.dt_s
+        self.pass_range_m, self.pass_power = setup.pass_range_m, setup.powers.passing
+        self.shoot_range_m, self.blocked_m = setup.shoot_range_m, setup.blocked_m
+        self.shot_power, self.dribble_power = setup.powers.shot, setup.powers.dribble
+        self.threshold, self.epsilon, self.learn = (
+            settings.threshold,
+            settings.epsilon,
+            settings.learn,
+        )
+        self.every_ball, self.window = settings.every_ball, settings.window
+        self.shot_guard, self.loss_penalty = settings.shot_guard, settings.loss_penalty
         self.experiences: list[Experience] = []
         self.choices = [0] * N_ACTIONS
         # Open rewards per player, oldest first (more than one only with the horizon window).

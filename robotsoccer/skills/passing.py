@@ -59,7 +59,7 @@ from typing import Protocol
 
 import numpy as np
 
-from field_models.arena import BallLaw
+from field_models.arena import BallLaw, FieldFacts
 from field_models.protocol import Action, Kick, Percept, Say, SeenPlayer
 from field_models.seeding import Rng
 from learning.pass_features import (
@@ -170,9 +170,8 @@ class PasserMind:
         receivers: The uniform numbers of its receivers (its teammates in the region).
         chooser: How it picks (:class:`Chooser`, or its name).
         rng: The trial's ``"policy"`` stream (``random``).
-        unit_m: The field's unit [m].
-        sensor_period_s: Time between two percepts [s].
-        dt_s: One tick [s].
+        facts: The field's facts: its unit, tick and the time between two percepts (how long
+            the passer waits for the reports).
         kick_power: The pass's kick power; None: the field has no aimable kick (the coach
             launches the ball along :attr:`pass_direction_rad`).
         tree: The learned evaluator (``tree``, ``boost``).
@@ -198,10 +197,8 @@ class PasserMind:
         receivers: Sequence[int],
         chooser: Chooser | str,
         rng: Rng,
+        facts: FieldFacts,
         *,
-        unit_m: float,
-        sensor_period_s: float,
-        dt_s: float,
         kick_power: float | None,
         tree: PassEvaluator | None = None,
         physics: PassPhysics | None = None,
@@ -217,11 +214,11 @@ class PasserMind:
         if self.chooser is Chooser.ANALYTIC and physics is None:
             raise ValueError("chooser 'analytic' needs the field's pass physics")
         self.rng = rng
-        self.unit_m = unit_m
+        self.unit_m = facts.unit_m
         self.kick_power = kick_power
         self.tree = tree
         self.physics = physics
-        self.wait_ticks = round(REPORT_WAIT_PERIODS * sensor_period_s / dt_s)
+        self.wait_ticks = round(REPORT_WAIT_PERIODS * facts.sensor_period_s / facts.dt_s)
         self.intent_tick: int | None = None
         self.heard: dict[int, Report] = {}
         self.chosen: int | None = None

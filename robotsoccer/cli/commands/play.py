@@ -64,7 +64,7 @@ def layer3_options(table: Path | None) -> dict[str, Any]:
         ValueError: Not a readable TPOT-RL table (:func:`learning.tpot.load_table`'s one line).
     """
     from learning.tpot import N_ACTIONS, load_table
-    from robotsoccer.drills.match import PASS_THRESHOLD
+    from robotsoccer.drills.match_options import PASS_THRESHOLD
 
     if table is None:
         raise UsageError(

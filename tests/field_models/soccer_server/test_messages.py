@@ -20,7 +20,7 @@ from field_models.soccer_server.messages import (
     render_hear,
     render_see,
 )
-from field_models.soccer_server.sensing import SeeInfo, SeenObject, observe
+from field_models.soccer_server.sensing import Bodies, SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 
 # The paper's Figure 4 (Stone & Veloso 1996), as the client received it.
@@ -95,11 +95,13 @@ def random_see(seed: int, params: SensingParams, observer: int = 1) -> SeeInfo:
     n = len(PLAYERS) + 1
     return observe(
         observer,
-        g.uniform(-58, 58, n).tolist(),
-        g.uniform(-38, 38, n).tolist(),
-        g.uniform(-2, 2, n).tolist(),
-        g.uniform(-2, 2, n).tolist(),
-        g.uniform(-np.pi, np.pi, n).tolist(),
+        Bodies(
+            g.uniform(-58, 58, n).tolist(),
+            g.uniform(-38, 38, n).tolist(),
+            g.uniform(-2, 2, n).tolist(),
+            g.uniform(-2, 2, n).tolist(),
+            g.uniform(-np.pi, np.pi, n).tolist(),
+        ),
         PLAYERS,
         int(g.integers(0, 6000)),
         params,

@@ -23,7 +23,7 @@ from field_models.soccer_server import model as server_model
 from field_models.soccer_server.arena import SoccerServerArena
 from field_models.soccer_server.params import load_server_preset
 from field_models.soccer_server.percepts import percept_from_state
-from field_models.soccer_server.sensing import observe
+from field_models.soccer_server.sensing import Bodies, observe
 from field_models.soccer_server.sensing_params import SENSING_19
 
 A, B = PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1)
@@ -84,23 +84,37 @@ def test_the_neck_moment_and_angle_follow_the_presets_limits() -> None:
 def test_a_see_looks_along_body_plus_neck() -> None:
     x, y, vx, vy = [0.0, 0.0, 10.0], [20.0, 0.0, 5.0], [0.0] * 3, [0.0] * 3
     players = (A, B)
-    turned = observe(1, x, y, vx, vy, [0.0, 0.7, 3.0], players, 5, SENSING_19, _rng(), neck=None)
+    turned = observe(1, Bodies(x, y, vx, vy, [0.0, 0.7, 3.0]), players, 5, SENSING_19, _rng())
     necked = observe(
-        1, x, y, vx, vy, [0.0, 0.2, 3.0], players, 5, SENSING_19, _rng(), neck=[0.0, 0.5, 0.0]
+        1,
+        Bodies(x, y, vx, vy, [0.0, 0.2, 3.0], neck=[0.0, 0.5, 0.0]),
+        players,
+        5,
+        SENSING_19,
+        _rng(),
     )
     assert necked == turned  # flags, goals, ball, player and lines: all from the head
-    zero = observe(1, x, y, vx, vy, [0.0, 0.2, 3.0], players, 5, SENSING_19, _rng(), neck=[0.0] * 3)
-    assert zero == observe(1, x, y, vx, vy, [0.0, 0.2, 3.0], players, 5, SENSING_19, _rng())
+    zero = observe(
+        1, Bodies(x, y, vx, vy, [0.0, 0.2, 3.0], neck=[0.0] * 3), players, 5, SENSING_19, _rng()
+    )
+    assert zero == observe(1, Bodies(x, y, vx, vy, [0.0, 0.2, 3.0]), players, 5, SENSING_19, _rng())
 
 
 def test_a_seen_players_head_direction_is_its_body_plus_neck() -> None:
     x, y, zero = [50.0, 0.0, 10.0], [0.0, 0.0, 0.0], [0.0] * 3
     heading = [0.0, 0.0, math.pi]
-    plain = observe(1, x, y, zero, zero, heading, (A, B), 1, SENSING_19, _rng(), landmarks="none")
+    plain = observe(
+        1, Bodies(x, y, zero, zero, heading), (A, B), 1, SENSING_19, _rng(), landmarks="none"
+    )
     necked = observe(
-        1, x, y, zero, zero, heading, (A, B), 1, SENSING_19, _rng(), landmarks="none",
-        neck=[0.0, 0.0, -0.5],
-    )  # fmt: skip
+        1,
+        Bodies(x, y, zero, zero, heading, neck=[0.0, 0.0, -0.5]),
+        (A, B),
+        1,
+        SENSING_19,
+        _rng(),
+        landmarks="none",
+    )
     before, after = plain.find("p"), necked.find("p")
     assert before is not None and after is not None
     assert after.body_dir == before.body_dir == before.head_dir
@@ -174,8 +188,12 @@ def _rng():  # type: ignore[no-untyped-def]
 def test_percept_from_state_takes_the_neck() -> None:
     x, y, zero = [5.0, 0.0, 10.0], [5.0, 0.0, 0.0], [0.0] * 3
     p = percept_from_state(
-        1, x, y, zero, zero, [0.0, 0.0, 0.0], (A, B), 1, SENSING_19, _rng(), tick=1,
-        neck=[0.0, 0.3, 0.0],
-    )  # fmt: skip
+        1,
+        Bodies(x, y, zero, zero, [0.0, 0.0, 0.0], neck=[0.0, 0.3, 0.0]),
+        (A, B),
+        1,
+        SENSING_19,
+        _rng(),
+    )
     assert p.neck_rad == 0.3
     assert p.ball is not None and p.ball.angle_rad == pytest.approx(math.pi / 4 - 0.3, abs=DEG)

@@ -18,7 +18,7 @@ from field_models.soccer_server.percepts import (
     percept_from_see,
     percept_from_state,
 )
-from field_models.soccer_server.sensing import SeeInfo, SeenObject, observe
+from field_models.soccer_server.sensing import Bodies, SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 
 PLAYERS = (PlayerRef("left", 1), PlayerRef("left", 2), PlayerRef("right", 1))
@@ -38,7 +38,9 @@ def text_route(
 ) -> Percept:
     """observe (full, with landmarks) -> render -> parse -> percept."""
     x, y, vx, vy, h = state
-    info = observe(observer, x, y, vx, vy, h, PLAYERS, 40, params, np.random.default_rng(seed))
+    info = observe(
+        observer, Bodies(x, y, vx, vy, h), PLAYERS, 40, params, np.random.default_rng(seed)
+    )
     text = render_see(info, params.protocol_version)
     parsed = parse_see(text)
     return percept_from_see(parsed, PLAYERS[observer - 1], tick, parsed.time)
@@ -75,31 +77,17 @@ def test_text_route_equals_fast_path(
         "perfect_low": SENSING_19.replace(perfect=True, view_quality="low"),
     }[era]
     state = (xs, ys, vs[:4], vs[4:], hs)
-    slow = text_route(observer, state, params, seed, tick=42)
+    slow = text_route(observer, state, params, seed, tick=40)  # the fast path: tick = time
     full = percept_from_state(
-        observer,
-        *state,
-        PLAYERS,
-        40,
-        params,
-        np.random.default_rng(seed),
-        tick=42,
-        landmarks="all",
+        observer, Bodies(*state), PLAYERS, 40, params, np.random.default_rng(seed), landmarks="all"
     )
     assert full == slow
     goals = percept_from_state(
-        observer, *state, PLAYERS, 40, params, np.random.default_rng(seed), tick=42
+        observer, Bodies(*state), PLAYERS, 40, params, np.random.default_rng(seed)
     )
     assert goals == only_goals(slow)
     lean = percept_from_state(
-        observer,
-        *state,
-        PLAYERS,
-        40,
-        params,
-        np.random.default_rng(seed),
-        tick=42,
-        landmarks="none",
+        observer, Bodies(*state), PLAYERS, 40, params, np.random.default_rng(seed), landmarks="none"
     )
     assert lean == dataclasses.replace(slow, landmarks=())
 
@@ -120,9 +108,9 @@ def test_fast_path_sees_something_and_matches_on_a_busy_scene() -> None:
     )
     matches = 0
     for seed in range(50):
-        slow = text_route(1, state, SENSING_19, seed, tick=9)
+        slow = text_route(1, state, SENSING_19, seed, tick=40)
         fast = percept_from_state(
-            1, *state, PLAYERS, 40, SENSING_19, np.random.default_rng(seed), tick=9
+            1, Bodies(*state), PLAYERS, 40, SENSING_19, np.random.default_rng(seed)
         )
         assert fast == only_goals(slow)
         assert fast.landmark("g r") is not None and len(slow.landmarks) > 5
@@ -155,16 +143,11 @@ def test_angles_become_ccw_radians_and_rates_per_second() -> None:
 def test_ball_to_the_left_is_at_a_positive_angle() -> None:
     fast = percept_from_state(
         1,
-        [10.0, 0.0],
-        [3.0, 0.0],
-        [0.0, 0.0],
-        [0.0, 0.0],
-        [0.0, 0.0],
+        Bodies([10.0, 0.0], [3.0, 0.0], [0.0, 0.0], [0.0, 0.0], [0.0, 0.0]),
         PLAYERS[:1],
         0,
         SENSING_19,
         np.random.default_rng(0),
-        tick=0,
     )
     assert fast.ball is not None
     assert fast.ball.angle_rad == pytest.approx(math.radians(17.0))  # atan2(3, 10) = 16.7 deg
@@ -225,19 +208,15 @@ def test_percept_carries_heard_messages() -> None:
     heard = (Heard("go", None, 0.5, 3),)
     fast = percept_from_state(
         1,
-        [5.0, 0.0],
-        [0.0, 0.0],
-        [0.0, 0.0],
-        [0.0, 0.0],
-        [0.0, 0.0],
+        Bodies([5.0, 0.0], [0.0, 0.0], [0.0, 0.0], [0.0, 0.0], [0.0, 0.0]),
         PLAYERS[:1],
         3,
         SENSING_1996,
         np.random.default_rng(0),
-        tick=4,
         heard=heard,
     )
     assert fast.heard == heard
+    assert fast.tick == fast.observed_tick == 3  # reaches the client in the cycle it shows
     assert fast.ball == SeenBall(5.0, 0.0)  # 1996: no changes
 
 
@@ -260,7 +239,7 @@ def perfect_scene() -> tuple[list[float], ...]:
 def test_perfect_see_equals_the_true_geometry() -> None:
     x, y, vx, vy, h = perfect_scene()
     for seed in range(5):  # no draw changes anything: identity and changes are always there
-        info = observe(1, x, y, vx, vy, h, PLAYERS, 7, PERFECT, np.random.default_rng(seed))
+        info = observe(1, Bodies(x, y, vx, vy, h), PLAYERS, 7, PERFECT, np.random.default_rng(seed))
         percept = percept_from_see(info, PLAYERS[0], 7, 7)
         assert percept.ball is not None and len(percept.players) == 2
         rows = {"b": 0, (PLAYERS[1].team, PLAYERS[1].number): 2, (PLAYERS[2].team, 1): 3}
@@ -286,21 +265,21 @@ def test_perfect_see_equals_the_true_geometry() -> None:
 def test_perfect_see_keeps_the_cone_and_the_far_details() -> None:
     x, y, vx, vy, h = perfect_scene()
     far = [*x[:3], 70.0]  # the opponent 80 m away: no number (nor changes) in a normal see
-    info = observe(1, far, y, vx, vy, h, PLAYERS, 7, PERFECT, np.random.default_rng(0))
+    info = observe(1, Bodies(far, y, vx, vy, h), PLAYERS, 7, PERFECT, np.random.default_rng(0))
     them = [o for o in info.objects if o.name == "p" and o.team == "right"]
     assert len(them) == 1 and them[0].unum == 1 and them[0].dist_change is not None
-    normal = observe(1, far, y, vx, vy, h, PLAYERS, 7, SENSING_19, np.random.default_rng(0))
+    normal = observe(1, Bodies(far, y, vx, vy, h), PLAYERS, 7, SENSING_19, np.random.default_rng(0))
     last = [o for o in normal.objects if o.name == "p"][-1]
     assert (last.team, last.unum, last.dist_change) == ("right", None, None)
     behind = [*x]
     behind[0] = -20.0  # the ball 10 m behind the observer: out of the cone in both
-    info = observe(1, behind, y, vx, vy, h, PLAYERS, 7, PERFECT, np.random.default_rng(0))
+    info = observe(1, Bodies(behind, y, vx, vy, h), PLAYERS, 7, PERFECT, np.random.default_rng(0))
     assert info.find("b") is None and info.find("B") is None
 
 
 def test_perfect_see_text_round_trips_exactly() -> None:
     x, y, vx, vy, h = perfect_scene()
-    info = observe(1, x, y, vx, vy, h, PLAYERS, 7, PERFECT, np.random.default_rng(3))
+    info = observe(1, Bodies(x, y, vx, vy, h), PLAYERS, 7, PERFECT, np.random.default_rng(3))
     text = render_see(info, PERFECT.protocol_version)
     assert parse_see(text) == info
     ball = info.find("b")

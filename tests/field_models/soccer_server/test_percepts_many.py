@@ -16,8 +16,8 @@ from field_models.seeding import Rng, TrialRngs
 from field_models.soccer_server import arena as arena_module
 from field_models.soccer_server import percepts_many
 from field_models.soccer_server.percepts import percept_from_state
-from field_models.soccer_server.percepts_many import Bodies, percepts_of
-from field_models.soccer_server.sensing import LandmarkMode
+from field_models.soccer_server.percepts_many import percepts_of
+from field_models.soccer_server.sensing import Bodies, LandmarkMode
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 from robotsoccer.runs.runner import TrialSpec, run_trial
 
@@ -62,7 +62,7 @@ def one_at_a_time(
     """The reference: ``percept_from_state`` for each observer in turn."""
     return [
         percept_from_state(
-            row, *bodies, players, time, params, rng, tick=time, heard=heard[k], landmarks=landmarks
+            row, bodies, players, time, params, rng, heard=heard[k], landmarks=landmarks
         )
         for k, row in enumerate(observers)
     ]

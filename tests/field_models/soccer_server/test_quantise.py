@@ -14,7 +14,7 @@ from field_models.presets import PresetError, load_record
 from field_models.protocol import PlayerRef
 from field_models.soccer_server.params import load_server_preset
 from field_models.soccer_server.see_numbers import far_probability, quantize, quantize_distance
-from field_models.soccer_server.sensing import observe
+from field_models.soccer_server.sensing import Bodies, observe
 from field_models.soccer_server.sensing_params import (
     SENSING_19,
     SENSING_1996,
@@ -90,11 +90,7 @@ def _see_ball(bx: float, by: float, bvx: float, bvy: float) -> tuple[float | Non
     players = (PlayerRef("left", 1),)
     info = observe(
         1,
-        [bx, 0.0],
-        [by, 0.0],
-        [bvx, 0.0],
-        [bvy, 0.0],
-        [0.0, 0.0],
+        Bodies([bx, 0.0], [by, 0.0], [bvx, 0.0], [bvy, 0.0], [0.0, 0.0]),
         players,
         0,
         SENSING_19,

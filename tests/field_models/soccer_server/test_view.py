@@ -18,7 +18,7 @@ from field_models.soccer_server.hearing import (
 from field_models.soccer_server.landmarks import FLAGS_1996, FLAGS_FULL, landmarks_for
 from field_models.soccer_server.messages import render_see
 from field_models.soccer_server.see_timing import SeeTimer
-from field_models.soccer_server.sensing import SeeInfo, SeenObject, observe
+from field_models.soccer_server.sensing import Bodies, SeeInfo, SeenObject, observe
 from field_models.soccer_server.sensing_params import SENSING_19, SENSING_1996, SensingParams
 
 ME = PlayerRef("left", 1)
@@ -40,11 +40,13 @@ def see_one(
     """Observer row 1 at (ox, oy); the ball AND another player (row 2) at (obj_x, obj_y)."""
     return observe(
         1,
-        [obj_x, ox, obj_x],
-        [obj_y, oy, obj_y],
-        [0.0, 0.0, 0.0],
-        [0.0, 0.0, 0.0],
-        [0.0, heading, 0.0],
+        Bodies(
+            [obj_x, ox, obj_x],
+            [obj_y, oy, obj_y],
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+            [0.0, heading, 0.0],
+        ),
         (ME, other),
         7,
         params,
@@ -109,11 +111,7 @@ def test_spec_measured_see_message_protocol_8_and_4() -> None:
     def msg(params: SensingParams) -> str:
         info = observe(
             1,
-            [0.0, -10.0],
-            [0.0, -5.0],
-            [0.0, 0.0],
-            [0.0, 0.0],
-            [0.0, 0.0],
+            Bodies([0.0, -10.0], [0.0, -5.0], [0.0, 0.0], [0.0, 0.0], [0.0, 0.0]),
             (ME,),
             0,
             params,
@@ -147,11 +145,7 @@ def test_landmark_modes_give_the_same_ball_players_and_goals() -> None:
         infos = {
             mode: observe(
                 2,
-                xs,
-                ys,
-                vs,
-                vs,
-                hs,
+                Bodies(xs, ys, vs, vs, hs),
                 players,
                 3,
                 SENSING_19,
@@ -172,11 +166,7 @@ def test_landmark_modes_give_the_same_ball_players_and_goals() -> None:
     with pytest.raises(ValueError, match="landmarks"):
         observe(
             1,
-            xs,
-            ys,
-            vs,
-            vs,
-            hs,
+            Bodies(xs, ys, vs, vs, hs),
             players,
             3,
             SENSING_19,
@@ -189,11 +179,7 @@ def test_observer_row_is_checked() -> None:
     with pytest.raises(ValueError, match="observer row"):
         observe(
             0,
-            [0.0, 1.0],
-            [0.0, 0.0],
-            [0.0] * 2,
-            [0.0] * 2,
-            [0.0] * 2,
+            Bodies([0.0, 1.0], [0.0, 0.0], [0.0] * 2, [0.0] * 2, [0.0] * 2),
             (ME,),
             0,
             SENSING_19,
@@ -211,11 +197,7 @@ def identity_counts(dist: float, params: SensingParams, n: int = 4000) -> dict[s
     for _ in range(n):
         info = observe(
             1,
-            [0.0, 0.0, dist],
-            [50.0, 0.0, 0.0],
-            [0.0] * 3,
-            [0.0] * 3,
-            [0.0] * 3,
+            Bodies([0.0, 0.0, dist], [50.0, 0.0, 0.0], [0.0] * 3, [0.0] * 3, [0.0] * 3),
             (ME, OPP),
             0,
             params,
@@ -263,11 +245,7 @@ def test_ball_changes_are_sent_with_falling_probability() -> None:
     for _ in range(n):
         info = observe(
             1,
-            [30.0, 0.0],
-            [0.0, 0.0],
-            [0.1, 0.0],
-            [0.0, 0.0],
-            [0.0, 0.0],
+            Bodies([30.0, 0.0], [0.0, 0.0], [0.1, 0.0], [0.0, 0.0], [0.0, 0.0]),
             (ME,),
             0,
             SENSING_19,
@@ -280,11 +258,7 @@ def test_ball_changes_are_sent_with_falling_probability() -> None:
     assert abs(with_changes / n - 0.5) < 4 * math.sqrt(0.25 / n)
     far = observe(
         1,
-        [45.0, 0.0],
-        [0.0, 0.0],
-        [0.1, 0.0],
-        [0.0, 0.0],
-        [0.0, 0.0],
+        Bodies([45.0, 0.0], [0.0, 0.0], [0.1, 0.0], [0.0, 0.0], [0.0, 0.0]),
         (ME,),
         0,
         SENSING_19,
@@ -303,11 +277,13 @@ def test_1996_sees_carry_no_changes_and_no_body_direction() -> None:
 def test_today_player_entry_has_changes_body_and_head() -> None:
     info = observe(
         1,
-        [9.0, 0.0, 5.0],
-        [9.0, 0.0, 0.0],
-        [0.0, 0.0, 0.0],
-        [0.0, 0.0, 0.2],
-        [0.0, 0.0, math.radians(30.0)],
+        Bodies(
+            [9.0, 0.0, 5.0],
+            [9.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.2],
+            [0.0, 0.0, math.radians(30.0)],
+        ),
         (ME, MATE),
         0,
         SENSING_19,
@@ -348,11 +324,7 @@ def test_landmark_sets_and_positions_in_our_frame() -> None:
 def lines_seen(x: float, y: float, heading_deg: float) -> list[SeenObject]:
     info = observe(
         1,
-        [0.0, x],
-        [0.0, y],
-        [0.0] * 2,
-        [0.0] * 2,
-        [0.0, math.radians(heading_deg)],
+        Bodies([0.0, x], [0.0, y], [0.0] * 2, [0.0] * 2, [0.0, math.radians(heading_deg)]),
         (ME,),
         0,
         SENSING_19,

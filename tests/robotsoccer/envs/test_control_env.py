@@ -225,3 +225,23 @@ def test_human_mode_streams_the_episode_to_a_rerun_recording(tmp_path: Any) -> N
         env.step(np.array([0.5, 0.5], np.float32))
     env.close()
     assert (tmp_path / "live.rrd").stat().st_size > 1000
+
+
+def test_options_come_as_a_record_or_as_its_keywords() -> None:
+    from robotsoccer.envs.control import ControlOptions
+
+    record = ControlOptions(action="primitives", frames_per_step=2, max_time_s=3.0)
+    by_record = GoToBallEnv("soccer_server", options=record)
+    by_keyword = GoToBallEnv(
+        "soccer_server", action="primitives", frames_per_step=2, max_time_s=3.0
+    )
+    assert by_record.options == by_keyword.options == record
+    assert (by_record.action_kind, by_record.frames_per_step, by_record.max_ticks) == (
+        by_keyword.action_kind,
+        2,
+        by_keyword.max_ticks,
+    )
+    with pytest.raises(ValueError, match="not both"):
+        GoToBallEnv(options=record, frames_per_step=1)
+    with pytest.raises(ValueError, match="frames_per_step"):
+        ControlOptions(frames_per_step=0)

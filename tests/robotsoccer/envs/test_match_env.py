@@ -247,3 +247,24 @@ def test_a_held_primitive_drives_the_player_and_frames_are_drawn(field_model: st
         frame = env.render()
         assert frame.ndim == 3 and frame.shape[2] == 3
     assert moved[0] == 0.0 and moved[1] > 2.0  # units: it ran, facing +x at kick-off
+
+
+def test_the_match_and_hfo_environments_take_a_record_or_its_keywords() -> None:
+    from robotsoccer.drills.match_options import MatchOptions, TeamKind
+    from robotsoccer.envs.hfo import HfoTask
+
+    by_keyword = MatchParallelEnv("soccer_server", players=2, half_time_s=10.0)
+    record = MatchOptions(TeamKind.BASELINE, TeamKind.BASELINE, players=2, half_time_s=10.0)
+    by_record = MatchParallelEnv("soccer_server", match=record)
+    assert by_record.resolved == by_keyword.resolved  # one spec, resolved once
+    assert by_keyword.resolved.spec.field.all_landmarks is True
+    with pytest.raises(ValueError, match="not both"):
+        MatchParallelEnv("soccer_server", match=record, players=2)
+    task = HfoTask(offense=3, defense=0)
+    hfo = HalfFieldOffenseEnv("soccer_server", task=task, perfect_perception=True)
+    assert hfo.players == half_field_offense_env("soccer_server", offense=3, defense=0).players
+    assert hfo.field_options.perfect_perception and hfo.counts == (3, 0, True)
+    with pytest.raises(ValueError, match="not both"):
+        HalfFieldOffenseEnv("soccer_server", task=task, offense=2)
+    with pytest.raises(ValueError, match="goalie or at least one defender"):
+        HfoTask(defense=0, goalie=False)

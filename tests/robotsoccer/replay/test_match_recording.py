@@ -6,6 +6,7 @@ import math
 import subprocess
 import sys
 import warnings
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -24,6 +25,7 @@ from field_models.protocol import (
     SeenPlayer,
     Truth,
 )
+from robotsoccer.replay.field_recorder import Scene
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.replay.lettering import text_strokes
 from robotsoccer.replay.match_recording import MatchRecorder
@@ -104,17 +106,19 @@ def seen_ball(me: BodyState, tick: int) -> SeenBall:
 def record_match(path: Path, *, every_ticks: int = 1, shape: str = "circle") -> None:
     with MatchRecorder(
         path,
-        pitch=PITCH,
-        players=PLAYERS,
-        dt_s=DT_S,
-        player_shape="circle" if shape == "circle" else "square",
-        sensor_period_s=SENSOR_S,
+        Scene(
+            pitch=PITCH,
+            players=PLAYERS,
+            dt_s=DT_S,
+            player_shape="circle" if shape == "circle" else "square",
+            sensor_period_s=SENSOR_S,
+            title="synthetic match",
+        ),
         teams=TEAMS,
         selected=SELECTED,
-        title="synthetic match",
         recording_id="test-match",
         every_ticks=every_ticks,
-        chunk_frames=64,  # several flushes, so the trail crosses chunk boundaries
+        chunk_frames=64,
     ) as rec:
         for tick in range(N_TICKS):
             truth = truth_at(tick)
@@ -244,14 +248,16 @@ def test_trail_length_and_thinning(tmp_path: Path) -> None:
     # Fine ticks (1/240 s): the default trail is 360 ticks, thinned to at most 24 positions.
     with MatchRecorder(
         path,
-        pitch=PITCH,
-        players=(),
-        dt_s=1.0 / 240.0,
-        player_shape="square",
-        sensor_period_s=0.05,
+        Scene(
+            pitch=PITCH,
+            players=(),
+            dt_s=1.0 / 240.0,
+            player_shape="square",
+            sensor_period_s=0.05,
+            title="fine",
+        ),
         teams=TEAMS,
         selected=None,
-        title="fine",
         recording_id="fine",
     ) as rec:
         assert rec.trail_ticks == 360
@@ -364,14 +370,16 @@ def test_stale_line_of_sight_is_cleared(tmp_path: Path) -> None:
     path = tmp_path / "stale.rrd"
     with MatchRecorder(
         path,
-        pitch=PITCH,
-        players=PLAYERS,
-        dt_s=DT_S,
-        player_shape="circle",
-        sensor_period_s=SENSOR_S,
+        Scene(
+            pitch=PITCH,
+            players=PLAYERS,
+            dt_s=DT_S,
+            player_shape="circle",
+            sensor_period_s=SENSOR_S,
+            title="t",
+        ),
         teams=TEAMS,
         selected=SELECTED,
-        title="t",
         recording_id="r",
     ) as rec:
         for tick in range(40):
@@ -442,37 +450,31 @@ def test_import_does_not_load_rerun() -> None:
 
 
 def test_bad_arguments(tmp_path: Path) -> None:
-    common: dict[str, Any] = {
-        "pitch": PITCH,
-        "players": PLAYERS,
-        "dt_s": DT_S,
-        "player_shape": "circle",
-        "sensor_period_s": SENSOR_S,
-        "teams": TEAMS,
-        "title": "t",
-        "recording_id": "r",
-    }
+    scene = Scene(PITCH, PLAYERS, DT_S, "circle", SENSOR_S, "t")
+    common: dict[str, Any] = {"teams": TEAMS, "recording_id": "r"}
     with pytest.raises(ValueError, match="selected"):
-        MatchRecorder(tmp_path / "a.rrd", selected=PlayerRef(LEFT, 12), **common)
+        MatchRecorder(tmp_path / "a.rrd", scene, selected=PlayerRef(LEFT, 12), **common)
     with pytest.raises(ValueError, match="trail_ticks"):
-        MatchRecorder(tmp_path / "b.rrd", selected=None, trail_ticks=0, **common)
-    common["players"] = (PlayerRef("coach", 1),)
+        MatchRecorder(tmp_path / "b.rrd", scene, selected=None, trail_ticks=0, **common)
+    scene = replace(scene, players=(PlayerRef("coach", 1),))
     with pytest.raises(ValueError, match="LEFT or the RIGHT"):
-        MatchRecorder(tmp_path / "c.rrd", selected=None, **common)
+        MatchRecorder(tmp_path / "c.rrd", scene, selected=None, **common)
 
 
 def test_closed_recorder_refuses_more(tmp_path: Path) -> None:
     path = tmp_path / "closed.rrd"
     rec = MatchRecorder(
         path,
-        pitch=PITCH,
-        players=PLAYERS,
-        dt_s=DT_S,
-        player_shape="circle",
-        sensor_period_s=SENSOR_S,
+        Scene(
+            pitch=PITCH,
+            players=PLAYERS,
+            dt_s=DT_S,
+            player_shape="circle",
+            sensor_period_s=SENSOR_S,
+            title="t",
+        ),
         teams=TEAMS,
         selected=SELECTED,
-        title="t",
         recording_id="r",
     )
     rec.log_frame(GameFrame(truth_at(0), "before_kick_off", (0, 0)))
@@ -496,9 +498,19 @@ def test_routine_decisions_go_where_the_default_layout_hides_them(tmp_path: Path
         ((Say("go"),), "(say go)"),
     ]
     with MatchRecorder(
-        path, pitch=PITCH, players=PLAYERS, dt_s=DT_S, player_shape="circle",
-        sensor_period_s=SENSOR_S, teams=TEAMS, selected=SELECTED, title="t", recording_id="d",
-    ) as rec:  # fmt: skip
+        path,
+        Scene(
+            pitch=PITCH,
+            players=PLAYERS,
+            dt_s=DT_S,
+            player_shape="circle",
+            sensor_period_s=SENSOR_S,
+            title="t",
+        ),
+        teams=TEAMS,
+        selected=SELECTED,
+        recording_id="d",
+    ) as rec:
         for tick, (actions, text) in enumerate(decisions):
             rec.log_frame(GameFrame(truth_at(tick), "play_on", (0, 0)))
             rec.log_decision(ArenaEvent(tick, "decision", text, SELECTED), actions)

@@ -24,6 +24,7 @@ from field_models.protocol import (
     Truth,
 )
 from robotsoccer.replay import rrd_files
+from robotsoccer.replay.field_recorder import Scene
 from robotsoccer.replay.geometry import (
     MIN_BALL_FRACTION,
     MIN_PLAYER_FRACTION,
@@ -76,9 +77,7 @@ def truth_at(tick: int) -> Truth:
 def record_run(path: Path, *, every_ticks: int = 1, chunk_frames: int = 16) -> None:
     with TrialRecorder(
         path,
-        pitch=PITCH,
-        players=(A, B),
-        dt_s=DT_S,
+        Scene(pitch=PITCH, players=(A, B), dt_s=DT_S),
         recording_id="test-trial-0",
         every_ticks=every_ticks,
         chunk_frames=chunk_frames,
@@ -238,7 +237,7 @@ def test_reader_fallback_without_cli(
 def test_unclosed_recording_fails_until_closed(tmp_path: Path) -> None:
     path = tmp_path / "open.rrd"
     rec = TrialRecorder(
-        path, pitch=PITCH, players=(A,), dt_s=0.1, recording_id="r", player_shape="circle"
+        path, Scene(pitch=PITCH, players=(A,), dt_s=0.1, player_shape="circle"), recording_id="r"
     )
     rec.log_truth(truth_at(0))
     rec.close()
@@ -253,7 +252,10 @@ def test_bad_arguments() -> None:
         outline_template("hexagon", 0.1)
     with pytest.raises(ValueError, match="every_ticks"):
         TrialRecorder(
-            Path("unused.rrd"), pitch=PITCH, players=(), dt_s=0.1, recording_id="r", every_ticks=0
+            Path("unused.rrd"),
+            Scene(pitch=PITCH, players=(), dt_s=0.1),
+            recording_id="r",
+            every_ticks=0,
         )
 
 
@@ -357,7 +359,9 @@ def test_small_things_are_drawn_at_a_visible_minimum_size() -> None:
 def test_recording_draws_the_enlarged_sizes_and_says_so(tmp_path: Path) -> None:
     path = tmp_path / "server.rrd"
     with TrialRecorder(
-        path, pitch=SERVER_PITCH, players=(A,), dt_s=0.1, recording_id="r", player_shape="circle"
+        path,
+        Scene(pitch=SERVER_PITCH, players=(A,), dt_s=0.1, player_shape="circle"),
+        recording_id="r",
     ) as rec:
         rec.log_truth(truth_at(0))
     sizes = draw_sizes(SERVER_PITCH)
@@ -395,11 +399,8 @@ def test_pitch_markings_fit_the_pitch() -> None:
 def record_percepts(path: Path, percept_ticks: list[int], *, sensor_period_s: float | None) -> None:
     with TrialRecorder(
         path,
-        pitch=PITCH,
-        players=(A, B),
-        dt_s=DT_S,
+        Scene(pitch=PITCH, players=(A, B), dt_s=DT_S, sensor_period_s=sensor_period_s),
         recording_id="expiry",
-        sensor_period_s=sensor_period_s,
     ) as rec:
         for tick in range(N_TICKS):
             truth = truth_at(tick)

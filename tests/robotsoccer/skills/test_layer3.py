@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -18,8 +19,11 @@ from field_models.protocol import (
     SeenPlayer,
 )
 from learning.tpot import FAILURE, MISS, N_ACTIONS, SUCCESS, TpotTable
-from robotsoccer.skills.layer3 import DESTINATIONS, TpotBallPolicy, destination_xy
+from robotsoccer.skills.layer3 import DESTINATIONS, TpotBallPolicy, TpotSettings, destination_xy
 from robotsoccer.skills.localise import Pose
+from robotsoccer.skills.setplay import KickPowers
+from robotsoccer.skills.team_setup import TeamSetup
+from tests.robotsoccer.skills.test_team import setup as team_setup
 
 HALF_L, HALF_W = 52.5, 34.0
 
@@ -35,23 +39,22 @@ class Fixed:
         return self.confidence
 
 
+def plan(attack_right: bool = True) -> TeamSetup:
+    """The team's plan the policies play by: the pitch, 30 m passes at power 80, 25 m shots."""
+    powers = KickPowers(dribble=20.0, passing=80.0, shot=100.0)
+    return replace(team_setup(), attack_right=attack_right, powers=powers)
+
+
 def policy(
     confidence: float, *, attack_right: bool = True, learn: bool = False, window: str = "choice"
 ) -> TpotBallPolicy:
+    settings = TpotSettings(learn=learn, window=window)
     return TpotBallPolicy(
         TpotTable.empty(11),
-        attack_right=attack_right,
-        half_length_m=HALF_L,
-        half_width_m=HALF_W,
-        unit_m=1.0,
-        pass_range_m=30.0,
-        pass_power=80.0,
-        dt_s=0.1,
-        evaluator=Fixed(confidence),
-        threshold=0.5,
-        rng=np.random.default_rng(0),
-        learn=learn,
-        window=window,
+        plan(attack_right),
+        Fixed(confidence),
+        np.random.default_rng(0),
+        settings,
     )
 
 
@@ -207,24 +210,9 @@ def every_policy(
     confidence: float, threshold: float = 0.5, **extra: bool | float | str
 ) -> TpotBallPolicy:
     """A policy with TPOT-RL's own rule: shoot and keep among the destinations."""
+    settings = TpotSettings(threshold=threshold, every_ball=True, **extra)  # type: ignore[arg-type]
     return TpotBallPolicy(
-        TpotTable.empty(11),
-        attack_right=True,
-        half_length_m=HALF_L,
-        half_width_m=HALF_W,
-        unit_m=1.0,
-        pass_range_m=30.0,
-        pass_power=80.0,
-        dt_s=0.1,
-        evaluator=Fixed(confidence),
-        threshold=threshold,
-        rng=np.random.default_rng(0),
-        every_ball=True,
-        shoot_range_m=25.0,
-        blocked_m=8.0,
-        shot_power=100.0,
-        dribble_power=20.0,
-        **extra,  # type: ignore[arg-type]
+        TpotTable.empty(11), plan(), Fixed(confidence), np.random.default_rng(0), settings
     )
 
 
@@ -258,19 +246,7 @@ def test_with_every_ball_a_destination_without_a_teammate_is_kept_and_the_cut_sp
 
 def test_a_policy_refuses_a_table_of_other_actions() -> None:
     with pytest.raises(ValueError, match="3 actions"):
-        TpotBallPolicy(
-            TpotTable.empty(11, actions=3),
-            attack_right=True,
-            half_length_m=HALF_L,
-            half_width_m=HALF_W,
-            unit_m=1.0,
-            pass_range_m=30.0,
-            pass_power=80.0,
-            dt_s=0.1,
-            evaluator=Fixed(0.9),
-            threshold=0.5,
-            rng=np.random.default_rng(0),
-        )
+        TpotBallPolicy(TpotTable.empty(11, actions=3), plan(), Fixed(0.9), np.random.default_rng(0))
 
 
 class EveryBall(Recording):
@@ -334,20 +310,7 @@ def test_the_guard_and_the_mind_share_one_range_rule_the_seen_goal_first() -> No
 
 def test_the_guard_needs_every_ball_and_the_loss_penalty_its_bounds() -> None:
     with pytest.raises(ValueError, match="every_ball"):
-        TpotBallPolicy(
-            TpotTable.empty(11),
-            attack_right=True,
-            half_length_m=HALF_L,
-            half_width_m=HALF_W,
-            unit_m=1.0,
-            pass_range_m=30.0,
-            pass_power=80.0,
-            dt_s=0.1,
-            evaluator=Fixed(0.9),
-            threshold=0.5,
-            rng=np.random.default_rng(0),
-            shot_guard=True,
-        )
+        TpotSettings(shot_guard=True)
     with pytest.raises(ValueError, match="loss_penalty"):
         every_policy(0.9, loss_penalty=1.5)
 
