@@ -52,6 +52,7 @@ from dataclasses import dataclass
 from field_models.protocol import Action, Dash, Kick, Mind, Percept, SeenPlayer, Turn, wrap_angle
 from robotsoccer.skills.ball_sense import Vector
 from robotsoccer.skills.ball_tracker import BallTracker
+from robotsoccer.skills.motion import turn_then_go
 
 WINGER_CUE = "wing"
 """What the first receiver says as it kicks to the winger (the winger and last receivers wake)."""
@@ -103,9 +104,7 @@ def chase(percept: Percept, *, dash: float = 100.0) -> tuple[Action, ...]:
     ball = percept.ball
     if ball is None:
         return (Turn(SEARCH_TURN_RAD),)
-    if abs(ball.angle_rad) > FACING_RAD:
-        return (Turn(ball.angle_rad),)
-    return (Dash(dash),)
+    return turn_then_go(ball.angle_rad, (Dash(dash),), facing_rad=FACING_RAD, turn_only=True)
 
 
 def approach(percept: Percept, reach_m: float, slow: float = 40.0) -> tuple[Action, ...]:
@@ -207,9 +206,9 @@ def heard_text(percept: Percept, text: str) -> bool:
 def face_ball(percept: Percept) -> tuple[Action, ...]:
     """Turn to the ball if it is off the heading; else stand."""
     ball = percept.ball
-    if ball is not None and abs(ball.angle_rad) > FACING_RAD:
-        return (Turn(ball.angle_rad),)
-    return STAND
+    if ball is None:
+        return STAND
+    return turn_then_go(ball.angle_rad, STAND, facing_rad=FACING_RAD, turn_only=True)
 
 
 def heard_tick(percept: Percept, texts: Iterable[str]) -> int:
