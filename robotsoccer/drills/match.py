@@ -57,7 +57,7 @@ from robotsoccer.skills.intercept import (
 from robotsoccer.skills.layer3 import TpotBallPolicy
 from robotsoccer.skills.passing import Chooser, PassEvaluator
 from robotsoccer.skills.team import TeamMind
-from robotsoccer.skills.team_setup import LOOK_MODES, TeamSetup
+from robotsoccer.skills.team_setup import LOOK_MODES, TURN_LATENCIES, TeamSetup
 
 HALF_TIME_S = 300.0
 """One half [s]: rcssserver's ``half_time`` (3000 cycles)."""
@@ -132,6 +132,9 @@ class MatchDrill(LayeredDrill):
             dead_band`; issue 28 item 5, the robots' dithering): True for both teams,
             ``left`` or ``right`` for one (to measure what it costs); False (default): as
             before.
+        turn_latency: How the minds treat a percept that does not show their last turn yet
+            (:attr:`~robotsoccer.skills.team_setup.TeamSetup.turn_latency`): ``hold``
+            (default) or ``reckon``, the motion skill's two settings.
 
     Raises:
         ValueError: An unknown team kind, a layered team without its model files, an unknown
@@ -153,6 +156,7 @@ class MatchDrill(LayeredDrill):
         steady_turns: bool | str = False,
         look: str = "body",
         dead_band: bool | str = False,
+        turn_latency: str = "hold",
         tpot: str = "",
         explore: float | str = 0.0,
         learn: bool | str = False,
@@ -165,6 +169,10 @@ class MatchDrill(LayeredDrill):
         if look not in LOOK_MODES:
             raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {look!r}")
         self.look = look
+        if turn_latency not in TURN_LATENCIES:
+            known = ", ".join(TURN_LATENCIES)
+            raise ValueError(f"turn_latency: expected one of {known}; got {turn_latency!r}")
+        self.turn_latency = turn_latency
         self.steady_turns = flag("steady_turns", steady_turns) or look == "neck"
         self.dead_band = dead_band_teams(dead_band)
         self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
@@ -355,7 +363,9 @@ class MatchDrill(LayeredDrill):
         """One team's plan on this field (module docstring)."""
         plan = self.plan(facts)
         dead_band = team in self.dead_band
-        return team_setup(facts, plan, n, team, self.steady_turns, self.look, dead_band)
+        return team_setup(
+            facts, plan, n, team, self.steady_turns, self.look, dead_band, self.turn_latency
+        )
 
     # ------------------------------------------------------------------ the coach
 
