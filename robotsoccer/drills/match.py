@@ -133,8 +133,9 @@ class MatchDrill(LayeredDrill):
             ``left`` or ``right`` for one (to measure what it costs); False (default): as
             before.
         turn_latency: How the minds treat a percept that does not show their last turn yet
-            (:attr:`~robotsoccer.skills.team_setup.TeamSetup.turn_latency`): ``hold``
-            (default) or ``reckon``, the motion skill's two settings.
+            (:attr:`~robotsoccer.skills.team_setup.TeamSetup.turn_latency`), the motion
+            skill's two settings: ``hold`` (default) or ``reckon`` for both teams, or ``left``
+            or ``right``: that team reckons, the other holds (to measure what it costs).
 
     Raises:
         ValueError: An unknown team kind, a layered team without its model files, an unknown
@@ -169,10 +170,11 @@ class MatchDrill(LayeredDrill):
         if look not in LOOK_MODES:
             raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {look!r}")
         self.look = look
-        if turn_latency not in TURN_LATENCIES:
-            known = ", ".join(TURN_LATENCIES)
+        if turn_latency not in (*TURN_LATENCIES, LEFT, RIGHT):
+            known = ", ".join((*TURN_LATENCIES, LEFT, RIGHT))
             raise ValueError(f"turn_latency: expected one of {known}; got {turn_latency!r}")
-        self.turn_latency = turn_latency
+        reckon = {"hold": (), "reckon": (LEFT, RIGHT)}.get(turn_latency, (turn_latency,))
+        self.reckoning = frozenset(reckon)
         self.steady_turns = flag("steady_turns", steady_turns) or look == "neck"
         self.dead_band = dead_band_teams(dead_band)
         self.kinds = {LEFT: choice(TeamKind, left, "left"), RIGHT: choice(TeamKind, right, "right")}
@@ -363,9 +365,8 @@ class MatchDrill(LayeredDrill):
         """One team's plan on this field (module docstring)."""
         plan = self.plan(facts)
         dead_band = team in self.dead_band
-        return team_setup(
-            facts, plan, n, team, self.steady_turns, self.look, dead_band, self.turn_latency
-        )
+        latency = "reckon" if team in self.reckoning else "hold"
+        return team_setup(facts, plan, n, team, self.steady_turns, self.look, dead_band, latency)
 
     # ------------------------------------------------------------------ the coach
 
