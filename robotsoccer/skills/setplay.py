@@ -21,7 +21,8 @@ built of:
 A player comes up to the ball slowly enough to stop beside it, and stands with a dash of no
 power (:data:`STAND`): a robot would otherwise drive on into the ball.
 
-Skills, each a small function of one percept:
+Skills, each a small function of one percept (their turns toward a bearing are the motion
+skill's turn then go, :func:`~robotsoccer.skills.motion.turn_then_go`):
 
 * :func:`chase` — face the ball and run at it (the approach of a dribble);
 * :func:`approach` — the same, slowing down near the ball so as not to run into it;

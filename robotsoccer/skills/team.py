@@ -61,7 +61,8 @@ Where it lives: :class:`TeamSetup`, :class:`BallPolicy` and the constants named 
 :mod:`robotsoccer.skills.team_setup`; a mind's state and its reading of a rolling ball in
 :mod:`robotsoccer.skills.team_base`; steps 4-5 in :mod:`robotsoccer.skills.team_chase`; step 3
 and "Pushing" in :mod:`robotsoccer.skills.team_ball`; :class:`TeamMind` here: steps 1-2 and
-the decision with its turn holds.
+the decision with its turn holds (the motion skill's hold, :mod:`robotsoccer.skills.motion`,
+which also gives every turn then go of these modules).
 """
 
 from __future__ import annotations

@@ -158,7 +158,8 @@ class TeamSetup:
             motion.TurnsInFlight`; a turn shows after :meth:`turn_ticks`): ``"hold"`` (default)
             decides nothing until a percept shows it, the body going on with its last command;
             ``"reckon"`` decides at every percept, turned into the frame of the turns sent (as
-            the set play's minds do; README, "One motion skill (issue 23)", measures it).
+            the set play's minds do; measured in the README's "One motion skill (issue 23,
+            measured)").
     """
 
     attack_right: bool
