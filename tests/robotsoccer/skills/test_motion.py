@@ -7,9 +7,19 @@ import math
 
 import pytest
 
-from field_models.protocol import LEFT, Dash, Percept, PlayerRef, SeenBall, SeenLandmark, Turn
+from field_models.protocol import (
+    LEFT,
+    RIGHT,
+    Dash,
+    Percept,
+    PlayerRef,
+    SeenBall,
+    SeenLandmark,
+    Turn,
+)
 from field_models.registry import field_facts
 from robotsoccer.drills import match_setup, setplay_kicks
+from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.setplay import SetPlayDrill
 from robotsoccer.skills.ball_sense import Heading
 from robotsoccer.skills.intercept import DefenderMind
@@ -175,3 +185,16 @@ def test_no_kick_that_carries_the_ball_a_dribble_is_refused() -> None:
     facts = field_facts("soccer_server", "soccer_server_1996")
     with pytest.raises(ValueError, match="no kick sends the ball 4 units"):
         dribble_power(facts, 1.0, 0.001)  # 100 units of power give 0.1 m/s
+
+
+def test_the_match_option_sets_one_team_both_or_neither_to_reckon() -> None:
+    facts = field_facts("robot_physics", "small_size_1997")
+
+    def latencies(value: str) -> list[str]:
+        drill = MatchDrill(left="baseline", right="baseline", turn_latency=value)
+        return [drill.team_setup(facts, 5, team).turn_latency for team in (LEFT, RIGHT)]
+
+    assert latencies("hold") == ["hold", "hold"] and latencies("reckon") == ["reckon", "reckon"]
+    assert latencies("left") == ["reckon", "hold"] and latencies("right") == ["hold", "reckon"]
+    with pytest.raises(ValueError, match="turn_latency: expected one of hold, reckon, left, right"):
+        MatchDrill(left="baseline", right="baseline", turn_latency="both")
