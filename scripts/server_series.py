@@ -8,7 +8,8 @@ player's last such turn, every cycle, true headings) in the first `--reversal-ga
 each side through the trial runner's own loop, per team kind, per player-minute.
 
     python scripts/server_series.py --preset soccer_server_1996 --games 34 --workers 2 \
-        --net NET --tree TREE [--steady-turns] [--look neck] --out runs/series-ss-default
+        --net NET --tree TREE [--steady-turns] [--look neck] [--client cycle] \
+        --out runs/series-ss-default
 
 ``--dither SEEDS`` counts the reversals of baseline-v-baseline matches instead (game 0 of each
 seed, both teams together; no net or tree), the issue's measure of dithering:
@@ -118,6 +119,12 @@ def main() -> None:
         "--look", choices=("body", "neck"), default="body", help="the minds' look (issue 28)"
     )
     parser.add_argument(
+        "--client",
+        choices=("see", "cycle"),
+        default="see",
+        help="the minds' client: see-triggered or per-cycle (issue 28 item 3)",
+    )
+    parser.add_argument(
         "--transfer", action="store_true", help="net and tree trained on another preset"
     )
     parser.add_argument("--reversal-games", type=int, default=2, help="per side")
@@ -131,6 +138,8 @@ def main() -> None:
         minds["steady_turns"] = True
     if args.look != "body":
         minds["look"] = args.look
+    if args.client != "see":
+        minds["client"] = args.client
     if args.dither is not None:
         if args.half_time is not None:
             minds["half_time_s"] = args.half_time
@@ -170,6 +179,8 @@ def main() -> None:
     which = "steady turns" if args.steady_turns else "default minds"
     if args.look == "neck":
         which = "looking with the neck (and steady turns)"
+    if args.client == "cycle":
+        which += ", per-cycle client"
     title = f"Layered vs baseline on soccer_server ({args.preset}), seed {args.seed}, {which}"
     write_report(games, args.out, title, print)
     start = time.perf_counter()

@@ -274,7 +274,8 @@ def build_parser() -> argparse.ArgumentParser:
         type=_drill_option,
         metavar="NAME=VALUE",
         help="a match option for both teams' minds, e.g. look=neck, steady_turns=true, "
-        "dead_band=true (repeatable; a team's own: left/right as the value where it takes one)",
+        "dead_band=true, turn_latency=reckon, client=cycle (repeatable; a team's own: "
+        "left/right as the value where it takes one)",
     )
     _run_options(match)
 

@@ -38,6 +38,7 @@ per spell on the ball), kicks its players tried at all, per side.
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any
 
 from field_models.arena import Arena, ArenaEvent, CountsCommands, FieldFacts
@@ -60,6 +61,7 @@ from robotsoccer.skills.intercept import (
 from robotsoccer.skills.layer3 import TpotBallPolicy
 from robotsoccer.skills.passing import Chooser, PassEvaluator
 from robotsoccer.skills.team import TeamMind
+from robotsoccer.skills.team_cycle import CycleTeamMind
 from robotsoccer.skills.team_setup import TeamSetup
 
 EXPERIENCE_FIELDS = 5
@@ -214,8 +216,15 @@ class MatchDrill(LayeredDrill):
                 lead = load_net_function(self.net, factor)
             elif layered:
                 policy = make_policy(Behaviour.NET, rngs["policy"], self.net, factor)
+            per_cycle = team in self.options.cycle_teams()
+            if per_cycle and setup.sees_all_round:
+                raise ValueError(
+                    "client=cycle is the Soccer Server's per-cycle client; the robots' host "
+                    "already acts on every tick"
+                )
+            make = partial(CycleTeamMind, facts=facts) if per_cycle else TeamMind
             for number in FORMATIONS[n]:
-                mind = TeamMind(
+                mind = make(
                     number,
                     setup,
                     interception=policy,
@@ -242,7 +251,8 @@ class MatchDrill(LayeredDrill):
         """One team's plan on this field (module docstring)."""
         plan = self.plan(facts)
         dead_band = team in self.dead_band
-        return team_setup(facts, plan, n, team, self.steady_turns, self.look, dead_band)
+        latency = "reckon" if team in self.options.reckoning_teams() else "hold"
+        return team_setup(facts, plan, n, team, self.steady_turns, self.look, dead_band, latency)
 
     # ------------------------------------------------------------------ the coach
 

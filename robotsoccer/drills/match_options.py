@@ -20,7 +20,8 @@ from learning.tpot import REWARD_WINDOWS, WINDOW_CHOICE
 from robotsoccer.drills.match_setup import FORMATIONS
 from robotsoccer.options import bounded, choice, duration, flag
 from robotsoccer.skills.layer3 import TpotSettings
-from robotsoccer.skills.team_setup import LOOK_MODES
+from robotsoccer.skills.team_cycle import CLIENT_MODES
+from robotsoccer.skills.team_setup import LOOK_MODES, TURN_LATENCIES
 
 HALF_TIME_S = 300.0
 """One half [s]: rcssserver's ``half_time`` (3000 cycles)."""
@@ -56,6 +57,22 @@ def dead_band_teams(value: bool | str) -> frozenset[str]:
     return frozenset((LEFT, RIGHT)) if text == "true" else frozenset()
 
 
+def one_team(value: str, option: str, modes: tuple[str, str]) -> frozenset[str]:
+    """The teams that take an option's second mode: both for it, one for its side, else none.
+
+    `modes` is (the default, the other); ``left`` or ``right`` gives that team the other mode.
+
+    Raises:
+        ValueError: Any other value, naming the allowed ones.
+    """
+    if value not in (*modes, LEFT, RIGHT):
+        known = ", ".join((*modes, LEFT, RIGHT))
+        raise ValueError(f"{option}: expected one of {known}; got {value!r}")
+    if value in (LEFT, RIGHT):
+        return frozenset((value,))
+    return frozenset((LEFT, RIGHT)) if value == modes[1] else frozenset()
+
+
 @dataclass(frozen=True, slots=True)
 class MatchOptions:
     """The options of one match, checked (text values turned into their kinds).
@@ -80,6 +97,15 @@ class MatchOptions:
             dead_band`; issue 28 item 5, the robots' dithering): True for both teams,
             ``left`` or ``right`` for one (to measure what it costs); False (default): as
             before (:func:`dead_band_teams`).
+        turn_latency: How the minds treat a percept that does not show their last turn yet
+            (:attr:`~robotsoccer.skills.team_setup.TeamSetup.turn_latency`), the motion
+            skill's two settings: ``hold`` (default) or ``reckon`` for both teams, or ``left``
+            or ``right``: that team reckons, the other holds (to measure what it costs).
+        client: How often the minds act on the Soccer Server (issue 28 item 3): ``see``
+            (default, the paper's client: one decision per see) or ``cycle`` (a command every
+            cycle from a world model, :mod:`robotsoccer.skills.team_cycle`) for both teams, or
+            ``left`` or ``right``: that team acts every cycle, the other on sees (to measure
+            what it is worth). The robots refuse ``cycle`` (their host already acts every tick).
         tpot: Layer 3's table (:func:`learning.tpot.save_table`), for a ``layer3`` team.
         explore: Layer 3's exploration rate epsilon in [0, 1].
         learn: Layer 3 records its rewards: the drill's ``data`` returns them
@@ -96,8 +122,8 @@ class MatchOptions:
 
     Raises:
         ValueError: An unknown team kind, a layered team without its model files, a layer3
-            team without its table, an unknown team size, a half <= 0, an unknown look, or a
-            layer-3 option out of its range.
+            team without its table, an unknown team size, a half <= 0, an unknown look, turn
+            latency or client, or a layer-3 option out of its range.
     """
 
     left: TeamKind = TeamKind.LAYERED
@@ -110,6 +136,8 @@ class MatchOptions:
     steady_turns: bool = False
     look: str = "body"
     dead_band: bool | str = False
+    turn_latency: str = "hold"
+    client: str = "see"
     tpot: str = ""
     explore: float = 0.0
     learn: bool = False
@@ -126,6 +154,8 @@ class MatchOptions:
             raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {self.look!r}")
         self._set("steady_turns", flag("steady_turns", self.steady_turns) or self.look == "neck")
         dead_band_teams(self.dead_band)
+        one_team(self.turn_latency, "turn_latency", TURN_LATENCIES)
+        one_team(self.client, "client", CLIENT_MODES)
         self._set("left", choice(TeamKind, self.left, "left"))
         self._set("right", choice(TeamKind, self.right, "right"))
         if self.layered() and not (self.net and self.tree):
@@ -171,6 +201,14 @@ class MatchOptions:
     def dead_band_teams(self) -> frozenset[str]:
         """The teams whose minds use the dead band (:func:`dead_band_teams`)."""
         return dead_band_teams(self.dead_band)
+
+    def reckoning_teams(self) -> frozenset[str]:
+        """The teams whose minds reckon their turns in flight (``turn_latency``)."""
+        return one_team(self.turn_latency, "turn_latency", TURN_LATENCIES)
+
+    def cycle_teams(self) -> frozenset[str]:
+        """The teams whose minds act every cycle (``client``)."""
+        return one_team(self.client, "client", CLIENT_MODES)
 
     def tpot_settings(self) -> TpotSettings:
         """Layer 3's settings for a ``layer3`` team of this match."""

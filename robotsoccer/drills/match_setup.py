@@ -12,6 +12,7 @@ from field_models.protocol import LEFT
 from robotsoccer.drills.intercept_plan import LaunchPlan
 from robotsoccer.drills.passing import control_reach
 from robotsoccer.skills.lead import VELOCITY_SPAN_S
+from robotsoccer.skills.motion import dribble_power
 from robotsoccer.skills.setplay import KickPowers
 from robotsoccer.skills.team_setup import TeamSetup
 
@@ -55,9 +56,6 @@ GOALIE_ZONE_UNITS = 16.5
 HOME_TOLERANCE_UNITS = 2.0
 GOALIE_DEPTH_UNITS = 2.0
 """The goalie's stance in front of its goal line on a field with an aimable kick [units]."""
-DRIBBLE_UNITS = 4.0
-DRIBBLE_TIME_S = 2.0
-"""A dribble kick sends the ball this far in this time (on a field with an aimable kick)."""
 SAFE_REACH_SHARE = 0.85
 """Minds kick when the ball seems within this share of their reach (sensor noise)."""
 CARRY_SHARE = 0.6
@@ -72,6 +70,7 @@ def team_setup(
     steady_turns: bool,
     look: str = "body",
     dead_band: bool = False,
+    turn_latency: str = "hold",
 ) -> TeamSetup:
     """One team of `n`'s plan on this field: homes, ranges, powers, the goalie's stance.
 
@@ -107,6 +106,7 @@ def team_setup(
         steady_turns=steady_turns,
         look=look,
         dead_band=dead_band,
+        turn_latency=turn_latency,
         top_speed_mps=facts.player_top_speed_mps,
         push_kick=push,
         # The nearest a shot of layer 1's goal-mouth drill is at its trigger: the nearest
@@ -128,15 +128,20 @@ def team_setup(
 
 
 def kick_powers(facts: FieldFacts, pass_power: float) -> KickPowers:
-    """Dribble, pass and shot powers on this field (pass: layer 1's launch power)."""
+    """Dribble, pass and shot powers on this field (pass: layer 1's launch power).
+
+    The dribble is the set play's too (:func:`~robotsoccer.skills.motion.dribble_power`): a
+    kick with the field's aimable kick, else a push.
+
+    Raises:
+        ValueError: No kick sends the ball a dribble's way.
+    """
     kick = facts.kick
     if kick is None or not kick.aimable:
-        return KickPowers(dribble=40.0, passing=100.0, shot=100.0)
-    speed = facts.ball.speed_to_cover(DRIBBLE_UNITS * facts.unit_m, DRIBBLE_TIME_S)
-    power = kick.power_for(speed) if speed is not None else None
-    if power is None:
-        raise ValueError(f"{facts.preset}: no kick sends the ball {DRIBBLE_UNITS:g} units")
-    return KickPowers(dribble=power, passing=pass_power, shot=100.0)
+        return KickPowers(dribble=dribble_power(facts, 0.0, None), passing=100.0, shot=100.0)
+    margin = SAFE_REACH_SHARE * (control_reach(facts) - facts.touch_distance_m)
+    dribble = dribble_power(facts, margin, kick.speed_per_power_mps)
+    return KickPowers(dribble=dribble, passing=pass_power, shot=100.0)
 
 
 def carry_m(facts: FieldFacts, power: float) -> float:

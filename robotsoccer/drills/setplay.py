@@ -39,14 +39,15 @@ intercepts and shoots. Defenders and goalie are layer 1's interception (the same
 and net), triggered by the ball's distance as in the drill of §5.
 
 **Speeds.** A dribble kick sends the ball
-:data:`~robotsoccer.drills.setplay_kicks.DRIBBLE_UNITS` in
-:data:`~robotsoccer.drills.setplay_kicks.DRIBBLE_PERIODS` sensor periods, but no faster than
+:data:`~robotsoccer.skills.motion.DRIBBLE_UNITS` in
+:data:`~robotsoccer.skills.motion.DRIBBLE_PERIODS` sensor periods, but no faster than
 half the speed a player comes up to the ball at; that speed is the one it can stop from, after
 seeing the ball its sensor latency late, within half its kick margin
-(:func:`~robotsoccer.drills.setplay_kicks.stop_speed`; it matters on the robots, whose wheels
-brake slowly and whose camera lags). Passes are layer 1's launch on the Soccer Server and the
-robot's top speed on the robots (:func:`~robotsoccer.drills.setplay_kicks.pass_speed`), shots
-full power.
+(:func:`~robotsoccer.skills.motion.stop_speed`; it matters on the robots, whose wheels
+brake slowly and whose camera lags): the matches' dribble rule too
+(:func:`~robotsoccer.skills.motion.dribble_power`). Passes are layer 1's launch on the Soccer
+Server and the robot's top speed on the robots
+(:func:`~robotsoccer.drills.setplay_kicks.pass_speed`), shots full power.
 
 **Defenders** (option ``defenders``): ``same`` (the default) gives the defenders and goalie
 the attackers' layer 1, as the paper's set play does (§7: "the defenders are all equipped with

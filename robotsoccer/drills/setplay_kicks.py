@@ -2,10 +2,12 @@
 
 :func:`ball_sense` gives the set-play minds (:mod:`robotsoccer.skills.setplay`) the field's
 ball and kick as they may know them; :func:`kick_powers` the dribble, pass and shot powers
-(:func:`stop_speed`, :func:`pass_speed`). Where the players have no aimable kick (the 1997
-robots), the coach carries out their kicks (:class:`CoachKicks`, fed by
-:class:`CoachKickRelay`), as :mod:`robotsoccer.drills.setplay`'s docstring describes
-("Kicks", "Speeds"). Distances in drill units where named so, else metres; speeds m/s.
+(the dribble by the matches' rule, :func:`~robotsoccer.skills.motion.dribble_power`; the
+approach by :func:`~robotsoccer.skills.motion.stop_speed`; :func:`pass_speed`). Where the
+players have no aimable kick (the 1997 robots), the coach carries out their kicks
+(:class:`CoachKicks`, fed by :class:`CoachKickRelay`), as :mod:`robotsoccer.drills.setplay`'s
+docstring describes ("Kicks", "Speeds"). Distances in drill units where named so, else metres;
+speeds m/s.
 """
 
 from __future__ import annotations
@@ -17,11 +19,9 @@ from field_models.protocol import Action, Kick, Mind, Percept, PlayerRef
 from robotsoccer.drills.intercept_plan import LaunchPlan
 from robotsoccer.skills.ball_sense import BallSense
 from robotsoccer.skills.lead import velocity_window
+from robotsoccer.skills.motion import dribble_power, stop_speed
 from robotsoccer.skills.setplay import KickPowers
 
-DRIBBLE_UNITS = 4.0
-DRIBBLE_PERIODS = 8.0
-"""A dribble kick sends the ball this far in this many sensor periods (2 s on the server)."""
 KICK_MARGIN_UNITS = 1.0
 """Kick reach beyond touching where the coach kicks for the players (the server's margin)."""
 ARMED_PERIODS = 1
@@ -83,16 +83,6 @@ def ball_sense(facts: FieldFacts, plan: LaunchPlan) -> BallSense:
     )
 
 
-def stop_speed(facts: FieldFacts, distance_m: float) -> float:
-    """The speed [m/s] a player can stop from within half of `distance_m`.
-
-    It sees the ball the sensor latency late and then brakes at its acceleration a: the
-    speed v with v·latency + v²/(2a) = distance / 2.
-    """
-    a, lag = facts.player_accel_mps2, facts.sensor_latency_s or 0.0
-    return a * (math.sqrt(lag * lag + distance_m / a) - lag)
-
-
 def kick_powers(
     facts: FieldFacts, plan: LaunchPlan, pass_speed_mps: float | None = None
 ) -> KickPowers:
@@ -102,17 +92,14 @@ def kick_powers(
     Server) and to :func:`pass_speed` where the coach kicks for them (the robots).
 
     Raises:
-        ValueError: No kick sends the ball :data:`DRIBBLE_UNITS` in the dribble's time, or
-            the pass speed is beyond the top kick.
+        ValueError: No kick sends the ball :data:`~robotsoccer.skills.motion.DRIBBLE_UNITS`
+            in the dribble's time, or the pass speed is beyond the top kick.
     """
     sense = ball_sense(facts, plan)
-    time_s = DRIBBLE_PERIODS * facts.sensor_period_s
-    speed = facts.ball.speed_to_cover(DRIBBLE_UNITS * facts.unit_m, time_s)
-    if speed is None or speed > sense.speed(sense.max_power):
-        raise ValueError(f"{facts.preset}: no kick sends the ball {DRIBBLE_UNITS:g} units")
-    # A carrier must catch up with its ball at its last approach speed, from which it can stop
-    # beside it (the robots' slow wheels): half that speed at most.
-    speed = min(speed, 0.5 * stop_speed(facts, sense.reach_m - sense.touch_m))
+    # The matches' dribble rule: a carrier must catch up with its ball at its last approach
+    # speed, from which it can stop beside it (the robots' slow wheels): half that at most.
+    margin = sense.reach_m - sense.touch_m
+    dribble = dribble_power(facts, margin, sense.speed_per_power_mps, sense.max_power)
     passing = plan.kick_power
     if pass_speed_mps is None and coach_kicks(facts, plan) is not None:
         pass_speed_mps = pass_speed(facts)
@@ -123,9 +110,7 @@ def kick_powers(
                 f"pass_speed_mps must be in (0, {top:.3g}] m/s, got {pass_speed_mps!r}"
             )
         passing = pass_speed_mps / sense.speed_per_power_mps
-    return KickPowers(
-        dribble=speed / sense.speed_per_power_mps, passing=passing, shot=sense.max_power
-    )
+    return KickPowers(dribble=dribble, passing=passing, shot=sense.max_power)
 
 
 def pass_speed(facts: FieldFacts) -> float:

@@ -13,13 +13,13 @@ player knows without looking at the truth:
 * :class:`CameraBall` — **a camera** (the robots: a pose from the goals in every percept,
   :attr:`BallSense.track_window` > 0): the ball's velocity fitted to the camera's sightings,
   and the player's heading now from the camera's last two poses rather than from the turns it
-  commanded (a robot carries a turn out only in part before its next command);
-* :func:`rotated` — a percept turned into another frame.
+  commanded (a robot carries a turn out only in part before its next command).
 
 The ball's velocity a player reckons from these is
 :class:`~robotsoccer.skills.ball_tracker.BallTracker`'s. Headings are reckoned from the player's
-own turns (as the interception defender does, :mod:`robotsoccer.skills.intercept`); angles are
-radians, left positive; distances metres.
+own turns by the motion skill (:class:`~robotsoccer.skills.motion.TurnsInFlight`, as the
+interception defender's, :mod:`robotsoccer.skills.intercept`); angles are radians, left
+positive; distances metres.
 """
 
 from __future__ import annotations
@@ -29,9 +29,10 @@ from collections.abc import Iterable
 from dataclasses import dataclass, replace
 
 from field_models.arena import BallLaw
-from field_models.protocol import Action, Percept, SeenBall, Turn, wrap_angle
+from field_models.protocol import Action, Percept, SeenBall, wrap_angle
 from robotsoccer.skills.lead import BallTrack
 from robotsoccer.skills.localise import Localiser
+from robotsoccer.skills.motion import TurnsInFlight, rotated
 
 
 @dataclass(frozen=True, slots=True)
@@ -153,26 +154,29 @@ class Heading:
 
     A percept may have been sampled before the player's latest turns took effect (the robots'
     camera latency, §2): :meth:`view` turns such a percept into the frame the player now
-    reckons it faces, as the interception defender does (:mod:`robotsoccer.skills.intercept`):
-    a turn counts from the first percept observed after the tick it was commanded on.
+    reckons it faces: the motion skill's reckoning (:class:`~robotsoccer.skills.motion.
+    TurnsInFlight`, as the interception defender's, :mod:`robotsoccer.skills.intercept`): a turn
+    shows in percepts observed :attr:`settle_ticks` after it was commanded.
     """
 
     def __init__(self, settle_ticks: int = 1, recall_ticks: int = 0) -> None:
         self.settle_ticks = settle_ticks
         self.recall_ticks = recall_ticks
-        self.rad = 0.0
+        self.turns = TurnsInFlight(settle_ticks)
+        """The turns commanded, and which of them the percepts show."""
         self.unseen_rad = 0.0
         """The turns commanded that the last percept viewed does not show yet [rad]."""
         self.bearings: dict[str, float] = {}
-        self._turns: list[tuple[int, float]] = []  # (tick commanded, angle), maybe not seen yet
         self._ball: tuple[int, float, float] | None = None  # (tick, distance, bearing)
+
+    @property
+    def rad(self) -> float:
+        """The heading now, reckoned from the turns commanded (or the camera's) [rad]."""
+        return self.turns.heading_rad
 
     def note(self, actions: Iterable[Action], tick: int) -> None:
         """Add the turns the player sends at `tick`."""
-        for action in actions:
-            if isinstance(action, Turn):
-                self.rad = wrap_angle(self.rad + action.angle_rad)
-                self._turns.append((tick, action.angle_rad))
+        self.turns.note(actions, tick)
 
     def view(self, percept: Percept, camera: tuple[float, float] | None = None) -> Percept:
         """`percept` in the frame of the turns commanded so far, its ball recalled if missed.
@@ -185,12 +189,9 @@ class Heading:
         the camera's poses (:meth:`CameraBall.update`): they replace the reckoning from the
         turns commanded, which a robot carries out only in part before its next command.
         """
-        turns = self._turns
-        while turns and turns[0][0] + self.settle_ticks <= percept.observed_tick:
-            turns.pop(0)
-        unseen = sum(angle for _, angle in turns)
+        unseen = self.turns.in_flight(percept.observed_tick)
         if camera is not None:
-            self.rad, unseen = wrap_angle(camera[0]), camera[1]
+            self.turns.heading_rad, unseen = wrap_angle(camera[0]), camera[1]
         self.unseen_rad = unseen
         view = percept if unseen == 0.0 else rotated(percept, -unseen)
         ball = view.ball
@@ -210,17 +211,3 @@ class Heading:
         """Where `name` was last seen, relative to the heading now; None if never seen."""
         bearing = self.bearings.get(name)
         return None if bearing is None else wrap_angle(bearing - self.rad)
-
-
-def rotated(percept: Percept, angle_rad: float) -> Percept:
-    """`percept` with every direction turned by `angle_rad` (a turn of the viewer by -angle)."""
-    ball = percept.ball
-    if ball is not None:
-        ball = replace(ball, angle_rad=wrap_angle(ball.angle_rad + angle_rad))
-    players = tuple(
-        replace(s, angle_rad=wrap_angle(s.angle_rad + angle_rad)) for s in percept.players
-    )
-    marks = tuple(
-        replace(m, angle_rad=wrap_angle(m.angle_rad + angle_rad)) for m in percept.landmarks
-    )
-    return replace(percept, ball=ball, players=players, landmarks=marks)

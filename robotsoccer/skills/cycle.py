@@ -74,6 +74,7 @@ from robotsoccer.skills.intercept import (
     TurnPolicy,
     clearing_direction,
 )
+from robotsoccer.skills.reckoning import BodyReckoner
 from robotsoccer.skills.turn_policies import Point
 
 MIN_CYCLES_LEFT = 3.0
@@ -125,10 +126,11 @@ class CycleDefenderMind:
         self.kickable_distance_m = kickable_distance_m
         self.ta_clip_rad = ta_clip_rad
         dt = facts.dt_s
-        self.push_m = facts.player_accel_mps2 * dt * dt  # per cycle, at full power
-        self.top_m = facts.player_top_speed_mps * dt
-        self.decay = 1.0 - self.push_m / self.top_m if self.top_m > 0.0 else 0.0
-        self.inertia = facts.turn_inertia_s_per_m / dt  # per (m/cycle)
+        self._reckoner = BodyReckoner(facts)  # the server's equations, per cycle
+        self.push_m = self._reckoner.push_m  # per cycle, at full power
+        self.top_m = self._reckoner.top_m
+        self.decay = self._reckoner.decay
+        self.inertia = self._reckoner.inertia  # per (m/cycle)
         self.touch_m = facts.touch_distance_m
         self.facts = facts
         self.directed = facts.dash_rates is not None
@@ -374,25 +376,8 @@ class CycleDefenderMind:
         self._plan, self._plan_tick = (), tick
 
     def _cycle(self, state: _Pose, action: Action | None) -> _Pose:
-        """(heading, x, y, stored vx, vy) after one server cycle carrying out `action`.
-
-        The server's order (spec §1-2): the command, then the move by the new velocity (capped
-        at the top speed), then the decay; a turn is shortened by the stored speed.
-        """
-        h, x, y, vx, vy = state
-        if isinstance(action, Turn):
-            h = wrap_angle(h + action.angle_rad / (1.0 + self.inertia * math.hypot(vx, vy)))
-        elif isinstance(action, Dash):
-            push = self.push_m * action.power / DASH_POWER
-            direction = action.direction_rad
-            if direction != 0.0:  # a directed dash pushes less (spec §2.1)
-                push *= self.facts.dash_factor(direction)
-            angle = h + direction
-            vx, vy = vx + push * math.cos(angle), vy + push * math.sin(angle)
-            speed = math.hypot(vx, vy)
-            if speed > self.top_m > 0.0:
-                vx, vy = vx * self.top_m / speed, vy * self.top_m / speed
-        return h, x + vx, y + vy, vx * self.decay, vy * self.decay
+        """(heading, x, y, stored vx, vy) after one server cycle carrying out `action`."""
+        return self._reckoner.cycle(state, action)
 
 
 def fit_ball(

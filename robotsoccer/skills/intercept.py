@@ -46,8 +46,11 @@ Details the paper leaves open, chosen here:
 
 **Heading estimate (analytic).** The two sightings must be expressed in one frame. The
 defender keeps a heading estimate: the sum of the turns it commanded, a turn counting from the
-first percept *observed* after the tick it was commanded on (on the Soccer Server a turn runs in
-the next cycle, so this is exact up to the server's turn noise). Each sighting is stored as a
+first percept *observed* after the tick it was commanded on: the motion skill's record of turns
+in flight (:class:`~robotsoccer.skills.motion.TurnsInFlight`) with a settle of one tick (on the
+Soccer Server a turn runs in the next cycle, so this is exact up to the server's turn noise);
+it decides on the percept as it came (neither the team minds' hold nor the set play's rotated
+view: the turn toward BA + TA is re-aimed at every percept). Each sighting is stored as a
 position in that reckoned frame. TA does not depend on the frame's orientation, only on the two
 positions relative to the defender. Its own displacement is not reckoned: exact while it stands
 (before the trigger, which is when ``hold`` chooses TA); in ``every_see`` mode, and on robots
@@ -71,12 +74,13 @@ from pathlib import Path
 from typing import Protocol
 
 from field_models.arena import FieldFacts
-from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, Turn, wrap_angle
+from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, wrap_angle
 from field_models.registry import field_facts
 from field_models.seeding import Rng
 from learning.interception_file import TurnAngleFunction, load_turn_function, read_net_file
 from learning.lookup import LookupTable
 from robotsoccer.options import choice
+from robotsoccer.skills.motion import TurnsInFlight, turn_then_go
 from robotsoccer.skills.turn_policies import (
     AnalyticPolicy,
     LookupPolicy,
@@ -337,8 +341,8 @@ class DefenderMind:
         self.turn_angle_rad = 0.0
         self._previous_distance_m: float | None = None
         self._previous_xy: Point | None = None
-        self._heading_rad = 0.0  # reckoned heading, turns already visible in the percepts
-        self._turns: list[tuple[int, float]] = []  # (tick commanded, angle), not yet visible
+        # Its turns: a turn shows in percepts observed after the tick it was commanded on.
+        self.turns = TurnsInFlight(settle=1)
 
     def decides_at(self, tick: int) -> bool:
         """Whether a percept delivered at `tick` is one this defender decides on."""
@@ -389,18 +393,14 @@ class DefenderMind:
 
     def _turn(self, tick: int, angle: float, then: tuple[Action, ...]) -> tuple[Action, ...]:
         """Turn by `angle` (wrapped) then `then`; the turn is left out below the tolerance."""
-        angle = wrap_angle(angle)
-        if abs(angle) < self.turn_tolerance_rad:
-            return then
-        self._turns.append((tick, angle))
-        return (Turn(angle), *then)
+        actions = turn_then_go(wrap_angle(angle), then, least_turn_rad=self.turn_tolerance_rad)
+        self.turns.note(actions, tick)
+        return actions
 
     def _heading_at(self, observed_tick: int) -> float:
         """The reckoned heading the percept observed at `observed_tick` was taken with."""
-        turns = self._turns
-        while turns and turns[0][0] < observed_tick:
-            self._heading_rad += turns.pop(0)[1]
-        return self._heading_rad
+        self.turns.in_flight(observed_tick)
+        return self.turns.shown_rad
 
 
 def clearing_direction(percept: Percept) -> float:

@@ -54,10 +54,11 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from field_models.arena import BallLaw, FieldFacts
-from field_models.protocol import Action, Dash, Kick, Percept, Turn, wrap_angle
+from field_models.protocol import Action, Dash, Kick, Percept, wrap_angle
 from field_models.seeding import Rng
 from robotsoccer.skills.intercept import DASH_POWER, KICK_POWER, clearing_direction
 from robotsoccer.skills.localise import Localiser, Pose
+from robotsoccer.skills.motion import turn_then_go
 
 RANDOM_LEAD_MAX_S = 1.0
 """The training behaviour's lead range: uniform in [0, 1] s, longer than any drill's flight."""
@@ -325,10 +326,12 @@ class LeadDefenderMind:
         return self._turn(angle, (Dash(DASH_POWER),))
 
     def _turn(self, angle: float, then: tuple[Action, ...]) -> tuple[Action, ...]:
-        angle = wrap_angle(angle)
-        if abs(angle) < self.turn_tolerance_rad:
-            return then
-        return (Turn(angle), *then)
+        """Turn by `angle` (wrapped) then `then` (the motion skill; no turn below tolerance).
+
+        Its pose comes from the camera's landmarks at every percept, so it keeps no record of
+        its turns in flight (the team minds' hold, the set play's reckoning).
+        """
+        return turn_then_go(wrap_angle(angle), then, least_turn_rad=self.turn_tolerance_rad)
 
     @staticmethod
     def _clip(lead_s: float) -> float:

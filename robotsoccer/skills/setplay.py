@@ -21,7 +21,8 @@ built of:
 A player comes up to the ball slowly enough to stop beside it, and stands with a dash of no
 power (:data:`STAND`): a robot would otherwise drive on into the ball.
 
-Skills, each a small function of one percept:
+Skills, each a small function of one percept (their turns toward a bearing are the motion
+skill's turn then go, :func:`~robotsoccer.skills.motion.turn_then_go`):
 
 * :func:`chase` — face the ball and run at it (the approach of a dribble);
 * :func:`approach` — the same, slowing down near the ball so as not to run into it;
@@ -52,6 +53,7 @@ from dataclasses import dataclass
 from field_models.protocol import Action, Dash, Kick, Mind, Percept, SeenPlayer, Turn, wrap_angle
 from robotsoccer.skills.ball_sense import Vector
 from robotsoccer.skills.ball_tracker import BallTracker
+from robotsoccer.skills.motion import turn_then_go
 
 WINGER_CUE = "wing"
 """What the first receiver says as it kicks to the winger (the winger and last receivers wake)."""
@@ -103,9 +105,7 @@ def chase(percept: Percept, *, dash: float = 100.0) -> tuple[Action, ...]:
     ball = percept.ball
     if ball is None:
         return (Turn(SEARCH_TURN_RAD),)
-    if abs(ball.angle_rad) > FACING_RAD:
-        return (Turn(ball.angle_rad),)
-    return (Dash(dash),)
+    return turn_then_go(ball.angle_rad, (Dash(dash),), facing_rad=FACING_RAD, turn_only=True)
 
 
 def approach(percept: Percept, reach_m: float, slow: float = 40.0) -> tuple[Action, ...]:
@@ -207,9 +207,9 @@ def heard_text(percept: Percept, text: str) -> bool:
 def face_ball(percept: Percept) -> tuple[Action, ...]:
     """Turn to the ball if it is off the heading; else stand."""
     ball = percept.ball
-    if ball is not None and abs(ball.angle_rad) > FACING_RAD:
-        return (Turn(ball.angle_rad),)
-    return STAND
+    if ball is None:
+        return STAND
+    return turn_then_go(ball.angle_rad, STAND, facing_rad=FACING_RAD, turn_only=True)
 
 
 def heard_tick(percept: Percept, texts: Iterable[str]) -> int:

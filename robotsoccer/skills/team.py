@@ -61,7 +61,8 @@ Where it lives: :class:`TeamSetup`, :class:`BallPolicy` and the constants named 
 :mod:`robotsoccer.skills.team_setup`; a mind's state and its reading of a rolling ball in
 :mod:`robotsoccer.skills.team_base`; steps 4-5 in :mod:`robotsoccer.skills.team_chase`; step 3
 and "Pushing" in :mod:`robotsoccer.skills.team_ball`; :class:`TeamMind` here: steps 1-2 and
-the decision with its turn holds.
+the decision with its turn holds (the motion skill's hold, :mod:`robotsoccer.skills.motion`,
+which also gives every turn then go of these modules).
 """
 
 from __future__ import annotations
@@ -113,7 +114,11 @@ class TeamMind(BallMind):
 
     def _act(self, percept: Percept) -> tuple[Action, ...]:
         """The body's decision on this percept (module docstring)."""
-        if percept.observed_tick < self._hold_until:
+        reckon = self.setup.turn_latency == "reckon"
+        if reckon:
+            # The motion skill's reckoning: the percept in the frame of every turn sent.
+            percept = self.turns.view(percept)
+        elif self.turns.holding(percept.observed_tick):
             # The last turn is not over in what this percept shows (the robots' camera latency
             # and spin-up): deciding again would turn twice and swing about. The body goes on
             # with the last decision (an empty one keeps it, on the robots' host).
@@ -133,9 +138,11 @@ class TeamMind(BallMind):
         if self.setup.steady_turns or (self.setup.dead_band and self._lead_s is None):
             actions = self._steady(percept.tick, actions)
         for action in actions:
-            if isinstance(action, Turn) and self._lead_s is None:
-                # (a player meeting a ball re-aims at every percept, as layer 1's drill does)
-                self._hold_until = percept.tick + self.setup.turn_ticks(action.angle_rad)
+            if isinstance(action, Turn):
+                # A player meeting a ball re-aims at every percept, as layer 1's drill does:
+                # its turns start no hold (reckoned, they turn the frame all the same).
+                if reckon or self._lead_s is None:
+                    self.turns.sent(percept.tick, action.angle_rad)
                 break
         return actions
 

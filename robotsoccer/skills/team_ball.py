@@ -17,6 +17,7 @@ from robotsoccer.skills.lead import (
     track_angle,
 )
 from robotsoccer.skills.localise import Pose
+from robotsoccer.skills.motion import turn_then_go
 from robotsoccer.skills.passing import view_arrays
 from robotsoccer.skills.setplay import opponent_in_path
 from robotsoccer.skills.team_chase import ChaseMind
@@ -206,6 +207,5 @@ class BallMind(ChaseMind):
         self.intent = "intercept" if self.lead is not None else "meet"
         aim = self._inside(ahead_of(ball_xy, velocity, self._lead_s, self.setup.ball_law))
         angle = wrap_angle(math.atan2(aim[1] - pose.y, aim[0] - pose.x) - pose.heading)
-        if abs(angle) < self.setup.turn_tolerance_rad:
-            return (Dash(100.0),)
-        return (Turn(angle), Dash(100.0))
+        tolerance = self.setup.turn_tolerance_rad
+        return turn_then_go(angle, (Dash(100.0),), least_turn_rad=tolerance)

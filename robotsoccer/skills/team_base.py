@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from field_models.protocol import Action, Dash, Percept, Turn, wrap_angle
+from field_models.protocol import Action, Dash, Percept, wrap_angle
 from robotsoccer.skills.intercept import TurnPolicy
 from robotsoccer.skills.lead import (
     BallTrack,
@@ -18,6 +18,7 @@ from robotsoccer.skills.lead import (
     velocity_window,
 )
 from robotsoccer.skills.localise import Localiser, Pose
+from robotsoccer.skills.motion import TurnsInFlight, turn_then_go
 from robotsoccer.skills.passing import PassEvaluator
 from robotsoccer.skills.team_look import NeckLook
 from robotsoccer.skills.team_setup import (
@@ -68,7 +69,9 @@ class MindBase:
         self._previous_bd: float | None = None
         self._previous_xy: tuple[float, float] | None = None
         self._spell_kicked = ""  # what it kicked in this spell on the ball
-        self._hold_until = -1  # percepts sampled before this tick predate the last turn
+        # The turns it sent and which of them its percepts show (the motion skill): with the
+        # hold, a percept that does not show the last one is not decided on.
+        self.turns = TurnsInFlight(setup.turn_ticks)
         self._last_turn = (-REVERSE_HOLD_TICKS - 1, 0.0)  # (tick, angle) with steady turns
         self._seen_tick = -MEMORY_TICKS - 1  # the last tick it saw the ball
         self._at_home = False  # with steady turns: arrived home and not yet pushed off it
@@ -144,11 +147,11 @@ class MindBase:
         point (:meth:`_drive_to`).
         """
         angle = wrap_angle(angle)
-        if abs(angle) <= FACING_RAD or self._on_course(angle, distance_m, self.setup.reach_m):
+        if self._on_course(angle, distance_m, self.setup.reach_m):
             return (Dash(100.0),)
-        if distance_m <= NEAR_REACHES * self.setup.reach_m:
-            return (Turn(angle),)  # near: run on only once facing it, or it circles
-        return (Turn(angle), Dash(100.0))
+        # Near the point it runs on only once facing it, or it circles.
+        near = distance_m <= NEAR_REACHES * self.setup.reach_m
+        return turn_then_go(angle, (Dash(100.0),), facing_rad=FACING_RAD, turn_only=near)
 
     def _on_course(self, angle: float, distance_m: float, tolerance_m: float) -> bool:
         """Dead band: driving on passes within `tolerance_m` of the point, so a turn gains little.
@@ -176,6 +179,6 @@ class MindBase:
         self._backing = abs(angle) > side
         if self._backing:
             angle, power = wrap_angle(angle - math.pi), -power
-        if abs(angle) <= 2.0 * FACING_RAD or self._on_course(angle, distance_m, tolerance_m):
+        if self._on_course(angle, distance_m, tolerance_m):
             return (Dash(power),)
-        return (Turn(angle), Dash(power))
+        return turn_then_go(angle, (Dash(power),), facing_rad=2.0 * FACING_RAD)

@@ -15,6 +15,7 @@ from robotsoccer.skills.lead import (
     track_angle,
 )
 from robotsoccer.skills.localise import Pose
+from robotsoccer.skills.motion import turn_then_go
 from robotsoccer.skills.team_base import MindBase
 from robotsoccer.skills.team_look import BACK_STEP_TOLERANCES, LOOK_COVER_RAD
 from robotsoccer.skills.team_setup import (
@@ -59,11 +60,8 @@ class ChaseMind(MindBase):
             self.intent = "chase"
         self._previous_xy = self._ball_xy
         angle = wrap_angle(ba + ta)
-        if abs(angle) <= FACING_RAD:
-            return (Dash(100.0),)
-        if bd <= NEAR_REACHES * reach:
-            return (Turn(angle),)  # near the ball: run on only once facing it, or it circles
-        return (Turn(angle), Dash(100.0))
+        near = bd <= NEAR_REACHES * reach  # near the ball: run on only once facing it (no circling)
+        return turn_then_go(angle, (Dash(100.0),), facing_rad=FACING_RAD, turn_only=near)
 
     def _lead_angle(self, bd: float, previous: float | None) -> float | None:
         """The direction to aim the lead net's τ ahead of the ball, or None (no lead, no fit).
@@ -107,14 +105,12 @@ class ChaseMind(MindBase):
             if self.setup.look == "neck" and near and abs(angle) > 0.5 * math.pi:
                 # A short step back: backwards, the smaller turn (the neck keeps the ball).
                 angle, power = wrap_angle(angle - math.pi), -power
-            if abs(angle) > 2.0 * FACING_RAD:
-                return (Turn(angle), Dash(power))
-            return (Dash(power),)
+            return turn_then_go(angle, (Dash(power),), facing_rad=2.0 * FACING_RAD)
         # Home: face the ball; looking with the neck, only when the head cannot keep it in view.
         facing = LOOK_COVER_RAD if self.setup.look == "neck" else FACING_RAD
-        if ball is not None and abs(ball.angle_rad) > facing:
-            return (Turn(ball.angle_rad),)
-        return ()
+        if ball is None:
+            return ()
+        return turn_then_go(ball.angle_rad, (), facing_rad=facing)
 
     def _home_target(self) -> tuple[float, float]:
         setup = self.setup

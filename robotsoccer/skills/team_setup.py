@@ -19,6 +19,9 @@ from robotsoccer.skills.setplay import KickPowers
 
 LOOK_MODES = ("body", "neck")
 """How a team mind looks (:attr:`TeamSetup.look`)."""
+TURN_LATENCIES = ("hold", "reckon")
+"""How a team mind treats a percept that does not show its last turn yet
+(:attr:`TeamSetup.turn_latency`: the two settings of :mod:`robotsoccer.skills.motion`)."""
 REVERSE_HOLD_TICKS = 10
 """With steady turns, a turn the other way within this many ticks of the last needs ..."""
 REVERSE_MIN_RAD = math.radians(60.0)
@@ -150,6 +153,13 @@ class TeamSetup:
             :data:`REVERSE_MIN_BAND_RAD` (not while meeting a ball: layer 1 re-aims at every
             percept). False (default): every result as before.
         top_speed_mps: A player's top speed running straight [m/s] (the dead band's arrival).
+        turn_latency: How a player treats a percept that does not show its last turn yet
+            (:data:`TURN_LATENCIES`, the motion skill's settings, :class:`~robotsoccer.skills.
+            motion.TurnsInFlight`; a turn shows after :meth:`turn_ticks`): ``"hold"`` (default)
+            decides nothing until a percept shows it, the body going on with its last command;
+            ``"reckon"`` decides at every percept, turned into the frame of the turns sent (as
+            the set play's minds do; measured in the README's "One motion skill (issue 23,
+            measured)").
     """
 
     attack_right: bool
@@ -184,10 +194,14 @@ class TeamSetup:
     look: str = "body"
     dead_band: bool = False
     top_speed_mps: float = 0.0
+    turn_latency: str = "hold"
 
     def __post_init__(self) -> None:
         if self.look not in LOOK_MODES:
             raise ValueError(f"look: expected one of {', '.join(LOOK_MODES)}; got {self.look!r}")
+        if self.turn_latency not in TURN_LATENCIES:
+            known = ", ".join(TURN_LATENCIES)
+            raise ValueError(f"turn_latency: expected one of {known}; got {self.turn_latency!r}")
 
     def turn_ticks(self, angle_rad: float) -> int:
         """Ticks until a percept shows a turn by `angle_rad` done: latency plus the spin.

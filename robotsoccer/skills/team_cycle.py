@@ -1,0 +1,194 @@
+"""Team minds on a client that acts every cycle (issue 28 item 3).
+
+The paper's client (:class:`~robotsoccer.skills.team.TeamMind`) decides at each see and sends
+one or two body commands ("turn, then dash"); the server runs one body command per cycle, and
+a new decision replaces what is left of the last (:mod:`field_models.soccer_server.arena`).
+Sees come every 2 cycles (``rcssserver_19``) or 2.5 (``soccer_server_1996``), so a player that
+decides "dash" runs on one cycle of two, and one whose decision is held (the turn holds of
+:mod:`robotsoccer.skills.team`) sends an empty decision that drops the dash still queued:
+in baseline-v-baseline matches the players carry out a body command on only 22-37% of cycles
+(``scripts/cycle_team.py`` measures it).
+
+:class:`CycleTeamMind` is the same mind on a client that sends a command every cycle from a
+world model kept between sees, as clients for today's server do (CMUnited-98 onward):
+
+* **World model.** Its own heading and velocity by dead reckoning from the commands the server
+  carried out (:mod:`robotsoccer.skills.reckoning`): the commands run between two sees are the
+  first ones of the plan sent at the earlier see, one per cycle.
+* **The decision** is the team mind's, unchanged, at each see: who chases, where home is, what
+  to do on the ball, the neck and view.
+* **Every cycle until the next see** (the see interval of its current view, plus
+  :data:`PLAN_EXTRA_CYCLES` in case a see comes late): a decision that runs (its last body
+  command a dash) toward a point it knows — the ball it chases or intercepts
+  (``intent`` ``chase``/``intercept``: the ball's distance less the kick reach) or its home
+  (``home``) — goes on dashing at the same power while the reckoned run stays short of the
+  point (for home, with what the body would still coast after it: home is a point to stop at).
+  A chase that only turns (near the ball the team mind turns before it runs, so as not to
+  circle it) dashes at full power once the reckoned turn leaves it facing the ball. Decisions
+  on the ball (kicks), turns at home, searches and standing are sent as they are.
+* **No dash dropped by a hold.** While the team mind holds a turn (its percept predates the
+  turn), the body keeps the plan it has instead of an empty one.
+
+The commands are the same vocabulary as the see-triggered client's; the neck and view actions
+go beside the first body command. It is a Soccer Server client: the robots' host already acts
+on every tick from the last command (:mod:`field_models.robot_physics.host`).
+"""
+
+from __future__ import annotations
+
+import math
+
+from field_models.arena import FieldFacts
+from field_models.protocol import Action, ChangeView, Dash, Percept, Say, Turn, TurnNeck, wrap_angle
+from robotsoccer.skills.intercept import TurnPolicy
+from robotsoccer.skills.lead import LeadPolicy
+from robotsoccer.skills.passing import PassEvaluator
+from robotsoccer.skills.reckoning import FULL_POWER, BodyReckoner, BodyState
+from robotsoccer.skills.team import TeamMind
+from robotsoccer.skills.team_setup import FACING_RAD, BallPolicy, TeamSetup
+
+CLIENT_MODES = ("see", "cycle")
+"""A match's clients: the paper's see-triggered :class:`TeamMind`, or :class:`CycleTeamMind`."""
+
+PLAN_EXTRA_CYCLES = 1
+"""Cycles planned past the next expected see (a see may come a cycle late)."""
+
+VIEW_PERIOD_SHARE = {"narrow": 0.5, "normal": 1.0, "wide": 2.0}
+"""A view width's see interval as a share of the normal one (spec §3.1)."""
+
+RUN_INTENTS = ("chase", "intercept", "home")
+"""The decisions that run toward a point the mind knows, and so go on running between sees."""
+
+_NOT_BODY = (Say, TurnNeck, ChangeView)
+
+
+class CycleTeamMind(TeamMind):
+    """A team mind on a per-cycle client (module docstring).
+
+    Args:
+        number: Its uniform number.
+        setup: Its team's plan.
+        facts: The field's facts (the server's body equations and see interval).
+        interception, lead, evaluator, pass_threshold, ball_policy: As
+            :class:`~robotsoccer.skills.team.TeamMind`'s.
+
+    Attributes:
+        commands_added: Body commands it added to its team mind's decisions (runs continued
+            between sees and plans kept through a hold).
+    """
+
+    def __init__(
+        self,
+        number: int,
+        setup: TeamSetup,
+        *,
+        facts: FieldFacts,
+        interception: TurnPolicy | None = None,
+        lead: LeadPolicy | None = None,
+        evaluator: PassEvaluator | None = None,
+        pass_threshold: float = 0.5,
+        ball_policy: BallPolicy | None = None,
+    ) -> None:
+        super().__init__(
+            number,
+            setup,
+            interception=interception,
+            lead=lead,
+            evaluator=evaluator,
+            pass_threshold=pass_threshold,
+            ball_policy=ball_policy,
+        )
+        self._reckoner = BodyReckoner(facts)
+        self._see_cycles = facts.sensor_period_s / facts.dt_s
+        self._body: BodyState = (0.0, 0.0, 0.0, 0.0, 0.0)  # reckoned frame
+        self._plan: tuple[Action, ...] = ()
+        self._plan_tick = -1
+        self.commands_added = 0
+
+    def act(self, percept: Percept) -> tuple[Action, ...]:
+        """The team mind's decision at this see, carried on every cycle until the next."""
+        left = self._reckon(percept.tick)
+        holding = self.setup.turn_latency == "hold" and self.turns.holding(percept.observed_tick)
+        actions = super().act(percept)
+        others = tuple(a for a in actions if isinstance(a, _NOT_BODY))
+        body: tuple[Action, ...] = tuple(a for a in actions if not isinstance(a, _NOT_BODY))
+        if not body and holding:
+            body = left  # the held turn's plan goes on (an empty decision would drop it)
+            self.commands_added += len(left)
+        else:
+            planned = self._continued(percept, body)
+            self.commands_added += len(planned) - len(body)
+            body = planned
+        self._plan, self._plan_tick = body, percept.tick
+        return others + body
+
+    def _reckon(self, tick: int) -> tuple[Action, ...]:
+        """Carry the body over the cycles run since the last plan; return what is left of it."""
+        if self._plan_tick < 0:
+            return ()
+        done = tick - self._plan_tick
+        state = self._body
+        for k in range(done):
+            state = self._reckoner.cycle(state, self._plan[k] if k < len(self._plan) else None)
+        self._body = state
+        return self._plan[done:]
+
+    def _continued(self, percept: Percept, body: tuple[Action, ...]) -> tuple[Action, ...]:
+        """`body`, run on every cycle while the run stays short of its point (docstring).
+
+        A run's last dash is repeated; a chase that only turns (near the ball, so as not to
+        circle it) dashes at full power once the reckoned turn leaves it facing the ball.
+        """
+        if not body or self.intent not in RUN_INTENTS:
+            return body
+        last = body[-1]
+        if isinstance(last, Dash) and last.power != 0.0:
+            dash = last
+        elif isinstance(last, Turn) and self.intent != "home":
+            dash = Dash(FULL_POWER)
+        else:
+            return body
+        distance = self._run_distance(percept)
+        if distance is None:
+            return body
+        reckoner = self._reckoner
+        start = self._body
+        state = start
+        for action in body:
+            state = reckoner.cycle(state, action)
+        if isinstance(last, Turn):
+            missed = wrap_angle(last.angle_rad - wrap_angle(state[0] - start[0]))
+            if abs(missed) > FACING_RAD:
+                return body
+        # Home is a point to stop at, so the run allows for the coast; a chased ball is run
+        # up to, as the see-triggered client dashes at it at every see.
+        stops = self.intent == "home"
+        plan = list(body)
+        while len(plan) < self._plan_cycles():
+            after = reckoner.cycle(state, dash)
+            run = math.hypot(after[1] - start[1], after[2] - start[2])
+            if run + (reckoner.coast_m(after) if stops else 0.0) > distance:
+                break
+            plan.append(dash)
+            state = after
+        return tuple(plan)
+
+    def _run_distance(self, percept: Percept) -> float | None:
+        """How far the decision runs before it should stop [m], or None (not a run)."""
+        if self.intent not in RUN_INTENTS:
+            return None
+        if self.intent == "home":
+            pose = self.localiser.pose
+            if pose is None:
+                return None
+            tx, ty = self._home_target()
+            return math.hypot(tx - pose.x, ty - pose.y)
+        ball = percept.ball
+        if ball is None:
+            return None
+        return ball.distance_m - self.setup.reach_m
+
+    def _plan_cycles(self) -> int:
+        """The cycles until the next see of the current view, and :data:`PLAN_EXTRA_CYCLES`."""
+        share = VIEW_PERIOD_SHARE.get(self.head.view, 1.0)
+        return math.ceil(self._see_cycles * share - 1e-9) + PLAN_EXTRA_CYCLES
