@@ -64,6 +64,7 @@ Angles are radians, left positive; distances metres; speeds metres per cycle ins
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from field_models.arena import FieldFacts
 from field_models.protocol import Action, Dash, Kick, Percept, Turn, wrap_angle
@@ -94,6 +95,25 @@ AIM_CYCLES = 3
 
 PLAN_EXTRA_CYCLES = 2
 """Cycles planned past the next expected see (a see may come late or be missed)."""
+
+
+@dataclass(frozen=True)
+class Sighting:
+    """The ball at one see, as the per-cycle client's world model takes it.
+
+    Attributes:
+        distance_m: BD [m].
+        angle_rad: BA, from the body [rad].
+        previous_distance_m: BD at the last see that showed the ball (BD itself at the first).
+        previous_xy: Where that see put the ball in the reckoned frame, or None.
+        xy: Where this see puts it in the reckoned frame.
+    """
+
+    distance_m: float
+    angle_rad: float
+    previous_distance_m: float
+    previous_xy: Point | None
+    xy: Point
 
 
 class CycleDefenderMind:
@@ -154,13 +174,22 @@ class CycleDefenderMind:
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """The commands of the cycles from this see on (module docstring)."""
-        policy = self.policy
-        if policy is None:
+        if self.policy is None:
             return ()
+        sighting = self.observe(percept)
+        if sighting is None:
+            return self._send(percept.tick, self._dashes() if self.triggered else ())
+        return self._send(percept.tick, self.decide(percept, sighting))
+
+    def observe(self, percept: Percept) -> Sighting | None:
+        """Update the world model at a see: the reckoned pose, the ball's sightings and model.
+
+        Returns the ball's sighting, or None when the see shows no ball.
+        """
         self._reckon(percept.tick)
         ball = percept.ball
         if ball is None:
-            return self._send(percept.tick, self._dashes() if self.triggered else ())
+            return None
         bd, ba = ball.distance_m, ball.angle_rad
         heading = self._heading + ba
         xy = (self._x + bd * math.cos(heading), self._y + bd * math.sin(heading))
@@ -172,18 +201,38 @@ class CycleDefenderMind:
         self._previous_distance_m, self._previous_xy = bd, xy
         self._sighting_tick = percept.tick
         self._see_ball(percept.tick, xy)
+        return Sighting(bd, ba, previous_bd, previous_xy, xy)
+
+    def decide(self, percept: Percept, sighting: Sighting) -> tuple[Action, ...]:
+        """The plan at a see that shows the ball (:meth:`observe`'s sighting of it).
+
+        The caller sends it (:meth:`sent`), or what it sends instead.
+        """
+        policy = self.policy
+        assert policy is not None
+        bd, ba = sighting.distance_m, sighting.angle_rad
         if not self.triggered:
             if bd > self.trigger_distance_m:
                 face = abs(wrap_angle(ba)) >= FACE_TOLERANCE_RAD
-                return self._send(percept.tick, self._turns_to(ba) if face else ())
+                return self._turns_to(ba) if face else ()
             self.triggered = True
-            ta = policy(bd, ba, previous_bd, previous_xy, xy)
+            previous = sighting.previous_distance_m
+            ta = policy(bd, ba, previous, sighting.previous_xy, sighting.xy)
             clip = self.ta_clip_rad
             self.turn_angle_rad = clip if ta > clip else -clip if ta < -clip else ta
-            self.example = (bd, ba, previous_bd, self.turn_angle_rad)
+            self.example = (bd, ba, previous, self.turn_angle_rad)
         if self.kickable_distance_m is not None and bd <= self.kickable_distance_m:
-            return self._send(percept.tick, (Kick(KICK_POWER, clearing_direction(percept)),))
-        return self._send(percept.tick, self._chase(self._heading + ba + self.turn_angle_rad, bd))
+            return (Kick(KICK_POWER, clearing_direction(percept)),)
+        return self._chase(self._heading + ba + self.turn_angle_rad, bd)
+
+    def sent(self, tick: int, plan: tuple[Action, ...]) -> None:
+        """The body commands sent at `tick`, one per cycle from the next (for the reckoning)."""
+        self._send(tick, plan)
+
+    @property
+    def body(self) -> _Pose:
+        """The reckoned (heading, x, y, vx, vy) at the last see, in its own frame."""
+        return (self._heading, self._x, self._y, self._vx, self._vy)
 
     # ------------------------------------------------------------------ planning
 

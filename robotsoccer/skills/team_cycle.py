@@ -4,19 +4,27 @@ The paper's client (:class:`~robotsoccer.skills.team.TeamMind`) decides at each 
 one or two body commands ("turn, then dash"); the server runs one body command per cycle, and
 a new decision replaces what is left of the last (:mod:`field_models.soccer_server.arena`).
 Sees come every 2 cycles (``rcssserver_19``) or 2.5 (``soccer_server_1996``), so a player that
-decides "dash" runs on one cycle of two, and one whose decision is held (the turn holds of
-:mod:`robotsoccer.skills.team`) sends an empty decision that drops the dash still queued:
-in baseline-v-baseline matches the players carry out a body command on only 22-37% of cycles
-(``scripts/cycle_team.py`` measures it).
+decides "dash" runs on one cycle of two or three, and one whose decision is held (the turn
+holds of :mod:`robotsoccer.skills.team`) sends an empty decision that drops the dash still
+queued (README, "Team minds on the per-cycle client", measures what this costs).
 
 :class:`CycleTeamMind` is the same mind on a client that sends a command every cycle from a
 world model kept between sees, as clients for today's server do (CMUnited-98 onward):
 
-* **World model.** Its own heading and velocity by dead reckoning from the commands the server
-  carried out (:mod:`robotsoccer.skills.reckoning`): the commands run between two sees are the
-  first ones of the plan sent at the earlier see, one per cycle.
+* **World model.** Layer 1's per-cycle defender's (:class:`~robotsoccer.skills.cycle.
+  CycleDefenderMind`, fed every see): its own heading and velocity by dead reckoning from the
+  commands the server carried out (:mod:`robotsoccer.skills.reckoning`; the commands run
+  between two sees are the first ones of the plan sent at the earlier see, one per cycle), and
+  the ball's model fitted to its sightings.
 * **The decision** is the team mind's, unchanged, at each see: who chases, where home is, what
   to do on the ball, the neck and view.
+* **Meeting a ball.** Where the team mind would ask layer 1 — the chaser's ball comes at it from
+  within the trigger distance, beyond the near zone (:mod:`robotsoccer.skills.team_chase`) —
+  the body's plan is the per-cycle defender's: TA chosen at the first such see by the team's
+  rule (the layered team's net; the baseline's straight, TA = 0), then a command every cycle
+  toward the ball's current bearing + TA, turning only where it is worth a cycle, with the
+  meeting rule (:mod:`robotsoccer.skills.cycle`). Both teams meet so, as the drill's
+  ``straight`` and ``net`` both run on the per-cycle client.
 * **Every cycle until the next see** (the see interval of its current view, plus
   :data:`PLAN_EXTRA_CYCLES` in case a see comes late): a decision that runs (its last body
   command a dash) toward a point it knows — the ball it chases or intercepts
@@ -40,12 +48,20 @@ import math
 
 from field_models.arena import FieldFacts
 from field_models.protocol import Action, ChangeView, Dash, Percept, Say, Turn, TurnNeck, wrap_angle
+from robotsoccer.skills.cycle import CycleDefenderMind, Sighting
 from robotsoccer.skills.intercept import TurnPolicy
 from robotsoccer.skills.lead import LeadPolicy
 from robotsoccer.skills.passing import PassEvaluator
-from robotsoccer.skills.reckoning import FULL_POWER, BodyReckoner, BodyState
+from robotsoccer.skills.reckoning import FULL_POWER, BodyReckoner
 from robotsoccer.skills.team import TeamMind
-from robotsoccer.skills.team_setup import FACING_RAD, BallPolicy, TeamSetup
+from robotsoccer.skills.team_setup import (
+    COMING_SHARE,
+    FACING_RAD,
+    NEAR_REACHES,
+    BallPolicy,
+    TeamSetup,
+)
+from robotsoccer.skills.turn_policies import straight_policy
 
 CLIENT_MODES = ("see", "cycle")
 """A match's clients: the paper's see-triggered :class:`TeamMind`, or :class:`CycleTeamMind`."""
@@ -100,38 +116,50 @@ class CycleTeamMind(TeamMind):
         )
         self._reckoner = BodyReckoner(facts)
         self._see_cycles = facts.sensor_period_s / facts.dt_s
-        self._body: BodyState = (0.0, 0.0, 0.0, 0.0, 0.0)  # reckoned frame
+        # Layer 1's per-cycle defender: the world model (own body, the ball's model) and, for a
+        # ball coming at the chaser, its plan with the team's TA rule (straight: TA = 0).
+        self._meeting = CycleDefenderMind(
+            interception or straight_policy, facts, setup.trigger_distance_m
+        )
         self._plan: tuple[Action, ...] = ()
         self._plan_tick = -1
         self.commands_added = 0
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """The team mind's decision at this see, carried on every cycle until the next."""
-        left = self._reckon(percept.tick)
+        tick = percept.tick
+        left = self._plan[tick - self._plan_tick :] if self._plan_tick >= 0 else ()
+        from_body = percept.body_relative()
+        sighting = self._meeting.observe(from_body)
+        previous = self._previous_bd
         holding = self.setup.turn_latency == "hold" and self.turns.holding(percept.observed_tick)
         actions = super().act(percept)
         others = tuple(a for a in actions if isinstance(a, _NOT_BODY))
         body: tuple[Action, ...] = tuple(a for a in actions if not isinstance(a, _NOT_BODY))
         if not body and holding:
-            body = left  # the held turn's plan goes on (an empty decision would drop it)
-            self.commands_added += len(left)
+            planned = left  # the held turn's plan goes on (an empty decision would drop it)
+        elif sighting is not None and self._meets_coming(sighting, previous):
+            self.intent = "intercept"
+            planned = self._meeting.decide(from_body, sighting)
         else:
+            self._meeting.triggered = False  # the next ball met chooses its TA afresh
             planned = self._continued(percept, body)
-            self.commands_added += len(planned) - len(body)
-            body = planned
-        self._plan, self._plan_tick = body, percept.tick
-        return others + body
+        self.commands_added += max(len(planned) - len(body), 0)
+        self._meeting.sent(tick, planned)
+        self._plan, self._plan_tick = planned, tick
+        return others + planned
 
-    def _reckon(self, tick: int) -> tuple[Action, ...]:
-        """Carry the body over the cycles run since the last plan; return what is left of it."""
-        if self._plan_tick < 0:
-            return ()
-        done = tick - self._plan_tick
-        state = self._body
-        for k in range(done):
-            state = self._reckoner.cycle(state, self._plan[k] if k < len(self._plan) else None)
-        self._body = state
-        return self._plan[done:]
+    def _meets_coming(self, sighting: Sighting, previous_m: float | None) -> bool:
+        """The chaser's ball comes at it from within the trigger distance, beyond the near zone.
+
+        The team mind's own condition for asking layer 1 (:mod:`robotsoccer.skills.team_chase`),
+        here for both teams: the layered team's TA is its net's, the baseline's 0.
+        """
+        if self.intent not in ("chase", "intercept") or previous_m is None:
+            return False
+        bd, reach = sighting.distance_m, self.setup.reach_m
+        coming = previous_m - bd > COMING_SHARE * reach
+        return coming and NEAR_REACHES * reach < bd <= self.setup.trigger_distance_m
 
     def _continued(self, percept: Percept, body: tuple[Action, ...]) -> tuple[Action, ...]:
         """`body`, run on every cycle while the run stays short of its point (docstring).
@@ -152,7 +180,7 @@ class CycleTeamMind(TeamMind):
         if distance is None:
             return body
         reckoner = self._reckoner
-        start = self._body
+        start = self._meeting.body
         state = start
         for action in body:
             state = reckoner.cycle(state, action)

@@ -137,3 +137,24 @@ def test_a_run_home_stops_dashing_where_the_coast_reaches_home(
     assert state[1] + reckoner.coast_m(state) <= 5.0
     further = reckoner.cycle(state, Dash(80.0))
     assert further[1] + reckoner.coast_m(further) > 5.0
+
+
+def test_a_ball_coming_at_the_chaser_is_met_as_layer_1s_per_cycle_defender_meets_it() -> None:
+    mind = _mind()  # the baseline: straight, TA = 0
+    mind.act(_ball(10, 12.0, 5.0))
+    assert mind.intent == "chase" and not mind._meeting.triggered
+    plan = mind.act(_ball(12, 9.0, 5.0))  # coming, within the trigger distance
+    assert mind.intent == "intercept"
+    assert mind._meeting.triggered and mind._meeting.turn_angle_rad == 0.0
+    assert plan and all(isinstance(a, Dash | Turn) for a in plan)
+    mind.act(_ball(14, 9.5, 5.0))  # no longer coming: the next ball met chooses TA afresh
+    assert mind.intent == "chase" and not mind._meeting.triggered
+
+
+def test_the_layered_team_meets_with_its_own_ta_rule() -> None:
+    base = _mind()
+    facts = field_facts("soccer_server", "soccer_server_1996")
+    mind = CycleTeamMind(7, base.setup, facts=facts, interception=lambda *inputs: 0.3)
+    mind.act(_ball(10, 12.0, 5.0))
+    mind.act(_ball(12, 9.0, 5.0))
+    assert mind.intent == "intercept" and mind._meeting.turn_angle_rad == pytest.approx(0.3)
