@@ -1,9 +1,10 @@
 """The ``robotsoccer`` command line: demo, trace, learn, reproduce, transfer, bench, replay, ...
 
-A package: the parser and the options every command shares in :mod:`.parser`, their types,
-bounds and the exit statuses in :mod:`.options`, what every command does around its work in
-:mod:`.running`, and the commands in :mod:`.commands`, one module per group; :func:`main`
-dispatches through :data:`COMMANDS`.
+A package: the top parser in :mod:`.parser`, the options several commands share (defined
+once) in :mod:`.shared`, their types, bounds and the exit statuses in :mod:`.options`, what
+every command does around its work in :mod:`.running`, and the commands in :mod:`.commands`,
+one module per command, each with its own parser and its function; :func:`main` dispatches
+through :data:`COMMANDS`.
 
 Every error reaches the user as one line and a non-zero exit status, never a traceback (unless
 ``--debug`` is given): a wrong option, preset or model file exits with 2; a file-system error
@@ -27,11 +28,15 @@ import os
 from collections.abc import Callable, Sequence
 
 from field_models.presets import PresetError
+from robotsoccer.cli.commands.bench import cmd_bench
 from robotsoccer.cli.commands.demo import cmd_demo
-from robotsoccer.cli.commands.learn import cmd_learn, cmd_reproduce
-from robotsoccer.cli.commands.play import cmd_match, cmd_setplay
+from robotsoccer.cli.commands.learn import cmd_learn
+from robotsoccer.cli.commands.match import cmd_match
+from robotsoccer.cli.commands.replay import cmd_replay
+from robotsoccer.cli.commands.reproduce import cmd_reproduce
 from robotsoccer.cli.commands.serve import cmd_serve
-from robotsoccer.cli.commands.tools import cmd_bench, cmd_replay, cmd_trace
+from robotsoccer.cli.commands.setplay import cmd_setplay
+from robotsoccer.cli.commands.trace import cmd_trace
 from robotsoccer.cli.commands.transfer import cmd_transfer, server_ranges_covering_robots
 from robotsoccer.cli.options import (
     EXIT_BROKEN_PIPE,

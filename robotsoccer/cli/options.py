@@ -2,7 +2,9 @@
 
 Exit statuses, the option types with their bounds, and the field models the commands run by
 name (the one place above the percept/action line that names them:
-``tests/test_boundaries.py``). The parser that uses them is :mod:`robotsoccer.cli.parser`.
+``tests/test_boundaries.py``). The option groups that use them are in
+:mod:`robotsoccer.cli.shared`; each command's parser is in its module of
+:mod:`robotsoccer.cli.commands`.
 """
 
 from __future__ import annotations

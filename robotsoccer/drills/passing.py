@@ -53,11 +53,10 @@ from learning.pass_tree_file import load_pass_tree
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept_options import Launch, Scaling
 from robotsoccer.drills.intercept_plan import LaunchPlan, cached_launch_plan, decision_ticks
-from robotsoccer.options import choice, duration, flag
+from robotsoccer.drills.layered_options import PassOptions
 from robotsoccer.skills.intercept import (
     Behaviour,
     DefenderMind,
-    check_behaviour,
     file_key,
     load_net_function,
     make_policy,
@@ -210,54 +209,34 @@ class _Spacing(NamedTuple):
 class PassDrill(LayeredDrill):
     """The paper's Figure 9–13 trial (module docstring).
 
+    Built from a :class:`~robotsoccer.drills.layered_options.PassOptions` record, or from its
+    fields as keywords (the registry's ``make_drill`` and a command line's ``--option
+    NAME=VALUE`` give them so); :data:`OPTIONS` names the record, whose fields are the drill's
+    option names.
+
     Args:
-        chooser: How the passer picks (``random``, ``tree``, ``boost``, ``closest``,
-            ``analytic``).
-        model: The tree or boosted-trees file (JSON) for ``tree`` / ``boost``.
-        interceptor: Layer 1's behaviour for receivers and defenders (``net``, ``straight``,
-            ...).
-        net: The interception net (or lookup) file for ``net``/``lookup``.
-        defenders: ``intercept`` (default) or ``still`` (Table 2's "no defenders" test).
-        max_time_s: Simulated time after which the trial is a MISS [s].
-        transfer: Accept a tree or net trained on another field model or preset.
-        receiver_half: ``use`` (default) the receivers' reported half of the attributes, or
-            ``ignore`` it (unknown), to measure what the reports add.
+        options: The drill's options; None: built from `keywords`.
+        **keywords: The options' fields by name, where `options` is not given.
 
     Raises:
-        ValueError: An unknown chooser, interceptor or defenders mode, a missing model file
-            name, a time limit that is not positive, or a model from another field.
+        ValueError: A bad option (:class:`~robotsoccer.drills.layered_options.PassOptions`),
+            both a record and keywords, or (at set-up) a model from another field.
     """
 
     name: str = "pass"
     labels: tuple[str, ...] = ("SUCCESS", "FAILURE", "MISS")
+    OPTIONS = PassOptions
 
-    def __init__(
-        self,
-        chooser: Chooser | str = Chooser.RANDOM,
-        model: str = "",
-        interceptor: Behaviour | str = Behaviour.STRAIGHT,
-        net: str = "",
-        defenders: str = "intercept",
-        max_time_s: float = 12.0,
-        transfer: bool | str = False,
-        receiver_half: str = "use",
-    ) -> None:
-        self.chooser = choice(Chooser, chooser, "chooser")
-        if self.chooser in (Chooser.TREE, Chooser.BOOST) and not model:
-            raise ValueError(
-                f"chooser {self.chooser.value!r} needs a model file (option model=...)"
-            )
-        self.model = model
-        self.interceptor = check_behaviour(interceptor, net)
-        self.net = net
-        if defenders not in ("intercept", "still"):
-            raise ValueError(f"unknown defenders {defenders!r} (known: intercept, still)")
-        self.defenders_still = defenders == "still"
-        self.max_time_s = duration("max_time_s", max_time_s)
-        self.transfer = flag("transfer", transfer)
-        if receiver_half not in ("use", "ignore"):
-            raise ValueError(f"unknown receiver_half {receiver_half!r} (known: use, ignore)")
-        self.use_reports = receiver_half == "use"
+    def __init__(self, options: PassOptions | None = None, /, **keywords: Any) -> None:
+        if options is not None and keywords:
+            raise ValueError("give the pass drill an options record or keywords, not both")
+        self.options = o = options if options is not None else PassOptions(**keywords)
+        self.chooser, self.model = o.chooser, o.model
+        self.interceptor, self.net = o.interceptor, o.net
+        self.defenders_still = o.defenders == "still"
+        self.max_time_s = o.max_time_s
+        self.transfer = o.transfer
+        self.use_reports = o.receiver_half == "use"
         self.passer: PasserMind | None = None
         self._judge: _PassJudge | None = None
         self._checked: FieldFacts | None = None

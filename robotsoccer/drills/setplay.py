@@ -96,18 +96,19 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from typing import Any
 
 from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.layered_options import SetPlayOptions
 from robotsoccer.drills.passing import LayeredDrill, load_evaluator
 from robotsoccer.drills.setplay_judge import SetPlayJudge
 from robotsoccer.drills.setplay_kicks import CoachKickRelay, ball_sense, coach_kicks, kick_powers
-from robotsoccer.options import choice, duration, flag
-from robotsoccer.skills.intercept import Behaviour, check_behaviour
+from robotsoccer.skills.intercept import Behaviour
 from robotsoccer.skills.pass_receivers import ReceiverMind
-from robotsoccer.skills.passing import Chooser, PasserMind
+from robotsoccer.skills.passing import PasserMind
 from robotsoccer.skills.setplay_carrier import CarrierMind
 from robotsoccer.skills.setplay_receiver import SetPlayReceiverMind
 
@@ -151,53 +152,35 @@ TIME_LIMIT_ARRIVALS = 40.0
 class SetPlayDrill(LayeredDrill):
     """Figure 15's set play (module docstring).
 
+    Built from a :class:`~robotsoccer.drills.layered_options.SetPlayOptions` record, or from
+    its fields as keywords (the registry's ``make_drill`` and a command line's ``--option
+    NAME=VALUE`` give them so); :data:`OPTIONS` names the record, whose fields are the drill's
+    option names.
+
     Args:
-        chooser: How the passers pick (``tree``, ``random``, ``closest``, ``analytic``).
-        model: The pass tree file for ``tree``.
-        interceptor: Layer 1's behaviour for receivers, winger and defenders.
-        net: The interception net for ``net``.
-        max_time_s: The play's time limit [s]; None: 40 arrival times of layer 1's drill.
-        transfer: Accept a tree or net trained on another field model or preset.
-        pass_speed_mps: The passes' speed [m/s]; None: the field's
-            (:func:`~robotsoccer.drills.setplay_kicks.kick_powers`).
-        defenders: The defenders' and goalie's interception: ``same`` as the attackers'
-            `interceptor` (the paper's set play, §7: "the defenders are all equipped with the
-            same ball-interception skill as the receivers"), or a behaviour of their own
-            (``straight``: the field's baseline defenders, whatever the attackers use).
+        options: The drill's options; None: built from `keywords`.
+        **keywords: The options' fields by name, where `options` is not given.
 
     Raises:
-        ValueError: An unknown chooser or interceptor, a missing model file, a limit <= 0.
+        ValueError: A bad option (:class:`~robotsoccer.drills.layered_options.SetPlayOptions`),
+            or both a record and keywords.
     """
 
     name: str = "setplay"
     labels: tuple[str, ...] = ("GOAL", "SHOT", "INTERCEPTED", "OUT", "TIMEOUT")
+    OPTIONS = SetPlayOptions
 
-    def __init__(
-        self,
-        chooser: Chooser | str = Chooser.CLOSEST,
-        model: str = "",
-        interceptor: Behaviour | str = Behaviour.STRAIGHT,
-        net: str = "",
-        max_time_s: float | None = None,
-        transfer: bool | str = False,
-        pass_speed_mps: float | str | None = None,
-        defenders: Behaviour | str = "same",
-    ) -> None:
-        self.chooser = choice(Chooser, chooser, "chooser")
-        if self.chooser in (Chooser.TREE, Chooser.BOOST) and not model:
-            raise ValueError(
-                f"chooser {self.chooser.value!r} needs a model file (option model=...)"
-            )
-        self.model = model
-        self.interceptor = check_behaviour(interceptor, net)
-        self.net = net
-        if max_time_s is not None:
-            max_time_s = duration("max_time_s", max_time_s)
-        self._max_time_s = max_time_s
-        self.max_time_s = max_time_s or 60.0
-        self.transfer = flag("transfer", transfer)
-        self.pass_speed_mps = None if pass_speed_mps is None else float(pass_speed_mps)
-        self.defenders = defenders if defenders == "same" else check_behaviour(defenders, net)
+    def __init__(self, options: SetPlayOptions | None = None, /, **keywords: Any) -> None:
+        if options is not None and keywords:
+            raise ValueError("give the set play an options record or keywords, not both")
+        self.options = o = options if options is not None else SetPlayOptions(**keywords)
+        self.chooser, self.model = o.chooser, o.model
+        self.interceptor, self.net = o.interceptor, o.net
+        self._max_time_s = o.max_time_s
+        self.max_time_s = o.max_time_s or 60.0
+        self.transfer = o.transfer
+        self.pass_speed_mps = o.pass_speed_mps
+        self.defenders = o.defenders
         self._judge: SetPlayJudge | None = None
         self._checked: FieldFacts | None = None
 

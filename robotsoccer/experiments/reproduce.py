@@ -1,7 +1,7 @@
 """``reproduce`` as a pipeline of steps, each appending its section to one report.
 
 Layer 1, then layer 2, the lead study, layer 3 and the transfer study, in one run folder.
-The CLI (:mod:`robotsoccer.cli.commands.learn`) only reads its options into a
+The CLI (:mod:`robotsoccer.cli.commands.reproduce`) only reads its options into a
 :class:`ReproduceParts` and a :class:`~robotsoccer.experiments.context.RunContext`; what runs,
 in which order and into which folders is decided here. ``learn intercept`` is the same pipeline
 with layer 1 alone.

@@ -8,8 +8,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
-from robotsoccer.cli.options import EXIT_INTERRUPTED
+from robotsoccer.cli.options import EXIT_INTERRUPTED, _positive_int
 from robotsoccer.cli.running import Tally, check_spec, fail, spec_from
+from robotsoccer.cli.shared import Commands, drill_options, field_options, run_options
 from robotsoccer.drills import make_drill
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers, run_trials
@@ -62,3 +63,17 @@ def cmd_demo(args: argparse.Namespace) -> int:
     if record_dir is not None:
         print(f"recordings: {record_dir}/ (open with: robotsoccer replay FILE)")
     return 0
+
+
+def add_parser(commands: Commands) -> None:
+    """``demo``'s options."""
+    demo = commands.add("demo", "run a drill's trials headless and print its labels' shares")
+    field_options(demo)
+    drill_options(demo)
+    demo.add_argument("--trials", type=_positive_int, default=200, help="how many trials")
+    run_options(demo, backend=True)
+    demo.add_argument("--record", action="store_true", help="write rerun recordings")
+    demo.add_argument(
+        "--record-trials", type=_positive_int, default=3, help="record this many first trials"
+    )
+    demo.add_argument("--quiet", action="store_true", help="no progress")

@@ -1,4 +1,7 @@
-"""``robotsoccer learn intercept|pass|lead`` and ``reproduce``: the layers' experiments."""
+"""``robotsoccer learn intercept|pass|lead|team``: one layer's experiment.
+
+And the pipeline that ``learn intercept`` and ``reproduce`` share (:func:`run_pipeline`).
+"""
 
 from __future__ import annotations
 
@@ -10,10 +13,16 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from field_models.registry import default_preset
-from robotsoccer.cli.commands.transfer import transfer_setup
-from robotsoccer.cli.options import EXIT_INTERRUPTED, LEAD_DRILLS, PAPER_MODELS, TEAM_FIELD
+from field_models.registry import FIELD_MODELS, default_preset
+from robotsoccer.cli.options import (
+    DEFAULT_FIELD,
+    EXIT_INTERRUPTED,
+    LEAD_DRILLS,
+    TEAM_FIELD,
+    _positive_int,
+)
 from robotsoccer.cli.running import check_spec, clock_log, fail, run_context
+from robotsoccer.cli.shared import Commands, Parser, experiment_options
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec
@@ -40,7 +49,7 @@ def cmd_learn(args: argparse.Namespace) -> int:
     out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
     title = f"Layer 1 (interception) on {args.field}" + (" — quick plan" if args.quick else "")
     parts = ReproduceParts(client=args.client)
-    return _run_pipeline(
+    return run_pipeline(
         args, [(args.field, preset)], out, title, "robotsoccer learn intercept", parts
     )
 
@@ -92,7 +101,7 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
 
 def cmd_learn_team(args: argparse.Namespace) -> int:
     """``learn team``: layer 3 (TPOT-RL) trained against the baseline, then the two series."""
-    from robotsoccer.cli.commands.play import find_layers
+    from robotsoccer.cli.commands.match import find_layers
     from robotsoccer.experiments.team_study import match_base, plan_for, run_team_study
 
     preset = args.field_preset or default_preset(args.field)
@@ -185,33 +194,7 @@ def cmd_learn_lead(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_reproduce(args: argparse.Namespace) -> int:
-    """``reproduce``: the pipeline of :func:`~robotsoccer.experiments.reproduce.run_reproduce`.
-
-    Layers 1 and 2 on both field models, the lead study, a quick layer 3 and the transfer
-    study, into one folder; ``--no-lead``, ``--no-team``, ``--no-transfer`` leave steps out.
-    """
-    from robotsoccer.experiments.lead_study import StudyDrill
-    from robotsoccer.experiments.reproduce import ReproduceParts
-
-    name = f"reproduce-quick-seed{args.seed}" if args.quick else f"reproduce-seed{args.seed}"
-    out = args.out or Path("runs") / name
-    models = [(model, default_preset(model)) for model in PAPER_MODELS]
-    title = "Layers 1 and 2 reproduced (Stone & Veloso 1996, §5 and §6)" + (
-        " — quick plan" if args.quick else ""
-    )
-    parts = ReproduceParts(
-        layer2=True,
-        lead_drills=()
-        if args.no_lead
-        else tuple(StudyDrill(f, *LEAD_DRILLS[f]) for f in LEAD_DRILLS),
-        team_field=None if args.no_team else TEAM_FIELD,
-        transfer=None if args.no_transfer else transfer_setup(args, models),
-    )
-    return _run_pipeline(args, models, out, title, "robotsoccer reproduce", parts)
-
-
-def _run_pipeline(
+def run_pipeline(
     args: argparse.Namespace,
     models: list[tuple[str, str]],
     out: Path,
@@ -219,7 +202,11 @@ def _run_pipeline(
     created_by: str,
     parts: ReproduceParts,
 ) -> int:
-    """Check the presets, prepare the folder and run the pipeline; one line on an interrupt."""
+    """Check the presets, prepare the folder and run the pipeline; one line on an interrupt.
+
+    ``learn intercept`` and ``reproduce`` (:mod:`robotsoccer.cli.commands.reproduce`) run
+    :func:`~robotsoccer.experiments.reproduce.run_reproduce` through it.
+    """
     from robotsoccer.experiments.reproduce import run_reproduce
 
     for model, preset in models:  # a bad preset fails here with one line, not in a worker
@@ -238,3 +225,121 @@ def _run_pipeline(
     print(report.read_text())
     print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {ctx.workers} worker(s))")
     return 0
+
+
+def add_parser(commands: Commands) -> None:
+    """``learn``'s targets and their options."""
+    learn = commands.add("learn", "learn a layer: collect, train, evaluate, report")
+    targets = learn.add_subparsers(dest="target", required=True, parser_class=Parser)
+    common = [commands.common]
+    intercept = targets.add_parser(
+        "intercept", help="layer 1: the interception net (paper §5)", parents=common
+    )
+    intercept.add_argument(
+        "--field", default=DEFAULT_FIELD, choices=FIELD_MODELS, help="field model"
+    )
+    intercept.add_argument(
+        "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
+    )
+    intercept.add_argument(
+        "--client",
+        default="see",
+        choices=("see", "cycle"),
+        help="the defender's client: see (the paper's: turn, then dash, at each see) or cycle "
+        "(a command every cycle, issue 28)",
+    )
+    experiment_options(intercept)
+    passing = targets.add_parser(
+        "pass", help="layer 2: the pass-evaluation tree (paper §6)", parents=common
+    )
+    passing.add_argument("--field", default=DEFAULT_FIELD, choices=FIELD_MODELS, help="field model")
+    passing.add_argument(
+        "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
+    )
+    passing.add_argument(
+        "--net",
+        type=Path,
+        default=None,
+        help="layer 1's interception net (.npz) for receivers and defenders (default: train it)",
+    )
+    experiment_options(passing)
+    lead = targets.add_parser(
+        "lead",
+        help="layer 1 with the lead decision beside the paper's turn angle, both field models",
+        parents=common,
+    )
+    lead.add_argument(
+        "--field",
+        default=None,
+        choices=FIELD_MODELS,
+        help="one field model (default: both)",
+    )
+    experiment_options(lead)
+    _team_parser(targets.add_parser(
+        "team",
+        help="layer 3: TPOT-RL's ball destinations learned in games against the baseline, "
+        "then series against the layered team and the baseline",
+        parents=common,
+    ))  # fmt: skip
+
+
+def _team_parser(team: argparse.ArgumentParser) -> None:
+    """``learn team``'s options."""
+    team.add_argument("--field", default=TEAM_FIELD, choices=FIELD_MODELS, help="field model")
+    team.add_argument(
+        "--field-preset", default=None, help="preset name, .toml or server.conf (model's default)"
+    )
+    team.add_argument("--net", type=Path, default=None, help="layer 1's net (.npz)")
+    team.add_argument("--tree", type=Path, default=None, help="layer 2's pass tree (.json)")
+    team.add_argument(
+        "--models",
+        type=Path,
+        default=None,
+        help="run folder with models/<field>/ holding the net and pass tree (as `match`)",
+    )
+    team.add_argument(
+        "--table",
+        type=Path,
+        default=None,
+        help="a learned layer-3 table (.npz): skip training, play the series only",
+    )
+    team.add_argument(
+        "--every",
+        action="store_true",
+        help="TPOT-RL's own rule: the holder chooses a destination on every spell on the ball "
+        "(shoot and keep included), not only where the layered team would ask the tree",
+    )
+    team.add_argument(
+        "--window",
+        choices=("choice", "horizon"),
+        default="choice",
+        help="when a reward closes: choice (also at the player's next choice, the first "
+        "studies') or horizon (only at 30 s, a goal or play stopping: TPOT-RL's fixed window)",
+    )
+    team.add_argument(
+        "--shot-guard",
+        action="store_true",
+        help="with --every: the goal is a shot only within the teams' shooting range, beyond "
+        "it an advance toward the goal (a pass toward it, else a dribble)",
+    )
+    team.add_argument(
+        "--loss-penalty",
+        type=float,
+        default=0.0,
+        help="reward possession: an opponent's touch closes a choice's reward, which loses up "
+        "to this much (0..1; default 0: the ball's advance alone)",
+    )
+    team.add_argument(
+        "--games-per-round",
+        type=_positive_int,
+        default=None,
+        help="training games that share one table before it learns from them (default 4); "
+        "up to this many play at once, so a many-core machine needs it at least its workers",
+    )
+    team.add_argument(
+        "--training-games",
+        type=_positive_int,
+        default=None,
+        help="training games instead of the plan's (400 with --every, 240 without)",
+    )
+    experiment_options(team)

@@ -8,9 +8,20 @@ from __future__ import annotations
 
 import argparse
 import time
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 from field_models.arena import FieldOptions
+from robotsoccer.cli.options import (
+    SERVE_FIELD,
+    SERVE_PRESET,
+    _index,
+    _noise,
+    _port,
+    _positive_float,
+    _positive_int,
+)
+from robotsoccer.cli.shared import Commands
 
 if TYPE_CHECKING:
     pass
@@ -57,3 +68,54 @@ def cmd_serve(args: argparse.Namespace) -> int:
     return run_serve(
         server, game, cycles=args.cycles, seconds=args.seconds, recorder=recorder, log=log
     )
+
+
+def add_parser(commands: Commands) -> None:
+    """``serve``'s options."""
+    serve = commands.add(
+        "serve",
+        "serve the Soccer Server model over UDP in rcssserver's protocol: players, a trainer, "
+        "monitors",
+    )
+    serve.add_argument(
+        "--field-preset",
+        default=SERVE_PRESET,
+        help=f"{SERVE_FIELD} preset name, .toml or server.conf",
+    )
+    serve.add_argument("--seed", type=_index, default=0, help="seed of the server's noise")
+    serve.add_argument(
+        "--ball-noise", type=_noise, default=None, help="ball noise (preset's when not given)"
+    )
+    serve.add_argument(
+        "--perfect-perception", action="store_true", help="sees without quantisation or fading"
+    )
+    serve.add_argument(
+        "--host", default="127.0.0.1", help="address to bind (another than 127.0.0.1: on purpose)"
+    )
+    serve.add_argument("--port", type=_port, default=6000, help="player and monitor port")
+    serve.add_argument("--trainer-port", type=_port, default=6001, help="trainer port")
+    serve.add_argument("--olcoach-port", type=_port, default=6002, help="online-coach port")
+    serve.add_argument(
+        "--synch", action="store_true", help="synch mode: a cycle as soon as every client is done"
+    )
+    serve.add_argument(
+        "--synch-timeout", type=_positive_float, default=1.25, help="synch: step anyway after [s]"
+    )
+    serve.add_argument(
+        "--idle-timeout", type=_positive_float, default=30.0, help="drop a client silent for [s]"
+    )
+    serve.add_argument(
+        "--play-on", action="store_true", help="start in play_on (default: before_kick_off)"
+    )
+    serve.add_argument("--cycles", type=_positive_int, default=None, help="stop after N cycles")
+    serve.add_argument("--seconds", type=_positive_float, default=None, help="stop after [s]")
+    serve.add_argument(
+        "--record",
+        type=Path,
+        nargs="?",
+        const=Path("recordings"),
+        default=None,
+        metavar="DIR",
+        help="write the game as .rcg and .rrd into DIR (recordings/)",
+    )
+    serve.add_argument("--quiet", action="store_true", help="no log lines")

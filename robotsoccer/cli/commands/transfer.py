@@ -16,6 +16,7 @@ from robotsoccer.cli.options import (
     TARGET_FIELD,
 )
 from robotsoccer.cli.running import check_spec, fail, run_context
+from robotsoccer.cli.shared import Commands, experiment_options, transfer_options
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.runner import TrialSpec
 
@@ -109,3 +110,14 @@ def transfer_setup(args: argparse.Namespace, models: list[tuple[str, str]]) -> T
     lead_drills = tuple(StudyDrill(f, *LEAD_DRILLS[f]) for f in LEAD_DRILLS)
     target = (TARGET_FIELD, fields[TARGET_FIELD])
     return TransferSetup(reference, target, randomisation, parts, lead_drills)
+
+
+def add_parser(commands: Commands) -> None:
+    """``transfer``'s options."""
+    transfer = commands.add(
+        "transfer",
+        "the transfer matrix: each field model's net and pass tree on every model; then the "
+        "ablations of the robots' interception drill",
+    )
+    experiment_options(transfer)
+    transfer_options(transfer)

@@ -1,24 +1,29 @@
-"""``robotsoccer match`` and ``setplay``: whole matches and the set play, with their layers."""
+"""``robotsoccer match``: one match or a series, with the layers it plays."""
 
 from __future__ import annotations
 
 import argparse
 import json
-import sys
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from field_models.arena import FieldOptions
 from field_models.registry import default_preset
-from robotsoccer.cli.options import EXIT_INTERRUPTED, PAPER_MODELS, UsageError
+from robotsoccer.cli.options import (
+    EXIT_INTERRUPTED,
+    TEAM_KINDS,
+    UsageError,
+    _drill_option,
+    _index,
+    _positive_float,
+    _positive_int,
+)
 from robotsoccer.cli.running import check_spec, fail
+from robotsoccer.cli.shared import Commands, field_options, run_options
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers, run_trials
 from robotsoccer.runs.runner import TrialSpec
-
-if TYPE_CHECKING:
-    pass
 
 
 def find_layers(args: argparse.Namespace) -> tuple[Path, Path]:
@@ -170,28 +175,53 @@ def cmd_match(args: argparse.Namespace) -> int:
     return 0
 
 
-def cmd_setplay(args: argparse.Namespace) -> int:
-    """The set play on both field models, layered and baseline minds, with its report."""
-    from robotsoccer.experiments.context import RunContext, seeds_for
-    from robotsoccer.experiments.setplay import run_setplay_study
-
-    folder = args.models or Path("runs") / f"transfer-seed{args.seed}"
-    models: Path | None = folder / "models"
-    if not all(
-        (folder / "models" / m / f).exists()
-        for m in PAPER_MODELS
-        for f in ("net_750.npz", "pass_tree.json")
-    ):
-        if args.models is not None:
-            raise UsageError(f"{folder}/models lacks a field's net_750.npz or pass_tree.json")
-        print(f"no trained layers in {folder}/models: the baseline minds only", file=sys.stderr)
-        models = None
-    out = args.out or Path("runs") / f"setplay{'-quick' if args.quick else ''}-seed{args.seed}"
-    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    fields = [(m, default_preset(m)) for m in PAPER_MODELS]
-    ctx = RunContext(out, seeds_for(args.seed), args.workers or default_workers(), print, True)
-    report = run_setplay_study(
-        ctx, fields=fields, models=models, plays=args.plays, quick=args.quick
+def add_parser(commands: Commands) -> None:
+    """``match``'s options."""
+    match = commands.add(
+        "match",
+        "play a match (or a series: --games N) between the layered team and the baseline",
     )
-    print(f"report: {report}")
-    return 0
+    field_options(match)
+    match.add_argument(
+        "--games", type=_positive_int, default=1, help="1: one match; more: a series (sides swap)"
+    )
+    match.add_argument("--left", default="layered", choices=TEAM_KINDS, help="one match: left")
+    match.add_argument("--right", default="baseline", choices=TEAM_KINDS, help="one match: right")
+    match.add_argument(
+        "--models",
+        type=Path,
+        default=None,
+        help="run folder of reproduce/transfer/learn pass with models/<field>/ (default: the "
+        "first of runs/reproduce-seed<S>, runs/transfer-seed<S> that has them)",
+    )
+    match.add_argument("--net", type=Path, default=None, help="layer 1's net (.npz)")
+    match.add_argument("--tree", type=Path, default=None, help="layer 2's tree (.json)")
+    match.add_argument(
+        "--tpot",
+        type=Path,
+        default=None,
+        help="layer 3's table (.npz, from `learn team`) for a layer3 team; it plays with the "
+        "rule it learned with (every spell on the ball or only where blocked)",
+    )
+    match.add_argument(
+        "--players", type=_index, default=0, help="players a side (0: 11 open field, 5 table)"
+    )
+    match.add_argument("--half-time", type=_positive_float, default=None, help="one half [s] (300)")
+    match.add_argument(
+        "--record",
+        action="store_true",
+        help="rerun recording (and on the server's pitch an .rcg game log) of the first game "
+        "of each side",
+    )
+    match.add_argument("--quiet", action="store_true", help="no progress")
+    match.add_argument(
+        "--option",
+        action="append",
+        default=[],
+        type=_drill_option,
+        metavar="NAME=VALUE",
+        help="a match option for both teams' minds, e.g. look=neck, steady_turns=true, "
+        "dead_band=true, turn_latency=reckon, client=cycle (repeatable; a team's own: "
+        "left/right as the value where it takes one)",
+    )
+    run_options(match)
