@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
 from robotsoccer.cli.options import EXIT_INTERRUPTED, _positive_int
@@ -15,9 +14,6 @@ from robotsoccer.drills import make_drill
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers, run_trials
 from robotsoccer.runs.ray_backend import require_ray
-
-if TYPE_CHECKING:
-    pass
 
 
 def cmd_demo(args: argparse.Namespace) -> int:

@@ -9,7 +9,6 @@ from __future__ import annotations
 import argparse
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from field_models.arena import FieldOptions
 from robotsoccer.cli.options import (
@@ -22,9 +21,6 @@ from robotsoccer.cli.options import (
     _positive_int,
 )
 from robotsoccer.cli.shared import Commands
-
-if TYPE_CHECKING:
-    pass
 
 
 def cmd_serve(args: argparse.Namespace) -> int:
