@@ -16,7 +16,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from field_models.arena import FieldOptions
-from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial
+from robotsoccer.runs.runner import TrialResult, TrialSpec
+
+# check_spec lives beside build_trial (the pipelines in robotsoccer.experiments use it too);
+# re-exported here, where the commands have always found it.
+from robotsoccer.runs.runner import check_spec as check_spec
 from robotsoccer.stats import wilson_interval
 
 if TYPE_CHECKING:
@@ -49,13 +53,6 @@ def spec_from(args: argparse.Namespace, **extra: Any) -> TrialSpec:
         **extra,
     )
     return spec.with_options(**dict(args.option))
-
-
-def check_spec(spec: TrialSpec) -> None:
-    """Set trial 0 up front so a bad preset, option or model fails here in one line."""
-    rngs, drill, arena = build_trial(spec, 0)
-    drill.setup(arena, rngs)
-    drill.minds(arena, rngs)
 
 
 class Tally:

@@ -45,6 +45,14 @@ def seeds_for(seed: int) -> Seeds:
     return Seeds(evaluation=seed, collection=derived)
 
 
+class RunInterrupted(Exception):
+    """Ctrl-C stopped a run; what it finished is kept, and the message (one line) says where.
+
+    A pipeline raises it in place of the KeyboardInterrupt; the CLI prints the message and
+    exits with its interrupt status.
+    """
+
+
 def _quiet(line: str) -> None:
     """A log that drops every line."""
 

@@ -237,6 +237,16 @@ def build_trial(
     return rngs, resolved.new_drill(), arena
 
 
+def check_spec(spec: TrialSpec) -> None:
+    """Set trial 0 up front, so a bad preset, option or model fails here in one line.
+
+    Commands check their spec before they touch a run folder or start workers.
+    """
+    rngs, drill, arena = build_trial(spec, 0)
+    drill.setup(arena, rngs)
+    drill.minds(arena, rngs)
+
+
 def run_trial(spec: TrialSpec, index: int) -> TrialResult:
     """Run trial `index` of `spec` and return its result."""
     recording = spec.records(index)

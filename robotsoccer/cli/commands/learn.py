@@ -9,7 +9,6 @@ import argparse
 import json
 import sys
 import time
-from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -29,6 +28,7 @@ from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
     from robotsoccer.experiments.reproduce import ReproduceParts
+    from robotsoccer.experiments.team_run import TeamRun
 
 
 def cmd_learn(args: argparse.Namespace) -> int:
@@ -101,64 +101,42 @@ def cmd_learn_pass(args: argparse.Namespace) -> int:
 
 def cmd_learn_team(args: argparse.Namespace) -> int:
     """``learn team``: layer 3 (TPOT-RL) trained against the baseline, then the two series."""
-    from robotsoccer.cli.commands.match import find_layers
-    from robotsoccer.experiments.team_study import match_base, plan_for, run_team_study
+    from robotsoccer.experiments.context import RunInterrupted
+    from robotsoccer.experiments.team_run import run_learn_team
 
-    preset = args.field_preset or default_preset(args.field)
-    net, tree = find_layers(args)
-    plan = plan_for(args.quick, args.every, args.window)
-    if args.training_games is not None:
-        plan = replace(plan, training_games=args.training_games)
-    if args.games_per_round is not None:
-        plan = replace(plan, games_per_round=args.games_per_round)
-    if args.shot_guard or args.loss_penalty:
-        plan = replace(plan, guard=args.shot_guard, loss=args.loss_penalty)
-    base = match_base(args.field, args.field_preset, args.seed, net, tree)
-    check_spec(base.with_options(left="layered", right="baseline"))
-    if args.table is not None:
-        from learning.tpot import load_table
-
-        load_table(args.table)  # a corrupt or foreign table fails here, in one line
-    tag = f"learn-team-{args.field}-{Path(preset).stem}" + ("-every" if args.every else "")
-    tag += "-horizon" if args.window == "horizon" else ""
-    tag += "-guard" if args.shot_guard else ""
-    tag += f"-loss{args.loss_penalty:g}" if args.loss_penalty else ""
-    tag += "-quick" if args.quick else ""
-    out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
-    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    workers = args.workers or default_workers()
-    (out / "config.json").write_text(
-        json.dumps(
-            {
-                "command": "robotsoccer learn team",
-                "plan": plan.to_dict(),
-                "seed": args.seed,
-                "field": args.field,
-                "preset": preset,
-                "net": str(net),
-                "tree": str(tree),
-                "table": None if args.table is None else str(args.table),
-                "workers": workers,
-            },
-            indent=2,
-        )
-        + "\n"
-    )
-    start = time.perf_counter()
     try:
-        report = run_team_study(
-            base, plan, out, workers=workers, log=clock_log(), resume=args.resume,
-            progress=sys.stderr.isatty(), table=args.table,
-        )  # fmt: skip
-    except KeyboardInterrupt:
-        return fail(
-            EXIT_INTERRUPTED,
-            f"interrupted; finished games are kept under {out} (--resume finishes the run)",
-        )
-    print()
-    print(report.read_text())
-    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
+        outcome = run_learn_team(team_request(args), clock_log())
+    except RunInterrupted as stop:
+        return fail(EXIT_INTERRUPTED, str(stop))
+    for line in outcome.lines:
+        print(line)
     return 0
+
+
+def team_request(args: argparse.Namespace) -> TeamRun:
+    """The study ``robotsoccer learn team``'s options ask for."""
+    from robotsoccer.cli.commands.match import layer_files
+    from robotsoccer.experiments.team_run import TeamRun
+
+    return TeamRun(
+        field=args.field,
+        preset=args.field_preset,
+        seed=args.seed,
+        layers=layer_files(args),
+        table=args.table,
+        quick=args.quick,
+        every=args.every,
+        window=args.window,
+        shot_guard=args.shot_guard,
+        loss_penalty=args.loss_penalty,
+        games_per_round=args.games_per_round,
+        training_games=args.training_games,
+        out=args.out,
+        resume=args.resume,
+        overwrite=args.overwrite,
+        workers=args.workers,
+        progress=sys.stderr.isatty(),
+    )
 
 
 def cmd_learn_lead(args: argparse.Namespace) -> int:
