@@ -293,6 +293,13 @@ def build_parser() -> argparse.ArgumentParser:
         "pass_tree.json (default: runs/transfer-seed<S>); without them only the baseline runs",
     )
     setplay.add_argument("--quick", action="store_true", help="40 plays per condition")
+    setplay.add_argument(
+        "--client",
+        choices=("see", "cycle"),
+        default="see",
+        help="the Soccer Server players' client: see (the paper's: a decision at each see) or "
+        "cycle (a command every cycle from a world model); the robots keep theirs",
+    )
     setplay.add_argument("--seed", type=_index, default=0, help="experiment seed")
     _run_options(setplay)
 

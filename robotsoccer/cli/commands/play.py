@@ -186,12 +186,14 @@ def cmd_setplay(args: argparse.Namespace) -> int:
             raise UsageError(f"{folder}/models lacks a field's net_750.npz or pass_tree.json")
         print(f"no trained layers in {folder}/models: the baseline minds only", file=sys.stderr)
         models = None
-    out = args.out or Path("runs") / f"setplay{'-quick' if args.quick else ''}-seed{args.seed}"
+    client = "" if args.client == "see" else f"-{args.client}"  # a see run's folder stays
+    quick = "-quick" if args.quick else ""
+    out = args.out or Path("runs") / f"setplay{client}{quick}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     fields = [(m, default_preset(m)) for m in PAPER_MODELS]
     ctx = RunContext(out, seeds_for(args.seed), args.workers or default_workers(), print, True)
     report = run_setplay_study(
-        ctx, fields=fields, models=models, plays=args.plays, quick=args.quick
+        ctx, fields=fields, models=models, plays=args.plays, quick=args.quick, client=args.client
     )
     print(f"report: {report}")
     return 0
