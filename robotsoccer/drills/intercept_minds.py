@@ -9,7 +9,7 @@ meeting time in place of TA). The drill (:mod:`robotsoccer.drills.intercept`) as
 
 from __future__ import annotations
 
-from field_models.arena import Arena
+from field_models.arena import Arena, FieldFacts
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.intercept_options import ClientKind, Decision, InterceptOptions
 from robotsoccer.drills.intercept_plan import LaunchPlan, decision_ticks
@@ -18,6 +18,7 @@ from robotsoccer.skills.intercept import (
     Behaviour,
     DefenderMind,
     TaMode,
+    TurnPolicy,
     load_net_function,
     make_policy,
 )
@@ -108,13 +109,37 @@ def cycle_mind(
             every see (the cycle client holds it).
     """
     if decision_ticks(plan, arena.facts):
-        raise ValueError("client 'cycle' acts every cycle: this plan sets a decision period")
+        raise ValueError(CYCLE_PERIOD_ERROR)
     if options.ta_mode is not TaMode.HOLD:
         raise ValueError("client 'cycle' holds TA: use ta_mode=hold")
     policy = make_policy(options.behaviour, rngs["policy"], options.model, distance_factor)
-    return CycleDefenderMind(
+    return cycle_defender(
         policy,
         arena.facts,
-        plan.trigger_distance_m,
+        plan,
         kickable_distance_m=plan.kickable_distance_m if options.defender_kick else None,
+    )
+
+
+CYCLE_PERIOD_ERROR = "client 'cycle' acts every cycle: this plan sets a decision period"
+
+
+def cycle_defender(
+    policy: TurnPolicy | None,
+    facts: FieldFacts,
+    plan: LaunchPlan,
+    kickable_distance_m: float | None = None,
+) -> CycleDefenderMind:
+    """Layer 1's TA defender on a per-cycle client, with `policy` and the plan's trigger.
+
+    The one way the drills build it (the interception drill's ``client=cycle``, the set
+    play's).
+
+    Raises:
+        ValueError: The plan sets a decision period (the cycle client acts every cycle).
+    """
+    if decision_ticks(plan, facts):
+        raise ValueError(CYCLE_PERIOD_ERROR)
+    return CycleDefenderMind(
+        policy, facts, plan.trigger_distance_m, kickable_distance_m=kickable_distance_m
     )

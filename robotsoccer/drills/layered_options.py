@@ -14,8 +14,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from robotsoccer.drills.intercept_options import ClientKind
 from robotsoccer.options import choice, duration, flag
-from robotsoccer.skills.intercept import Behaviour, check_behaviour
+from robotsoccer.skills.intercept import Behaviour, check_behaviour, model_decision
 from robotsoccer.skills.passing import Chooser
 
 PASS_DEFENDERS = ("intercept", "still")
@@ -95,9 +96,12 @@ class SetPlayOptions:
         defenders: The defenders' and goalie's interception: ``same`` as the attackers'
             `interceptor` (the paper's set play, §7), or a behaviour of their own
             (``straight``: the field's baseline defenders, whatever the attackers use).
+        client: ``see`` (the paper's client) or ``cycle`` (the per-cycle client;
+            :mod:`robotsoccer.drills.setplay`'s module docstring, "Client").
 
     Raises:
-        ValueError: An unknown chooser or interceptor, a missing model file, a limit <= 0.
+        ValueError: An unknown chooser, interceptor or client, a missing model file, a limit
+            <= 0, a lead net with ``client=cycle``; at set-up, ``client=cycle`` on the robots.
     """
 
     chooser: Chooser = Chooser.CLOSEST
@@ -108,6 +112,7 @@ class SetPlayOptions:
     transfer: bool = False
     pass_speed_mps: float | None = None
     defenders: Behaviour | str = "same"
+    client: ClientKind = ClientKind.SEE
 
     def __post_init__(self) -> None:
         chooser = choice(Chooser, self.chooser, "chooser")
@@ -121,6 +126,10 @@ class SetPlayOptions:
             self._set("pass_speed_mps", float(self.pass_speed_mps))
         if self.defenders != "same":
             self._set("defenders", check_behaviour(self.defenders, self.net))
+        client = choice(ClientKind, self.client, "client")
+        self._set("client", client)
+        if client is ClientKind.CYCLE and self.net and model_decision(self.net) == "lead":
+            raise ValueError("client 'cycle' plays the turn decision: give a TA net or client=see")
 
     def _set(self, name: str, value: object) -> None:
         """Store a checked value (the record is frozen once built)."""

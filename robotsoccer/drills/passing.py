@@ -51,9 +51,11 @@ from learning.pass_boost import load_pass_boost
 from learning.pass_features import PASS_SCHEMA
 from learning.pass_tree_file import load_pass_tree
 from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.intercept_minds import cycle_defender
 from robotsoccer.drills.intercept_options import Launch, Scaling
 from robotsoccer.drills.intercept_plan import LaunchPlan, cached_launch_plan, decision_ticks
 from robotsoccer.drills.layered_options import PassOptions
+from robotsoccer.skills.cycle import CycleDefenderMind
 from robotsoccer.skills.intercept import (
     Behaviour,
     DefenderMind,
@@ -188,6 +190,31 @@ class LayeredDrill:
             turn_tolerance_rad=plan.turn_tolerance_rad,
             decision_period_ticks=decision_ticks(plan, facts),
         )
+
+    def cycle_interceptor_for(
+        self,
+        facts: FieldFacts,
+        plan: LaunchPlan,
+        rng: Rng,
+        behaviour: Behaviour,
+        kickable_distance_m: float | None = None,
+    ) -> CycleDefenderMind:
+        """Layer 1's interception on the per-cycle client: the same TA rule, every cycle.
+
+        As the interception drill's ``client=cycle`` builds its defender
+        (:func:`~robotsoccer.drills.intercept_minds.cycle_defender`).
+
+        Raises:
+            ValueError: The net is a lead net (the per-cycle client plays the turn decision),
+                or the plan sets a decision period.
+        """
+        factor = 1.0
+        if self.transfer and self.net and behaviour is Behaviour.NET:
+            factor = transfer_distance_factor(self.net, facts)
+        if behaviour is Behaviour.NET and self.net and model_decision(self.net) == "lead":
+            raise ValueError("client 'cycle' plays the turn decision: give a TA net or client=see")
+        policy = make_policy(behaviour, rng, self.net, factor)
+        return cycle_defender(policy, facts, plan, kickable_distance_m)
 
 
 def control_reach(facts: FieldFacts) -> float:

@@ -56,6 +56,15 @@ whatever the attackers use (``straight``: the baseline's defenders facing layere
 The winger, uncovered, starts its layer 1 on the cue wherever the ball is on the robots; on
 the Soccer Server it keeps the drill's trigger distance.
 
+**Client** (option ``client``, issue 28 item 3): ``see`` (the default, the paper's client: one
+decision per see, "turn, then dash") or ``cycle``, the Soccer Server's per-cycle client: the
+defenders and goalie are layer 1's per-cycle defender (:class:`~robotsoccer.skills.cycle.
+CycleDefenderMind`, the same TA rule, built as the interception drill's ``client=cycle``
+builds it) and the attackers' decisions are carried on every cycle from a world model
+(:mod:`robotsoccer.skills.setplay_cycle`), their layer 1 that defender's plan. It is refused on
+the robots, whose host already acts on every tick, and with a lead net (the per-cycle client
+plays the turn decision).
+
 **Kicks.** Where the players have an aimable kick (the Soccer Server), they kick. Where they do
 not (the 1997 robots pushed the ball), the coach stands in for the kicker, as layer 1 and layer
 2's drills launch the ball on that field: a ``Kick`` a set-play attacker sends is not passed to
@@ -102,14 +111,17 @@ from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.intercept_options import ClientKind
 from robotsoccer.drills.layered_options import SetPlayOptions
 from robotsoccer.drills.passing import LayeredDrill, load_evaluator
 from robotsoccer.drills.setplay_judge import SetPlayJudge
 from robotsoccer.drills.setplay_kicks import CoachKickRelay, ball_sense, coach_kicks, kick_powers
+from robotsoccer.skills.cycle import CycleDefenderMind
 from robotsoccer.skills.intercept import Behaviour
 from robotsoccer.skills.pass_receivers import ReceiverMind
 from robotsoccer.skills.passing import PasserMind
 from robotsoccer.skills.setplay_carrier import CarrierMind
+from robotsoccer.skills.setplay_cycle import CycleAttacker, CycleIntercept
 from robotsoccer.skills.setplay_receiver import SetPlayReceiverMind
 
 STARTER = PlayerRef(LEFT, 1)
@@ -181,6 +193,7 @@ class SetPlayDrill(LayeredDrill):
         self.transfer = o.transfer
         self.pass_speed_mps = o.pass_speed_mps
         self.defenders = o.defenders
+        self.client = o.client
         self._judge: SetPlayJudge | None = None
         self._checked: FieldFacts | None = None
 
@@ -191,6 +204,11 @@ class SetPlayDrill(LayeredDrill):
     def setup(self, arena: Arena, rngs: TrialRngs) -> None:
         """Place the ball and the players (module docstring)."""
         facts = arena.facts
+        if self.client is ClientKind.CYCLE and facts.walled:
+            raise ValueError(
+                "client=cycle is the Soccer Server's per-cycle client; the robots' host "
+                "already acts on every tick"
+            )
         self._check_origins(facts)
         plan = self.plan(facts)
         if self._max_time_s is None:
@@ -231,8 +249,21 @@ class SetPlayDrill(LayeredDrill):
         sense = ball_sense(facts, plan)
         powers = kick_powers(facts, plan, self.pass_speed_mps)
 
+        per_cycle = self.client is ClientKind.CYCLE
+        # The per-cycle client's world models and layer-1 plans, by attacker.
+        models: dict[PlayerRef, tuple[CycleDefenderMind, CycleIntercept | None]] = {}
+
         def interceptor(kickable: float | None = None) -> Mind:
             return self.interceptor_for(facts, plan, rng, self.interceptor, kickable)
+
+        def meeting(ref: PlayerRef) -> Mind:
+            """Layer 1 for the attacker `ref` (receiving or collecting a pass)."""
+            if not per_cycle:
+                return interceptor()
+            model = self.cycle_interceptor_for(facts, plan, rng, self.interceptor)
+            meet = CycleIntercept(model)
+            models[ref] = (model, meet)
+            return meet
 
         def passer(receivers: tuple[PlayerRef, ...]) -> PasserMind:
             return PasserMind(
@@ -247,7 +278,7 @@ class SetPlayDrill(LayeredDrill):
         def receiver(ref: PlayerRef, slot: int) -> ReceiverMind:
             return ReceiverMind(
                 ref.number,
-                interceptor(),
+                meeting(ref),
                 unit_m=facts.unit_m,
                 sensor_period_s=facts.sensor_period_s,
                 dt_s=facts.dt_s,
@@ -283,7 +314,7 @@ class SetPlayDrill(LayeredDrill):
         # covered, it can easily collect the ball"): its layer 1 starts at once on the cue,
         # wherever the ball is, rather than waiting for it within the drill's trigger distance.
         # On the Soccer Server (no camera) it keeps the drill's trigger, as before.
-        collect = interceptor()
+        collect = meeting(WINGER)
         if sense.track_window > 0:
             reach_all = facts.pitch.length_m
             anywhere = dataclasses.replace(
@@ -301,9 +332,19 @@ class SetPlayDrill(LayeredDrill):
         kickable = facts.kick.reach_m if facts.kick is not None else None
         defence = self.interceptor if self.defenders == "same" else Behaviour(self.defenders)
         for ref in DEFENDERS:
-            minds[ref] = self.interceptor_for(facts, plan, rng, defence, kickable)
+            if per_cycle:
+                minds[ref] = self.cycle_interceptor_for(facts, plan, rng, defence, kickable)
+            else:
+                minds[ref] = self.interceptor_for(facts, plan, rng, defence, kickable)
         assert self._judge is not None
         self._judge.minds = dict(minds)
+        if per_cycle:
+            # The starter never meets a ball with layer 1: its world model has no TA rule.
+            models[STARTER] = (CycleDefenderMind(None, facts, plan.trigger_distance_m), None)
+            for ref, (model, meet) in models.items():
+                attacker = minds[ref]
+                assert isinstance(attacker, CarrierMind | SetPlayReceiverMind)
+                minds[ref] = CycleAttacker(attacker, model, meet, facts)
         if self._judge.kicks is not None:
             for ref in (STARTER, WINGER, *FIRST_RECEIVERS, *LAST_RECEIVERS):
                 minds[ref] = CoachKickRelay(minds[ref], ref, self._judge.kicks)

@@ -26,6 +26,12 @@ least 1, 2 and 3 of the play's passes and exactly 1, 2 or 3, shots, goals and th
 differences of each other condition from the baseline, paired play by play. Every number in it
 comes from the run.
 
+**Client** (``client``): the Soccer Server's players on the paper's see-triggered client
+(``see``, the default) or the per-cycle client (``cycle``, issue 28 item 3: the drill's option
+``client``, every condition of a Soccer Server field); the robots' minds are unchanged (their
+host already acts on every tick). The option is in each condition's drill options, so the
+configuration and report say which client each table used.
+
 The study names no field model: the caller passes the (model, preset) pairs.
 """
 
@@ -39,6 +45,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from field_models.registry import field_facts
 from robotsoccer.drills.setplay import SetPlayDrill
 from robotsoccer.experiments.context import Field, Log, RunContext
 from robotsoccer.experiments.layer1 import claim_folder
@@ -102,10 +109,18 @@ def model_files(models: Path, field_model: str) -> tuple[Path, Path]:
     return tree, net
 
 
-def play_conditions(field: Field, models: Path | None, seed: int) -> list[PlayCondition]:
-    """The layered minds (when `models` is given) and the baseline on one field, paired."""
+def play_conditions(
+    field: Field, models: Path | None, seed: int, client: str = "see"
+) -> list[PlayCondition]:
+    """The layered minds (when `models` is given) and the baseline on one field, paired.
+
+    `client`: the Soccer Server's client (module docstring); a field with walls (the robots)
+    keeps its own.
+    """
     model, preset = field
     base = TrialSpec(drill=DRILL, field_model=model, preset=preset, seed=seed)
+    if client != "see" and not field_facts(model, preset).walled:
+        base = base.with_options(client=client)
     conditions = []
     if models is not None:
         tree, net = model_files(models, model)
@@ -127,6 +142,7 @@ def run_setplay_study(
     models: Path | None,
     plays: int = 1000,
     quick: bool = False,
+    client: str = "see",
 ) -> Path:
     """Run the set play on each field with both sets of minds; write the run; return the report.
 
@@ -138,6 +154,7 @@ def run_setplay_study(
             every field; None runs the baseline only.
         plays: Plays per field and condition.
         quick: At most :data:`QUICK_PLAYS` plays per condition.
+        client: The Soccer Server fields' client, ``see`` or ``cycle`` (module docstring).
 
     Raises:
         PipelineError: A model file is missing, or `out` holds another study's run.
@@ -147,7 +164,7 @@ def run_setplay_study(
         raise ValueError(f"plays must be > 0, got {plays!r}")
     n = min(plays, QUICK_PLAYS) if quick else plays
     out, seed, workers, log = ctx.out, ctx.seeds.evaluation, ctx.workers, ctx.log
-    conditions = {field: play_conditions(field, models, seed) for field in fields}
+    conditions = {field: play_conditions(field, models, seed, client) for field in fields}
     header = study_header(conditions, n, seed, quick)
     claim_folder(out, header)
     start = time.perf_counter()

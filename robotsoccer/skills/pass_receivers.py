@@ -14,7 +14,7 @@ import math
 from collections.abc import Sequence
 
 from field_models.protocol import Action, Mind, Percept, Say, SeenPlayer, Turn, wrap_angle
-from learning.pass_codec import encode_view
+from learning.pass_codec import MAX_DISTANCE, encode_view
 from robotsoccer.skills.pass_messages import INTENT, announced_number, report_text
 from robotsoccer.skills.passing import view_arrays
 
@@ -96,7 +96,12 @@ class ReceiverMind:
         passer = _nearest_to(percept.players, ball.distance_m, ball.angle_rad, own)
         if passer is None:
             return None
-        others = [s for i, s in enumerate(percept.players) if i != passer]
+        # A player beyond what the message can carry is left out (the set play's defenders that
+        # lost the ball run on: layer 1's rule); every pass's players are far nearer.
+        farthest_m = MAX_DISTANCE * self.unit_m
+        others = [
+            s for i, s in enumerate(percept.players) if i != passer and s.distance_m <= farthest_m
+        ]
         p = percept.players[passer]
         pd, pa = p.distance_m / self.unit_m, math.degrees(p.angle_rad)
         dist, ang, team = view_arrays(others, own, self.unit_m)

@@ -140,6 +140,14 @@ def test_an_error_inside_a_worker_is_one_line(tmp_path) -> None:
         (("demo", "--drill", "intercept", "--option", "behaviour=dance"), ("behaviour", "known:")),
         (("demo", "--option", "max_time_s=inf"), ("max_time_s", "finite")),
         (("demo", "--option", "max_time_s"), ("NAME=VALUE",)),
+        (
+            ("demo", "--field", "soccer_server", "--drill", "setplay", "--option", "client=udp"),
+            ("client", "known: see, cycle"),
+        ),
+        (
+            ("demo", *FAST, "--drill", "setplay", "--option", "client=cycle"),
+            ("client=cycle", "robots' host"),
+        ),
     ],
 )
 def test_bad_values_are_refused_naming_the_option(args, words) -> None:

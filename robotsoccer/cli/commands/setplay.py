@@ -29,12 +29,14 @@ def cmd_setplay(args: argparse.Namespace) -> int:
             raise UsageError(f"{folder}/models lacks a field's net_750.npz or pass_tree.json")
         print(f"no trained layers in {folder}/models: the baseline minds only", file=sys.stderr)
         models = None
-    out = args.out or Path("runs") / f"setplay{'-quick' if args.quick else ''}-seed{args.seed}"
+    client = "" if args.client == "see" else f"-{args.client}"  # a see run's folder stays
+    quick = "-quick" if args.quick else ""
+    out = args.out or Path("runs") / f"setplay{client}{quick}-seed{args.seed}"
     prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
     fields = [(m, default_preset(m)) for m in PAPER_MODELS]
     ctx = RunContext(out, seeds_for(args.seed), args.workers or default_workers(), print, True)
     report = run_setplay_study(
-        ctx, fields=fields, models=models, plays=args.plays, quick=args.quick
+        ctx, fields=fields, models=models, plays=args.plays, quick=args.quick, client=args.client
     )
     print(f"report: {report}")
     return 0
@@ -56,5 +58,12 @@ def add_parser(commands: Commands) -> None:
         "pass_tree.json (default: runs/transfer-seed<S>); without them only the baseline runs",
     )
     setplay.add_argument("--quick", action="store_true", help="40 plays per condition")
+    setplay.add_argument(
+        "--client",
+        choices=("see", "cycle"),
+        default="see",
+        help="the Soccer Server players' client: see (the paper's: a decision at each see) or "
+        "cycle (a command every cycle from a world model); the robots keep theirs",
+    )
     setplay.add_argument("--seed", type=_index, default=0, help="experiment seed")
     run_options(setplay)

@@ -172,3 +172,33 @@ def test_bad_options_are_refused() -> None:
         make_drill("pass", {"chooser": "tree"})
     with pytest.raises(ValueError, match="defenders"):
         make_drill("pass", {"defenders": "asleep"})
+
+
+def test_a_receiver_reports_without_a_player_beyond_the_messages_range() -> None:
+    # A set play's defender that lost the ball runs on (layer 1's rule), far off the field: the
+    # report leaves out what its message cannot carry instead of failing.
+    from field_models.protocol import Heard, Percept, PlayerRef, SeenBall, SeenPlayer
+    from learning.pass_codec import MAX_DISTANCE
+    from robotsoccer.skills.pass_messages import INTENT
+    from robotsoccer.skills.pass_receivers import ReceiverMind
+
+    class Still:
+        def act(self, percept: Percept) -> tuple[()]:
+            return ()
+
+    def report(far_m: float | None) -> str:
+        mind = ReceiverMind(
+            2, Still(), unit_m=1.0, sensor_period_s=0.25, dt_s=0.1, slot=0, say_max_chars=None
+        )
+        passer = SeenPlayer(15.0, 0.0, "left", 1)
+        others: tuple[SeenPlayer, ...] = (SeenPlayer(20.0, 0.5, "right", 3),)
+        if far_m is not None:
+            others += (SeenPlayer(far_m, -0.5, "right", 4),)
+        seen = Percept(
+            PlayerRef("left", 2), 10, 10, SeenBall(14.0, 0.0), (passer, *others), (Heard(INTENT),)
+        )
+        (say,) = mind.act(seen)
+        return say.text  # type: ignore[attr-defined,no-any-return]
+
+    assert report(MAX_DISTANCE + 50.0) == report(None)  # left out, as if not seen
+    assert report(30.0) != report(None)  # a player in range is reported

@@ -28,9 +28,10 @@ from robotsoccer.drills.setplay_kicks import (
     pass_speed,
 )
 from robotsoccer.runs.pool import run_trials
-from robotsoccer.runs.runner import TrialSpec, run_trial
+from robotsoccer.runs.runner import TrialSpec, build_trial, run_trial
 from robotsoccer.skills.ball_sense import BallSense, Heading
 from robotsoccer.skills.ball_tracker import BallTracker, blocking_side
+from robotsoccer.skills.cycle import CycleDefenderMind
 from robotsoccer.skills.setplay import (
     WINGER_CUE,
     arrives,
@@ -40,6 +41,7 @@ from robotsoccer.skills.setplay import (
     reach_entry,
     shoot,
 )
+from robotsoccer.skills.setplay_cycle import CycleAttacker
 
 ME = PlayerRef("left", 1)
 SERVER = ("soccer_server", "soccer_server_1996")
@@ -322,3 +324,42 @@ def test_robot_plays_do_not_depend_on_the_number_of_workers() -> None:
     spec = TrialSpec(drill="setplay", field_model=ARC[0], preset=ARC[1], seed=2)
     alone = run_trials(spec, 3, workers=1, progress=False)
     assert run_trials(spec, 3, workers=2, chunk_size=1, progress=False) == alone
+
+
+# ----------------------------------------------------------------------------- the client
+
+
+def _setplay(preset: str, *options: tuple[str, str], model: str = "soccer_server") -> TrialSpec:
+    return TrialSpec("setplay", model, preset=preset, seed=4, drill_options=options)
+
+
+def test_the_client_is_checked_and_see_is_the_default() -> None:
+    with pytest.raises(ValueError, match=r"^unknown client 'udp' \(known: see, cycle\)$"):
+        make_drill("setplay", {"client": "udp"})
+    plain = _setplay("soccer_server_1996")
+    see = _setplay("soccer_server_1996", ("client", "see"))
+    assert [run_trial(plain, i) for i in range(3)] == [run_trial(see, i) for i in range(3)]
+
+
+def test_the_robots_refuse_the_per_cycle_client() -> None:
+    spec = _setplay("small_size_1997", ("client", "cycle"), model="robot_physics")
+    rngs, drill, arena = build_trial(spec, 0)
+    with pytest.raises(ValueError, match=r"^client=cycle is the Soccer Server's per-cycle client"):
+        drill.setup(arena, rngs)
+
+
+@pytest.mark.parametrize("preset", ["soccer_server_1996", "rcssserver_19"])
+def test_a_play_on_the_per_cycle_client_runs_to_a_verdict(preset: str) -> None:
+    spec = _setplay(preset, ("client", "cycle"))
+    rngs, drill, arena = build_trial(spec, 0)
+    drill.setup(arena, rngs)
+    minds = drill.minds(arena, rngs)
+    for ref, mind in minds.items():
+        kind = CycleAttacker if ref.team == "left" else CycleDefenderMind
+        assert isinstance(mind, kind), ref
+    results = [run_trial(spec, i) for i in range(3)]
+    assert [run_trial(spec, i) for i in range(3)] == results
+    for result in results:
+        assert result.label in ("GOAL", "SHOT", "INTERCEPTED", "OUT")  # a verdict, not TIMEOUT
+    see = [run_trial(_setplay(preset), i) for i in range(3)]
+    assert see != results  # the client changes the plays

@@ -106,3 +106,14 @@ def test_the_layered_minds_need_each_fields_tree_and_net(tmp_path: Path) -> None
         run_setplay_study(
             RunContext.for_seed(tmp_path / "x", 0), fields=FIELDS, models=None, plays=0
         )
+
+
+def test_the_client_option_reaches_the_server_fields_conditions_only() -> None:
+    server, robots = ("soccer_server", "soccer_server_1996"), ("robot_physics", "small_size_1997")
+    for cond in play_conditions(server, None, 0, "cycle"):
+        assert dict(cond.spec.drill_options)["client"] == "cycle"
+    for cond in play_conditions(robots, None, 0, "cycle"):
+        assert "client" not in dict(cond.spec.drill_options)  # their host acts every tick
+    # The default leaves the conditions as they were (a resumed run's header is unchanged).
+    plain = play_conditions(server, None, 0)
+    assert all("client" not in dict(c.spec.drill_options) for c in plain)
