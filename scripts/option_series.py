@@ -7,7 +7,7 @@ leave the other as it is. This script plays such matches, baseline against basel
 layered against layered with ``--net``/``--tree``), the team with the setting on the left in
 the first half of the games and on the right in the rest, and reports per preset that team's
 goal difference, both teams' goals and turn reversals per player-minute
-(:class:`~robotsoccer.skills.cycle.TurnReversals`, true headings sampled every 100 ms, the
+(:class:`~robotsoccer.skills.reversals.TurnReversals`, true headings sampled every 100 ms, the
 Soccer Server's cycle, so the rates compare across fields):
 
     python scripts/option_series.py --option turn_latency --games 10 --half-time 30 \
@@ -28,7 +28,7 @@ from pathlib import Path
 from field_models.protocol import Percept
 from robotsoccer.experiments.match import mean_interval
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial
-from robotsoccer.skills.cycle import TurnReversals
+from robotsoccer.skills.reversals import TurnReversals
 
 SAMPLE_S = 0.1
 """Heading sample period for the reversal count [s]: the Soccer Server's cycle."""

@@ -1,7 +1,7 @@
 """Issue 28 item 5 on the robots: do new camera frames replace commands not yet carried out?
 
 Runs robot trials through the trial runner's own loop and reads counters that change nothing
-(the host's, the link's and the firmware's, plus :class:`~robotsoccer.skills.cycle.TurnReversals`
+(the host's, the link's and the firmware's, plus :class:`~robotsoccer.skills.reversals.TurnReversals`
 on each thinking robot's true heading every 100 ms, the Soccer Server's cycle):
 
 * **host dropped**: body actions of a decision still waiting (not sent) when the robot's next
@@ -41,7 +41,7 @@ from field_models.protocol import Percept
 from robotsoccer.cli.options import LEAD_DRILLS
 from robotsoccer.experiments.match import mean_interval
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial
-from robotsoccer.skills.cycle import TurnReversals
+from robotsoccer.skills.reversals import TurnReversals
 from robotsoccer.stats import wilson_interval
 
 PRESETS = ("small_size_1997", "small_size_1997_arc")

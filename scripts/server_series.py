@@ -3,7 +3,7 @@
 ``robotsoccer match --games N`` has no switch for the match drill's ``steady_turns`` option, so
 this script builds the same series (the CLI's base spec, :func:`robotsoccer.experiments.match.
 run_series` and its report) with the option set or not, and then counts turn reversals
-(:class:`~robotsoccer.skills.cycle.TurnReversals`: a turn of more than 10° the other way from the
+(:class:`~robotsoccer.skills.reversals.TurnReversals`: a turn of more than 10° the other way from the
 player's last such turn, every cycle, true headings) in the first `--reversal-games` games of
 each side through the trial runner's own loop, per team kind, per player-minute.
 
@@ -31,7 +31,7 @@ from field_models.protocol import Percept
 from robotsoccer.experiments.match import mean_interval, run_series, series_specs, write_report
 from robotsoccer.experiments.team_study import match_base
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
-from robotsoccer.skills.cycle import TurnReversals
+from robotsoccer.skills.reversals import TurnReversals
 
 
 def reversals(spec: TrialSpec, index: int) -> dict[str, Any]:

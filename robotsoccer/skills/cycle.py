@@ -178,8 +178,8 @@ class CycleDefenderMind:
             return ()
         sighting = self.observe(percept)
         if sighting is None:
-            return self._send(percept.tick, self._dashes() if self.triggered else ())
-        return self._send(percept.tick, self.decide(percept, sighting))
+            return self.sent(percept.tick, self._dashes() if self.triggered else ())
+        return self.sent(percept.tick, self.decide(percept, sighting))
 
     def observe(self, percept: Percept) -> Sighting | None:
         """Update the world model at a see: the reckoned pose, the ball's sightings and model.
@@ -225,9 +225,10 @@ class CycleDefenderMind:
             return (Kick(KICK_POWER, clearing_direction(percept)),)
         return self._chase(self._heading + ba + self.turn_angle_rad, bd)
 
-    def sent(self, tick: int, plan: tuple[Action, ...]) -> None:
+    def sent(self, tick: int, plan: tuple[Action, ...]) -> tuple[Action, ...]:
         """The body commands sent at `tick`, one per cycle from the next (for the reckoning)."""
-        self._send(tick, plan)
+        self._plan, self._plan_tick = plan, tick
+        return plan
 
     @property
     def body(self) -> _Pose:
@@ -257,7 +258,7 @@ class CycleDefenderMind:
             if ball is not None:
                 action = self._meeting(state, ball, j, action, error)
             plan.append(action)
-            state = self._cycle(state, action)
+            state = self._reckoner.cycle(state, action)
             cycles = max(cycles - 1.0, 1.0)
         return tuple(plan)
 
@@ -344,7 +345,7 @@ class CycleDefenderMind:
         best = math.hypot(bx - state[1], by - state[2])
         for k in range(MEET_HORIZON_CYCLES):
             before = (bx - state[1], by - state[2])
-            state = self._cycle(state, actions[k] if k < len(actions) else None)
+            state = self._reckoner.cycle(state, actions[k] if k < len(actions) else None)
             bx, by, bvx, bvy = bx + bvx, by + bvy, bvx * decay, bvy * decay
             best = min(best, _segment_gap(before, (bx - state[1], by - state[2])))
         return best
@@ -353,7 +354,7 @@ class CycleDefenderMind:
         """The predicted miss (:meth:`_miss`) after `actions`, one per cycle, then coasting."""
         best = math.inf
         for k, act in enumerate(actions):
-            state = self._cycle(state, act)
+            state = self._reckoner.cycle(state, act)
             if k < len(actions) - 1:
                 best = min(best, self._miss(state, ball, j + k + 1, horizon=0))
         return min(best, self._miss(state, ball, j + len(actions)))
@@ -378,11 +379,7 @@ class CycleDefenderMind:
 
     def _ball_at(self, ball: _Ball, j: int) -> Point:
         """The ball model's position `j` cycles after the newest sighting's see."""
-        tick, bx, by, bvx, bvy = ball
-        decay = self.ball_decay
-        for _ in range(self._sighting_tick - tick + j):
-            bx, by, bvx, bvy = bx + bvx, by + bvy, bvx * decay, bvy * decay
-        return bx, by
+        return ball_after(ball, self._sighting_tick - ball[0] + j, self.ball_decay)
 
     def _see_ball(self, tick: int, xy: Point) -> None:
         """Refit the ball's position and velocity to the last sightings (the server's decay)."""
@@ -410,23 +407,15 @@ class CycleDefenderMind:
 
     # ------------------------------------------------------------------ dead reckoning
 
-    def _send(self, tick: int, plan: tuple[Action, ...]) -> tuple[Action, ...]:
-        self._plan, self._plan_tick = plan, tick
-        return plan
-
     def _reckon(self, tick: int) -> None:
         """Carry the reckoned pose over the cycles run since the last plan was sent."""
         if self._plan_tick < 0:
             return
         state = (self._heading, self._x, self._y, self._vx, self._vy)
         for k in range(tick - self._plan_tick):
-            state = self._cycle(state, self._plan[k] if k < len(self._plan) else None)
+            state = self._reckoner.cycle(state, self._plan[k] if k < len(self._plan) else None)
         self._heading, self._x, self._y, self._vx, self._vy = state
         self._plan, self._plan_tick = (), tick
-
-    def _cycle(self, state: _Pose, action: Action | None) -> _Pose:
-        """(heading, x, y, stored vx, vy) after one server cycle carrying out `action`."""
-        return self._reckoner.cycle(state, action)
 
 
 def fit_ball(
@@ -457,6 +446,14 @@ def fit_ball(
     return newest, x, y, vx, vy
 
 
+def ball_after(ball: tuple[int, float, float, float, float], cycles: int, decay: float) -> Point:
+    """Where a fitted ball ``(tick, x, y, vx, vy)`` is `cycles` after its tick (server's law)."""
+    _, bx, by, bvx, bvy = ball
+    for _ in range(cycles):
+        bx, by, bvx, bvy = bx + bvx, by + bvy, bvx * decay, bvy * decay
+    return bx, by
+
+
 def _segment_gap(a: Point, b: Point) -> float:
     """Distance from the origin to the segment from `a` to `b`."""
     dx, dy = b[0] - a[0], b[1] - a[1]
@@ -477,41 +474,3 @@ _Ball = tuple[int, float, float, float, float]
 
 _Pose = tuple[float, float, float, float, float]
 """(heading [rad], x [m], y [m], stored vx, vy [m/cycle]) in the reckoned frame."""
-
-
-REVERSAL_MIN_TURN_RAD = math.radians(10.0)
-"""A turn counted by :class:`TurnReversals` is one of more than 10° (issue 28's definition)."""
-
-
-class TurnReversals:
-    """Counts turn reversals: a turn of more than 10° the other way from the last such turn.
-
-    Issue 28's dithering measure ("a reversal is a turn of more than 10° the other way from the
-    player's last turn of more than 10°"). Feed it each player's true heading once per sample
-    (a Soccer Server cycle; on the robots every 100 ms, the server's cycle, so the rates compare):
-    the turn is the heading change since the player's previous sample.
-
-    Attributes:
-        count: Reversals seen so far, all players together.
-    """
-
-    def __init__(self, min_turn_rad: float = REVERSAL_MIN_TURN_RAD) -> None:
-        if not (math.isfinite(min_turn_rad) and min_turn_rad >= 0.0):
-            raise ValueError(f"min_turn_rad must be a finite angle >= 0, got {min_turn_rad!r}")
-        self.min_turn_rad = min_turn_rad
-        self.count = 0
-        self._heading: dict[object, float] = {}
-        self._sign: dict[object, int] = {}
-
-    def sample(self, player: object, heading_rad: float) -> None:
-        """Take `player`'s heading [rad] now; count a reversal if this turn is one."""
-        last = self._heading.get(player)
-        self._heading[player] = heading_rad
-        if last is None:
-            return
-        turn = wrap_angle(heading_rad - last)
-        if abs(turn) > self.min_turn_rad:
-            sign = 1 if turn > 0.0 else -1
-            if self._sign.get(player, 0) == -sign:
-                self.count += 1
-            self._sign[player] = sign

@@ -23,8 +23,9 @@ from robotsoccer.drills.intercept import InterceptDrill
 from robotsoccer.drills.intercept_batch import batch_reason
 from robotsoccer.drills.intercept_plan import DEFENDER
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial, run_trial
-from robotsoccer.skills.cycle import CycleDefenderMind, TurnReversals, fit_ball
+from robotsoccer.skills.cycle import CycleDefenderMind, fit_ball
 from robotsoccer.skills.localise import Localiser
+from robotsoccer.skills.reversals import TurnReversals
 from robotsoccer.skills.turn_policies import straight_policy
 
 ME = PlayerRef(RIGHT, 1)

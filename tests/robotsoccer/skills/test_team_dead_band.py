@@ -11,7 +11,7 @@ from field_models.protocol import LEFT, RIGHT, Dash, Percept, Turn
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.match_options import dead_band_teams
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial, run_trial
-from robotsoccer.skills.cycle import TurnReversals
+from robotsoccer.skills.reversals import TurnReversals
 from robotsoccer.skills.team import TeamMind
 from robotsoccer.skills.team_setup import REVERSE_HOLD_TICKS, TeamSetup
 

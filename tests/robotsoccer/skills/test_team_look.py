@@ -19,7 +19,7 @@ from field_models.protocol import (
 )
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.runs.runner import DrillOption, TrialLoop, TrialSpec, build_trial, run_trial
-from robotsoccer.skills.cycle import TurnReversals
+from robotsoccer.skills.reversals import TurnReversals
 from robotsoccer.skills.team_look import NECK_MAX_RAD, NeckLook, look_target
 
 ME = PlayerRef(LEFT, 4)
