@@ -3,8 +3,8 @@
 ``robotsoccer match --games N`` has no switch for the match drill's ``steady_turns`` option, so
 this script builds the same series (the CLI's base spec, :func:`robotsoccer.experiments.match.
 run_series` and its report) with the option set or not, and then counts turn reversals
-(:class:`~robotsoccer.skills.reversals.TurnReversals`: a turn of more than 10° the other way from the
-player's last such turn, every cycle, true headings) in the first `--reversal-games` games of
+(:class:`~robotsoccer.skills.reversals.TurnReversals`: a turn of more than 10° the other way from
+the player's last such turn, every cycle, true headings) in the first `--reversal-games` games of
 each side through the trial runner's own loop, per team kind, per player-minute.
 
     python scripts/server_series.py --preset soccer_server_1996 --games 34 --workers 2 \
