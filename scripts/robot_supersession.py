@@ -2,7 +2,8 @@
 
 Runs robot trials through the trial runner's own loop and reads counters that change nothing
 (the host's, the link's and the firmware's, plus
-:class:`~robotsoccer.skills.reversals.TurnReversals` on each thinking robot's true heading every 100 ms, the Soccer Server's cycle):
+:class:`~robotsoccer.skills.reversals.TurnReversals` on each thinking robot's true heading
+every 100 ms, the Soccer Server's cycle):
 
 * **host dropped**: body actions of a decision still waiting (not sent) when the robot's next
   decision replaced them -- on the Soccer Server this is the "lost dash" (a turn, then a dash a
