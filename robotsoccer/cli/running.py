@@ -1,6 +1,7 @@
 """What every command does around its work.
 
-One-line failures, the spec a command's options describe, a demo's tally, a clock for the log.
+One-line failures, a pipeline's outcome shown, the spec a command's options describe, a demo's
+tally, a clock for the log.
 """
 
 from __future__ import annotations
@@ -12,19 +13,16 @@ import sys
 import time
 from collections import Counter
 from collections.abc import Callable, Sequence
-from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 from field_models.arena import FieldOptions
+from robotsoccer.cli.options import EXIT_INTERRUPTED
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 
 # check_spec lives beside build_trial (the pipelines in robotsoccer.experiments use it too);
 # re-exported here, where the commands have always found it.
 from robotsoccer.runs.runner import check_spec as check_spec
 from robotsoccer.stats import wilson_interval
-
-if TYPE_CHECKING:
-    from robotsoccer.experiments.context import RunContext
 
 
 def fail(status: int, message: str) -> int:
@@ -33,6 +31,31 @@ def fail(status: int, message: str) -> int:
     with contextlib.suppress(BrokenPipeError):  # stderr closed too: nothing left to tell
         print(f"robotsoccer: error: {first}", file=sys.stderr)
     return status
+
+
+class Shown(Protocol):
+    """A pipeline's outcome as the command prints it."""
+
+    @property
+    def lines(self) -> tuple[str, ...]:
+        """The lines to print, in order."""
+
+
+def show(run: Callable[[], Shown]) -> int:
+    """Run a pipeline and print its outcome's lines (exit 0), or its interrupt's one line.
+
+    A pipeline raises :class:`~robotsoccer.experiments.context.RunInterrupted` on Ctrl-C with
+    what it kept; that is the one line, with the interrupt's exit status.
+    """
+    from robotsoccer.experiments.context import RunInterrupted
+
+    try:
+        outcome = run()
+    except RunInterrupted as stop:
+        return fail(EXIT_INTERRUPTED, str(stop))
+    for line in outcome.lines:
+        print(line)
+    return 0
 
 
 def silence_stdout() -> None:
@@ -89,27 +112,3 @@ def clock_log() -> Callable[[str], None]:
         print(f"[{time.perf_counter() - start:6.1f} s] {line}", flush=True)
 
     return log
-
-
-def run_context(
-    args: argparse.Namespace,
-    out: Path,
-    created_by: str,
-    *,
-    log: Callable[[str], None] | None = None,
-) -> RunContext:
-    """The experiment context of a command: `out`, ``--seed``, ``--workers``, a clock log.
-
-    Progress bars show when stderr is a terminal.
-    """
-    from robotsoccer.experiments.context import RunContext, seeds_for
-    from robotsoccer.runs.pool import default_workers
-
-    return RunContext(
-        out,
-        seeds_for(args.seed),
-        args.workers or default_workers(),
-        log or clock_log(),
-        progress=sys.stderr.isatty(),
-        created_by=created_by,
-    )

@@ -13,7 +13,8 @@ it. Results do not depend on it, nor on the worker count.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -51,6 +52,44 @@ class RunInterrupted(Exception):
     A pipeline raises it in place of the KeyboardInterrupt; the CLI prints the message and
     exits with its interrupt status.
     """
+
+
+@contextmanager
+def kept_on_interrupt(out: Path, kept: str = "trials") -> Iterator[None]:
+    """Turn Ctrl-C inside the block into :class:`RunInterrupted` saying what `out` keeps.
+
+    `kept` names what a rerun with ``--resume`` need not redo (trials, games).
+    """
+    try:
+        yield
+    except KeyboardInterrupt:
+        raise RunInterrupted(
+            f"interrupted; finished {kept} are kept under {out} (--resume finishes the run)"
+        ) from None
+
+
+@dataclass(frozen=True)
+class ReportOutcome:
+    """What a command's study left: its report, how long it took and with how many processes.
+
+    Attributes:
+        report: Its ``report.md``.
+        wall_s: Wall time of the study [s].
+        workers: The processes it ran with.
+    """
+
+    report: Path
+    wall_s: float
+    workers: int
+
+    @property
+    def lines(self) -> tuple[str, ...]:
+        """What the command prints: a blank line, the report, where it is and how long it took."""
+        return (
+            "",
+            self.report.read_text(),
+            f"report: {self.report}  ({self.wall_s:.0f} s with {self.workers} worker(s))",
+        )
 
 
 def _quiet(line: str) -> None:

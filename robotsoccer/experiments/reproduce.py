@@ -2,24 +2,35 @@
 
 Layer 1, then layer 2, the lead study, layer 3 and the transfer study, in one run folder.
 The CLI (:mod:`robotsoccer.cli.commands.reproduce`) only reads its options into a
-:class:`ReproduceParts` and a :class:`~robotsoccer.experiments.context.RunContext`; what runs,
-in which order and into which folders is decided here. ``learn intercept`` is the same pipeline
-with layer 1 alone.
+:class:`ReproduceRun` and prints what :func:`run_reproduce` returns; the run folder, the
+context and what runs, in which order and into which folders are decided here (the steps:
+:func:`run_steps`). ``learn intercept`` is the same pipeline with layer 1 alone
+(:class:`robotsoccer.experiments.learn_run.InterceptRun`).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Protocol
 
 from robotsoccer.experiments import layer1_plan
-from robotsoccer.experiments.context import Field, RunContext
+from robotsoccer.experiments.context import (
+    Field,
+    Log,
+    ReportOutcome,
+    RunContext,
+    kept_on_interrupt,
+)
 from robotsoccer.experiments.lead_study import StudyDrill
 from robotsoccer.experiments.report_records import ModelSection
 from robotsoccer.experiments.transfer_study import TransferSetup
+from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
+from robotsoccer.runs.runner import TrialSpec, check_spec
 
 
 @dataclass(frozen=True)
@@ -43,7 +54,122 @@ class ReproduceParts:
     transfer: TransferSetup | None = None
 
 
-def run_reproduce(
+class LayersRequest(Protocol):
+    """What :func:`run_reproduce` runs: a :class:`ReproduceRun`, or ``learn intercept``'s."""
+
+    @property
+    def models(self) -> tuple[Field, ...]:
+        """The field models and presets layer 1 runs on, in report order."""
+
+    @property
+    def parts(self) -> ReproduceParts:
+        """The steps after layer 1."""
+
+    @property
+    def quick(self) -> bool:
+        """The quick plans."""
+
+    @property
+    def seed(self) -> int:
+        """The experiment seed."""
+
+    @property
+    def folder(self) -> Path:
+        """The run folder."""
+
+    @property
+    def title(self) -> str:
+        """The report's title."""
+
+    @property
+    def created_by(self) -> str:
+        """The command named in the files' provenance."""
+
+    @property
+    def resume(self) -> bool:
+        """Continue the run in the folder."""
+
+    @property
+    def overwrite(self) -> bool:
+        """Replace the run in the folder."""
+
+    @property
+    def workers(self) -> int | None:
+        """Processes (None: all cores)."""
+
+    @property
+    def progress(self) -> bool:
+        """Show a progress bar for each batch of trials."""
+
+
+@dataclass(frozen=True)
+class ReproduceRun:
+    """What ``robotsoccer reproduce`` runs, and where.
+
+    Attributes:
+        models: The field models and presets, in report order.
+        parts: The steps after layer 1 (by default none).
+        quick: The quick plans.
+        seed: The experiment seed.
+        out: The run folder; None: ``runs/reproduce[-quick]-seed<S>``.
+        resume: Continue the run in `out`.
+        overwrite: Replace the run in `out`.
+        workers: Processes (None: all cores).
+        progress: Show a progress bar for each batch of trials.
+    """
+
+    models: tuple[Field, ...]
+    parts: ReproduceParts = ReproduceParts()
+    quick: bool = False
+    seed: int = 0
+    out: Path | None = None
+    resume: bool = False
+    overwrite: bool = False
+    workers: int | None = None
+    progress: bool = False
+
+    @property
+    def folder(self) -> Path:
+        """The run folder: `out`, or one named after the plan and seed."""
+        name = f"reproduce-quick-seed{self.seed}" if self.quick else f"reproduce-seed{self.seed}"
+        return self.out or Path("runs") / name
+
+    @property
+    def title(self) -> str:
+        """The report's title."""
+        title = "Layers 1 and 2 reproduced (Stone & Veloso 1996, §5 and §6)"
+        return title + (" — quick plan" if self.quick else "")
+
+    @property
+    def created_by(self) -> str:
+        """The command named in the files' provenance."""
+        return "robotsoccer reproduce"
+
+
+def run_reproduce(request: LayersRequest, log: Log) -> ReportOutcome:
+    """Check the presets, prepare the run folder and run the steps (:func:`run_steps`).
+
+    A bad preset fails before the folder is touched. `log` gets the steps' progress lines.
+
+    Raises:
+        ValueError: A bad preset, or a run folder in the way (one line each).
+        RunInterrupted: Ctrl-C; the finished trials are kept (``resume`` finishes the run).
+    """
+    for model, preset in request.models:  # a bad preset fails here with one line, not in a worker
+        check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
+    out = request.folder
+    prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
+    start = time.perf_counter()
+    workers = request.workers or default_workers()
+    ctx = RunContext.for_seed(
+        out, request.seed, workers, log, progress=request.progress, created_by=request.created_by
+    )
+    with kept_on_interrupt(out):
+        report = run_steps(request.models, request.quick, ctx, request.parts, request.title)
+    return ReportOutcome(report, time.perf_counter() - start, workers)
+
+
+def run_steps(
     models: Sequence[Field], quick: bool, ctx: RunContext, parts: ReproduceParts, title: str
 ) -> Path:
     """Run layer 1 on `models` and the steps `parts` names into the run; return the report.

@@ -17,7 +17,7 @@ from pathlib import Path
 from field_models.registry import default_preset
 from learning.tpot import WINDOW_CHOICE
 from robotsoccer.experiments import team_study
-from robotsoccer.experiments.context import Log, RunInterrupted
+from robotsoccer.experiments.context import Log, ReportOutcome, kept_on_interrupt
 from robotsoccer.experiments.match_run import LayerFiles
 from robotsoccer.experiments.team_plan import TeamPlan
 from robotsoccer.runs.folders import prepare_run_folder
@@ -94,31 +94,7 @@ class TeamRun:
         return self.out or Path("runs") / f"{tag}-seed{self.seed}"
 
 
-@dataclass(frozen=True)
-class TeamOutcome:
-    """What layer 3's study left.
-
-    Attributes:
-        report: Its ``report.md``.
-        wall_s: Wall time of the study [s] (training and series).
-        workers: The processes it ran with.
-    """
-
-    report: Path
-    wall_s: float
-    workers: int
-
-    @property
-    def lines(self) -> tuple[str, ...]:
-        """What the command prints: a blank line, the report, where it is and how long it took."""
-        return (
-            "",
-            self.report.read_text(),
-            f"report: {self.report}  ({self.wall_s:.0f} s with {self.workers} worker(s))",
-        )
-
-
-def run_learn_team(request: TeamRun, log: Log) -> TeamOutcome:
+def run_learn_team(request: TeamRun, log: Log) -> ReportOutcome:
     """Check the request, prepare the run folder, write ``config.json``, run the study.
 
     The layers, the plan, the match spec and a given table are checked before the folder is
@@ -154,13 +130,9 @@ def run_learn_team(request: TeamRun, log: Log) -> TeamOutcome:
     }
     (out / "config.json").write_text(json.dumps(config, indent=2) + "\n")
     start = time.perf_counter()
-    try:
+    with kept_on_interrupt(out, "games"):
         report = team_study.run_team_study(
             base, plan, out, workers=workers, log=log, resume=request.resume,
             progress=request.progress, table=request.table,
         )  # fmt: skip
-    except KeyboardInterrupt:
-        raise RunInterrupted(
-            f"interrupted; finished games are kept under {out} (--resume finishes the run)"
-        ) from None
-    return TeamOutcome(report, time.perf_counter() - start, workers)
+    return ReportOutcome(report, time.perf_counter() - start, workers)

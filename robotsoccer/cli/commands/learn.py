@@ -1,116 +1,115 @@
 """``robotsoccer learn intercept|pass|lead|team``: one layer's experiment.
 
-And the pipeline that ``learn intercept`` and ``reproduce`` share (:func:`run_pipeline`).
+The pipelines are in :mod:`robotsoccer.experiments.learn_run` (``intercept``, through
+:func:`robotsoccer.experiments.reproduce.run_reproduce`; ``pass``; ``lead``) and
+:mod:`robotsoccer.experiments.team_run` (``team``); each command reads its options into the
+pipeline's request and prints the outcome.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import sys
-import time
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from field_models.registry import FIELD_MODELS, default_preset
-from robotsoccer.cli.options import (
-    DEFAULT_FIELD,
-    EXIT_INTERRUPTED,
-    LEAD_DRILLS,
-    TEAM_FIELD,
-    _positive_int,
-)
-from robotsoccer.cli.running import check_spec, clock_log, fail, run_context
+from field_models.registry import FIELD_MODELS
+from robotsoccer.cli.options import DEFAULT_FIELD, LEAD_DRILLS, TEAM_FIELD, _positive_int
+from robotsoccer.cli.running import clock_log, show
 from robotsoccer.cli.shared import Commands, Parser, experiment_options
-from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.pool import default_workers
-from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
-    from robotsoccer.experiments.reproduce import ReproduceParts
+    from robotsoccer.experiments.learn_run import InterceptRun, LeadRun, PassRun
     from robotsoccer.experiments.team_run import TeamRun
 
 
 def cmd_learn(args: argparse.Namespace) -> int:
-    """``learn intercept`` / ``learn pass``: one layer on one field model."""
+    """``learn intercept``: layer 1 on one field model (and the other targets' dispatch)."""
     if args.target == "pass":
         return cmd_learn_pass(args)
     if args.target == "lead":
         return cmd_learn_lead(args)
     if args.target == "team":
         return cmd_learn_team(args)
-    from robotsoccer.experiments.reproduce import ReproduceParts
+    from robotsoccer.experiments.reproduce import run_reproduce
 
-    preset = args.field_preset or default_preset(args.field)
-    client = "" if args.client == "see" else f"-{args.client}"
-    tag = f"learn-intercept-{args.field}-{Path(preset).stem}{client}" + (
-        "-quick" if args.quick else ""
-    )
-    out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
-    title = f"Layer 1 (interception) on {args.field}" + (" — quick plan" if args.quick else "")
-    parts = ReproduceParts(client=args.client)
-    return run_pipeline(
-        args, [(args.field, preset)], out, title, "robotsoccer learn intercept", parts
+    return show(lambda: run_reproduce(intercept_request(args), clock_log()))
+
+
+def intercept_request(args: argparse.Namespace) -> InterceptRun:
+    """The run ``robotsoccer learn intercept``'s options ask for."""
+    from robotsoccer.experiments.learn_run import InterceptRun
+
+    return InterceptRun(
+        field=args.field,
+        preset=args.field_preset,
+        client=args.client,
+        quick=args.quick,
+        seed=args.seed,
+        out=args.out,
+        resume=args.resume,
+        overwrite=args.overwrite,
+        workers=args.workers,
+        progress=sys.stderr.isatty(),
     )
 
 
 def cmd_learn_pass(args: argparse.Namespace) -> int:
     """``learn pass``: layer 2 on one field model (collect → train → evaluate → report)."""
-    from robotsoccer.experiments.layer1 import train_main_net
-    from robotsoccer.experiments.layer1_plan import plan_for
-    from robotsoccer.experiments.layer2 import layer2_markdown, layer2_plan, run_layer2_model
-    from robotsoccer.experiments.plots_layer2 import layer2_plots
+    from robotsoccer.experiments.learn_run import run_learn_pass
 
-    preset = args.field_preset or default_preset(args.field)
-    tag = f"learn-pass-{args.field}-{Path(preset).stem}" + ("-quick" if args.quick else "")
-    out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
-    check_spec(TrialSpec(drill="pass", field_model=args.field, preset=preset))
-    if args.net is not None:
-        check_spec(
-            TrialSpec(drill="pass", field_model=args.field, preset=preset).with_options(
-                interceptor="net", net=str(args.net)
-            )
-        )
-    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    plan = layer2_plan(args.quick)
-    ctx = run_context(args, out, "robotsoccer learn pass")
-    workers = ctx.workers
-    start = time.perf_counter()
-    try:
-        net = args.net
-        if net is None:
-            net = train_main_net((args.field, preset), plan_for(args.quick), ctx)
-        section = run_layer2_model((args.field, preset), net, plan, ctx)
-    except KeyboardInterrupt:
-        return fail(
-            EXIT_INTERRUPTED,
-            f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
-        )
-    title = f"# Layer 2 (pass evaluation) on {args.field}" + (" — quick plan" if args.quick else "")
-    report = out / "report.md"
-    plots = layer2_plots([section], out)
-    report.write_text(f"{title}\n\n{layer2_markdown([section], plan, plots)}")
-    (out / "config.json").write_text(
-        json.dumps({"plan": plan.to_dict(), "seed": args.seed, "net": str(net)}, indent=2) + "\n"
+    return show(lambda: run_learn_pass(pass_request(args), clock_log()))
+
+
+def pass_request(args: argparse.Namespace) -> PassRun:
+    """The run ``robotsoccer learn pass``'s options ask for."""
+    from robotsoccer.experiments.learn_run import PassRun
+
+    return PassRun(
+        field=args.field,
+        preset=args.field_preset,
+        net=args.net,
+        quick=args.quick,
+        seed=args.seed,
+        out=args.out,
+        resume=args.resume,
+        overwrite=args.overwrite,
+        workers=args.workers,
+        progress=sys.stderr.isatty(),
     )
-    print()
-    print(report.read_text())
-    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
-    return 0
+
+
+def cmd_learn_lead(args: argparse.Namespace) -> int:
+    """``learn lead``: layer 1's two decisions on one or both field models, with a report."""
+    from robotsoccer.experiments.learn_run import run_learn_lead
+
+    return show(lambda: run_learn_lead(lead_request(args), clock_log()))
+
+
+def lead_request(args: argparse.Namespace) -> LeadRun:
+    """The study ``robotsoccer learn lead``'s options ask for: one field's drill, or both."""
+    from robotsoccer.experiments.lead_study import StudyDrill
+    from robotsoccer.experiments.learn_run import LeadRun
+
+    fields = [args.field] if args.field else list(LEAD_DRILLS)
+    drills = tuple(StudyDrill(f, *LEAD_DRILLS[f]) for f in fields)
+    return LeadRun(
+        drills=drills,
+        quick=args.quick,
+        seed=args.seed,
+        out=args.out,
+        resume=args.resume,
+        overwrite=args.overwrite,
+        workers=args.workers,
+        progress=sys.stderr.isatty(),
+    )
 
 
 def cmd_learn_team(args: argparse.Namespace) -> int:
     """``learn team``: layer 3 (TPOT-RL) trained against the baseline, then the two series."""
-    from robotsoccer.experiments.context import RunInterrupted
     from robotsoccer.experiments.team_run import run_learn_team
 
-    try:
-        outcome = run_learn_team(team_request(args), clock_log())
-    except RunInterrupted as stop:
-        return fail(EXIT_INTERRUPTED, str(stop))
-    for line in outcome.lines:
-        print(line)
-    return 0
+    return show(lambda: run_learn_team(team_request(args), clock_log()))
 
 
 def team_request(args: argparse.Namespace) -> TeamRun:
@@ -137,72 +136,6 @@ def team_request(args: argparse.Namespace) -> TeamRun:
         workers=args.workers,
         progress=sys.stderr.isatty(),
     )
-
-
-def cmd_learn_lead(args: argparse.Namespace) -> int:
-    """``learn lead``: layer 1's two decisions on one or both field models, with a report."""
-    from robotsoccer.experiments.lead_study import StudyDrill, plan_for
-    from robotsoccer.experiments.reproduce import lead_step
-
-    fields = [args.field] if args.field else list(LEAD_DRILLS)
-    drills = [StudyDrill(f, *LEAD_DRILLS[f]) for f in fields]
-    tag = "learn-lead" + (f"-{args.field}" if args.field else "") + ("-quick" if args.quick else "")
-    out = args.out or Path("runs") / f"{tag}-seed{args.seed}"
-    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    plan = plan_for(args.quick)
-    workers = args.workers or default_workers()
-    start = time.perf_counter()
-    try:
-        text = lead_step(drills, args.quick, run_context(args, out, "robotsoccer learn lead"))
-    except KeyboardInterrupt:
-        return fail(
-            EXIT_INTERRUPTED,
-            f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
-        )
-    report = out / "report.md"
-    report.write_text(
-        f"# Layer 1: the lead decision{' — quick plan' if args.quick else ''}\n\n{text}"
-    )
-    (out / "config.json").write_text(
-        json.dumps({"plan": plan.to_dict(), "seed": args.seed, "fields": fields}, indent=2) + "\n"
-    )
-    print()
-    print(report.read_text())
-    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
-    return 0
-
-
-def run_pipeline(
-    args: argparse.Namespace,
-    models: list[tuple[str, str]],
-    out: Path,
-    title: str,
-    created_by: str,
-    parts: ReproduceParts,
-) -> int:
-    """Check the presets, prepare the folder and run the pipeline; one line on an interrupt.
-
-    ``learn intercept`` and ``reproduce`` (:mod:`robotsoccer.cli.commands.reproduce`) run
-    :func:`~robotsoccer.experiments.reproduce.run_reproduce` through it.
-    """
-    from robotsoccer.experiments.reproduce import run_reproduce
-
-    for model, preset in models:  # a bad preset fails here with one line, not in a worker
-        check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
-    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    start = time.perf_counter()
-    ctx = run_context(args, out, created_by)
-    try:
-        report = run_reproduce(models, args.quick, ctx, parts, title)
-    except KeyboardInterrupt:
-        return fail(
-            EXIT_INTERRUPTED,
-            f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
-        )
-    print()
-    print(report.read_text())
-    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {ctx.workers} worker(s))")
-    return 0
 
 
 def add_parser(commands: Commands) -> None:

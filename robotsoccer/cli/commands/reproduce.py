@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
+import sys
+from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
-from robotsoccer.cli.commands.learn import run_pipeline
 from robotsoccer.cli.commands.transfer import transfer_setup
 from robotsoccer.cli.options import LEAD_DRILLS, PAPER_MODELS, TEAM_FIELD
+from robotsoccer.cli.running import clock_log, show
 from robotsoccer.cli.shared import Commands, experiment_options, transfer_options
+
+if TYPE_CHECKING:
+    from robotsoccer.experiments.reproduce import ReproduceRun
 
 
 def cmd_reproduce(args: argparse.Namespace) -> int:
@@ -18,15 +22,17 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
     Layers 1 and 2 on both field models, the lead study, a quick layer 3 and the transfer
     study, into one folder; ``--no-lead``, ``--no-team``, ``--no-transfer`` leave steps out.
     """
-    from robotsoccer.experiments.lead_study import StudyDrill
-    from robotsoccer.experiments.reproduce import ReproduceParts
+    from robotsoccer.experiments.reproduce import run_reproduce
 
-    name = f"reproduce-quick-seed{args.seed}" if args.quick else f"reproduce-seed{args.seed}"
-    out = args.out or Path("runs") / name
-    models = [(model, default_preset(model)) for model in PAPER_MODELS]
-    title = "Layers 1 and 2 reproduced (Stone & Veloso 1996, §5 and §6)" + (
-        " — quick plan" if args.quick else ""
-    )
+    return show(lambda: run_reproduce(reproduce_request(args), clock_log()))
+
+
+def reproduce_request(args: argparse.Namespace) -> ReproduceRun:
+    """The run ``robotsoccer reproduce``'s options ask for: both paper models, the steps kept."""
+    from robotsoccer.experiments.lead_study import StudyDrill
+    from robotsoccer.experiments.reproduce import ReproduceParts, ReproduceRun
+
+    models = tuple((model, default_preset(model)) for model in PAPER_MODELS)
     parts = ReproduceParts(
         layer2=True,
         lead_drills=()
@@ -35,7 +41,17 @@ def cmd_reproduce(args: argparse.Namespace) -> int:
         team_field=None if args.no_team else TEAM_FIELD,
         transfer=None if args.no_transfer else transfer_setup(args, models),
     )
-    return run_pipeline(args, models, out, title, "robotsoccer reproduce", parts)
+    return ReproduceRun(
+        models=models,
+        parts=parts,
+        quick=args.quick,
+        seed=args.seed,
+        out=args.out,
+        resume=args.resume,
+        overwrite=args.overwrite,
+        workers=args.workers,
+        progress=sys.stderr.isatty(),
+    )
 
 
 def add_parser(commands: Commands) -> None:

@@ -3,55 +3,43 @@
 from __future__ import annotations
 
 import argparse
-import time
-from pathlib import Path
+import sys
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
-from robotsoccer.cli.options import (
-    EXIT_INTERRUPTED,
-    LEAD_DRILLS,
-    PAPER_MODELS,
-    REFERENCE_FIELD,
-    TARGET_FIELD,
-)
-from robotsoccer.cli.running import check_spec, fail, run_context
+from robotsoccer.cli.options import LEAD_DRILLS, PAPER_MODELS, REFERENCE_FIELD, TARGET_FIELD
+from robotsoccer.cli.running import clock_log, show
 from robotsoccer.cli.shared import Commands, experiment_options, transfer_options
-from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.runner import TrialSpec
 
 if TYPE_CHECKING:
     from robotsoccer.experiments.gap_variants import ParameterRange
+    from robotsoccer.experiments.transfer_run import TransferRun
     from robotsoccer.experiments.transfer_study import TransferSetup
 
 
 def cmd_transfer(args: argparse.Namespace) -> int:
     """``transfer``: each field model's net and pass tree tested on every field model."""
-    name = f"transfer-quick-seed{args.seed}" if args.quick else f"transfer-seed{args.seed}"
-    out = args.out or Path("runs") / name
-    models = [(model, default_preset(model)) for model in PAPER_MODELS]
-    for model, preset in models:
-        check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
-    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    from robotsoccer.experiments.transfer_study import run_transfer_study
+    from robotsoccer.experiments.transfer_run import run_transfer
 
-    ctx = run_context(args, out, "robotsoccer transfer")
-    workers = ctx.workers
-    start = time.perf_counter()
-    try:
-        section = run_transfer_study(transfer_setup(args, models), args.quick, ctx)
-    except KeyboardInterrupt:
-        return fail(
-            EXIT_INTERRUPTED,
-            f"interrupted; finished trials are kept under {out} (--resume finishes the run)",
-        )
-    report = out / "report.md"
-    title = "# The transfer study" + (" — quick plan" if args.quick else "")
-    report.write_text(f"{title}\n\n{section}")
-    print()
-    print(report.read_text())
-    print(f"report: {report}  ({time.perf_counter() - start:.0f} s with {workers} worker(s))")
-    return 0
+    return show(lambda: run_transfer(transfer_request(args), clock_log()))
+
+
+def transfer_request(args: argparse.Namespace) -> TransferRun:
+    """The study ``robotsoccer transfer``'s options ask for, on the paper's field models."""
+    from robotsoccer.experiments.transfer_run import TransferRun
+
+    models = [(model, default_preset(model)) for model in PAPER_MODELS]
+    return TransferRun(
+        setup=transfer_setup(args, models),
+        quick=args.quick,
+        seed=args.seed,
+        out=args.out,
+        resume=args.resume,
+        overwrite=args.overwrite,
+        workers=args.workers,
+        progress=sys.stderr.isatty(),
+    )
 
 
 def server_ranges_covering_robots() -> tuple[ParameterRange, ...]:
@@ -90,7 +78,7 @@ def server_ranges_covering_robots() -> tuple[ParameterRange, ...]:
     )  # fmt: skip
 
 
-def transfer_setup(args: argparse.Namespace, models: list[tuple[str, str]]) -> TransferSetup:
+def transfer_setup(args: argparse.Namespace, models: Sequence[tuple[str, str]]) -> TransferSetup:
     """The transfer study's setting from the command's options (which parts, quick or not)."""
     from robotsoccer.experiments.gap_variants import Randomisation
     from robotsoccer.experiments.lead_study import StudyDrill
