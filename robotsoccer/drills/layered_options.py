@@ -32,6 +32,14 @@ def _needs_model(chooser: Chooser, model: str) -> None:
         raise ValueError(f"chooser {chooser.value!r} needs a model file (option model=...)")
 
 
+def _client(client: ClientKind | str, net: str) -> ClientKind:
+    """The client checked: a known one, and no lead net on the per-cycle client."""
+    kind = choice(ClientKind, client, "client")
+    if kind is ClientKind.CYCLE and net and model_decision(net) == "lead":
+        raise ValueError("client 'cycle' plays the turn decision: give a TA net or client=see")
+    return kind
+
+
 @dataclass(frozen=True, slots=True)
 class PassOptions:
     """The options of one pass drill, checked (text values turned into their kinds).
@@ -48,10 +56,14 @@ class PassOptions:
         transfer: Accept a tree or net trained on another field model or preset.
         receiver_half: ``use`` (default) the receivers' reported half of the attributes, or
             ``ignore`` it (unknown), to measure what the reports add.
+        client: The receivers' and defenders' layer 1: ``see`` (the paper's client) or
+            ``cycle`` (the per-cycle client; :mod:`robotsoccer.drills.passing`'s module
+            docstring, "Client").
 
     Raises:
-        ValueError: An unknown chooser, interceptor or defenders mode, a missing model file
-            name, or a time limit that is not positive.
+        ValueError: An unknown chooser, interceptor, defenders mode or client, a missing model
+            file name, a time limit that is not positive, a lead net with ``client=cycle``; at
+            set-up, ``client=cycle`` on the robots.
     """
 
     chooser: Chooser = Chooser.RANDOM
@@ -62,6 +74,7 @@ class PassOptions:
     max_time_s: float = 12.0
     transfer: bool = False
     receiver_half: str = "use"
+    client: ClientKind = ClientKind.SEE
 
     def __post_init__(self) -> None:
         chooser = choice(Chooser, self.chooser, "chooser")
@@ -74,6 +87,7 @@ class PassOptions:
         self._set("transfer", flag("transfer", self.transfer))
         if self.receiver_half not in RECEIVER_HALF:
             raise ValueError(f"unknown receiver_half {self.receiver_half!r} (known: use, ignore)")
+        self._set("client", _client(self.client, self.net))
 
     def _set(self, name: str, value: object) -> None:
         """Store a checked value (the record is frozen once built)."""
@@ -126,10 +140,7 @@ class SetPlayOptions:
             self._set("pass_speed_mps", float(self.pass_speed_mps))
         if self.defenders != "same":
             self._set("defenders", check_behaviour(self.defenders, self.net))
-        client = choice(ClientKind, self.client, "client")
-        self._set("client", client)
-        if client is ClientKind.CYCLE and self.net and model_decision(self.net) == "lead":
-            raise ValueError("client 'cycle' plays the turn decision: give a TA net or client=see")
+        self._set("client", _client(self.client, self.net))
 
     def _set(self, name: str, value: object) -> None:
         """Store a checked value (the record is frozen once built)."""

@@ -21,6 +21,13 @@ the same kick power on the Soccer Server. On a field without an aimable kick (th
 the coach launches the ball at the plan's launch speed along the direction the passer chose,
 one tick after its announcement.
 
+**Client** (option ``client``, issue 28): ``see`` (the default, the paper's client: receivers
+and defenders decide at each see, "turn, then dash") or ``cycle``, the Soccer Server's per-cycle
+client: their layer 1 is the per-cycle defender (:meth:`LayeredDrill.cycle_interceptor_for`,
+the same TA rule, as the set play's defenders), so that a tree is trained against the client
+the team plays on. The passer is the same on both. Refused on the robots, whose host already
+acts on every tick, and with a lead net (the per-cycle client plays the turn decision).
+
 **The coach's labels.** From the pass on, at every tick, the first player other than the passer
 within *control* distance of the ball (its kick reach, or touching plus a quarter unit on a field
 without a kick) decides the trial:
@@ -52,7 +59,7 @@ from learning.pass_features import PASS_SCHEMA
 from learning.pass_tree_file import load_pass_tree
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept_minds import cycle_defender
-from robotsoccer.drills.intercept_options import Launch, Scaling
+from robotsoccer.drills.intercept_options import ClientKind, Launch, Scaling
 from robotsoccer.drills.intercept_plan import LaunchPlan, cached_launch_plan, decision_ticks
 from robotsoccer.drills.layered_options import PassOptions
 from robotsoccer.skills.cycle import CycleDefenderMind
@@ -217,6 +224,13 @@ class LayeredDrill:
         return cycle_defender(policy, facts, plan, kickable_distance_m)
 
 
+CYCLE_ON_ROBOTS = (
+    "client=cycle is the Soccer Server's per-cycle client; the robots' host "
+    "already acts on every tick"
+)
+"""The one-line refusal of ``client=cycle`` on the robots (pass drill, set play)."""
+
+
 def control_reach(facts: FieldFacts) -> float:
     """Control of the ball: kick reach, or touching plus :data:`CONTROL_MARGIN_UNITS` [m]."""
     if facts.kick is not None:
@@ -264,6 +278,7 @@ class PassDrill(LayeredDrill):
         self.max_time_s = o.max_time_s
         self.transfer = o.transfer
         self.use_reports = o.receiver_half == "use"
+        self.client = o.client
         self.passer: PasserMind | None = None
         self._judge: _PassJudge | None = None
         self._checked: FieldFacts | None = None
@@ -275,6 +290,8 @@ class PassDrill(LayeredDrill):
     def setup(self, arena: Arena, rngs: TrialRngs) -> None:
         """Place ball and players (module docstring)."""
         facts = arena.facts
+        if self.client is ClientKind.CYCLE and facts.walled:
+            raise ValueError(CYCLE_ON_ROBOTS)
         self._check_origins(facts)
         plan = self.plan(facts)
         rng = rngs["placement"]
@@ -354,6 +371,8 @@ class PassDrill(LayeredDrill):
         self._judge.passer = passer
 
         def interceptor() -> Mind:
+            if self.client is ClientKind.CYCLE:
+                return self.cycle_interceptor_for(facts, plan, policy_rng, self.interceptor)
             return self.interceptor_for(facts, plan, policy_rng, self.interceptor)
 
         minds: dict[PlayerRef, Mind] = {PASSER: passer}

@@ -113,7 +113,7 @@ from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept_options import ClientKind
 from robotsoccer.drills.layered_options import SetPlayOptions
-from robotsoccer.drills.passing import LayeredDrill, load_evaluator
+from robotsoccer.drills.passing import CYCLE_ON_ROBOTS, LayeredDrill, load_evaluator
 from robotsoccer.drills.setplay_judge import SetPlayJudge
 from robotsoccer.drills.setplay_kicks import CoachKickRelay, ball_sense, coach_kicks, kick_powers
 from robotsoccer.skills.cycle import CycleDefenderMind
@@ -205,10 +205,7 @@ class SetPlayDrill(LayeredDrill):
         """Place the ball and the players (module docstring)."""
         facts = arena.facts
         if self.client is ClientKind.CYCLE and facts.walled:
-            raise ValueError(
-                "client=cycle is the Soccer Server's per-cycle client; the robots' host "
-                "already acts on every tick"
-            )
+            raise ValueError(CYCLE_ON_ROBOTS)
         self._check_origins(facts)
         plan = self.plan(facts)
         if self._max_time_s is None:

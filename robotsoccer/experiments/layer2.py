@@ -78,6 +78,9 @@ class Layer2Plan:
         eval_trials: Trials per test condition (paper: 5000).
         confident: The "pass only when confident" threshold (paper: .8).
         tree_depth_shown: Levels of the tree printed in the report.
+        client: The receivers' and defenders' client in every trial, collection and tests:
+            ``see`` (the paper's) or ``cycle`` (the per-cycle client, issue 28; the pass
+            drill's option ``client``).
     """
 
     name: str
@@ -85,6 +88,7 @@ class Layer2Plan:
     eval_trials: int
     confident: float = 0.8
     tree_depth_shown: int = 4
+    client: str = "see"
 
     def to_dict(self) -> dict[str, Any]:
         """The plan as plain JSON types."""
@@ -120,10 +124,17 @@ class Layer2Section:
     reports_heard: float = math.nan
 
 
-def pass_spec(field_model: str, preset: str, seed: int, net: Path) -> TrialSpec:
-    """The pass drill on a field model, receivers and defenders intercepting with `net`."""
+def pass_spec(
+    field_model: str, preset: str, seed: int, net: Path, client: str = "see"
+) -> TrialSpec:
+    """The pass drill on a field model, receivers and defenders intercepting with `net`.
+
+    On the per-cycle client the spec carries ``client=cycle``; the see client's spec names no
+    client, so its trials (and their stored results) are the ones it always had.
+    """
     spec = TrialSpec(drill=DRILL, field_model=field_model, preset=preset, seed=seed)
-    return spec.with_options(interceptor="net", net=str(net.resolve()))
+    spec = spec.with_options(interceptor="net", net=str(net.resolve()))
+    return spec if client == "see" else spec.with_options(client=client)
 
 
 def layer2_conditions(
@@ -161,6 +172,10 @@ def collect_passes(
         "n_trials": plan.collect_trials,
         "interceptor_net": Path(str(dict(base.drill_options)["net"])).name,
     }
+    client = dict(base.drill_options).get("client")
+    if client is not None:
+        # Only a cycle run names its client, so the see client's dataset stays byte-identical.
+        provenance["client"] = client
     dataset = dataset_from(results, provenance)
     dataset.save(path)
     return dataset, results, StageTiming("collect (random receiver)", ran, wall)
@@ -197,7 +212,7 @@ def train_main_tree(field: Field, net: Path, plan: Layer2Plan, ctx: RunContext) 
     field_model, preset = field
     out, seeds = ctx.out, ctx.seeds
     ctx.log(f"[{field_model}] layer 2: collect {plan.collect_trials} passes to a random receiver")
-    base = pass_spec(field_model, preset, seeds.collection, net)
+    base = pass_spec(field_model, preset, seeds.collection, net, plan.client)
     dataset, collected, timing = collect_passes(
         base, plan, out / "results" / field_model / "layer2",
         out / "datasets" / field_model / "passes.npz", ctx.workers, ctx.progress,
@@ -240,7 +255,7 @@ def run_layer2_model(field: Field, net: Path, plan: Layer2Plan, ctx: RunContext)
         f"({time.perf_counter() - start:.1f} s)"
     )
 
-    test_base = pass_spec(field_model, preset, seeds.evaluation, net)
+    test_base = pass_spec(field_model, preset, seeds.evaluation, net, plan.client)
     conditions = layer2_conditions(test_base, plan.eval_trials, tree_path, own_path, boost_path)
     for name, cond in conditions.items():
         results, ran, wall = evaluate(cond, results_dir, ctx.workers, ctx.progress)
@@ -423,6 +438,12 @@ def layer2_markdown(
 
     `plots` are (caption, path relative to the report) of the images to show first.
     """
+    client = (
+        "the per-cycle client of issue 28 (`client=cycle`: a command every cycle from a "
+        "world model kept between sees)"
+        if plan.client == "cycle"
+        else "the paper's see-triggered client (`client=see`: turn, then dash, at each see)"
+    )
     out = [
         "## Layer 2: pass evaluation (§6)",
         "",
@@ -430,6 +451,8 @@ def layer2_markdown(
         f"{plan.eval_trials} trials per test condition, all conditions on one evaluation seed "
         "(paired placements). Receivers and defenders intercept with this run's layer-1 net. "
         "Percentages carry 95% Wilson intervals; paper numbers are the Soccer Server's (1996).",
+        "",
+        f"Receivers' and defenders' client, in every trial (collection and tests): {client}.",
         "",
     ]
     for caption, path in plots:

@@ -10,6 +10,7 @@ first; ``learn lead`` the lead study (:mod:`robotsoccer.experiments.lead_study`)
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import time
 from dataclasses import dataclass
@@ -112,6 +113,8 @@ class PassRun:
         overwrite: Replace the run in `out`.
         workers: Processes (None: all cores).
         progress: Show a progress bar for each batch of trials.
+        client: The receivers' and defenders' client (``see`` or ``cycle``; the layer-2
+            plan's ``client``).
     """
 
     field: str
@@ -124,6 +127,7 @@ class PassRun:
     overwrite: bool = False
     workers: int | None = None
     progress: bool = False
+    client: str = "see"
 
     @property
     def model(self) -> Field:
@@ -154,12 +158,14 @@ def run_learn_pass(request: PassRun, log: Log) -> ReportOutcome:
 
     model = request.model
     spec = TrialSpec(drill="pass", field_model=model[0], preset=model[1])
+    if request.client != "see":
+        spec = spec.with_options(client=request.client)
     check_spec(spec)
     if request.net is not None:
         check_spec(spec.with_options(interceptor="net", net=str(request.net)))
     out = request.folder
     prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
-    plan = layer2.layer2_plan(request.quick)
+    plan = dataclasses.replace(layer2.layer2_plan(request.quick), client=request.client)
     workers = request.workers or default_workers()
     ctx = RunContext.for_seed(
         out, request.seed, workers, log, progress=request.progress,

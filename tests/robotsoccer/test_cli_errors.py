@@ -148,6 +148,14 @@ def test_an_error_inside_a_worker_is_one_line(tmp_path) -> None:
             ("demo", *FAST, "--drill", "setplay", "--option", "client=cycle"),
             ("client=cycle", "robots' host"),
         ),
+        (
+            ("demo", "--field", "soccer_server", "--drill", "pass", "--option", "client=udp"),
+            ("client", "known: see, cycle"),
+        ),
+        (
+            ("demo", *FAST, "--drill", "pass", "--option", "client=cycle"),
+            ("client=cycle", "robots' host"),
+        ),
     ],
 )
 def test_bad_values_are_refused_naming_the_option(args, words) -> None:

@@ -76,6 +76,7 @@ def pass_request(args: argparse.Namespace) -> PassRun:
         overwrite=args.overwrite,
         workers=args.workers,
         progress=sys.stderr.isatty(),
+        client=args.client,
     )
 
 
@@ -172,6 +173,13 @@ def add_parser(commands: Commands) -> None:
         type=Path,
         default=None,
         help="layer 1's interception net (.npz) for receivers and defenders (default: train it)",
+    )
+    passing.add_argument(
+        "--client",
+        default="see",
+        choices=("see", "cycle"),
+        help="the receivers' and defenders' client: see (the paper's: turn, then dash, at each "
+        "see) or cycle (a command every cycle, issue 28)",
     )
     experiment_options(passing)
     lead = targets.add_parser(

@@ -25,6 +25,7 @@ def test_the_registry_names_the_records_fields_in_the_old_keyword_order() -> Non
         "max_time_s",
         "transfer",
         "receiver_half",
+        "client",
     )
     assert drill_options("setplay") == (
         "chooser",

@@ -202,3 +202,56 @@ def test_a_receiver_reports_without_a_player_beyond_the_messages_range() -> None
 
     assert report(MAX_DISTANCE + 50.0) == report(None)  # left out, as if not seen
     assert report(30.0) != report(None)  # a player in range is reported
+
+
+# ----------------------------------------------------------------------------- the client
+
+
+def test_the_client_is_checked_and_see_is_the_default() -> None:
+    with pytest.raises(ValueError, match=r"^unknown client 'udp' \(known: see, cycle\)$"):
+        make_drill("pass", {"client": "udp"})
+    plain, see = spec("soccer_server"), spec("soccer_server", client="see")
+    # Rows, not results: the data hold nan (no tree), which equals nothing.
+    rows = [run_trial(plain, i).csv_row() for i in range(3)]
+    assert rows == [run_trial(see, i).csv_row() for i in range(3)]
+
+
+def test_the_robots_refuse_the_per_cycle_client() -> None:
+    rngs, drill, arena = build_trial(spec("robot_physics", client="cycle"), 0)
+    with pytest.raises(ValueError, match=r"^client=cycle is the Soccer Server's per-cycle client"):
+        drill.setup(arena, rngs)
+
+
+def test_a_lead_net_is_refused_on_the_per_cycle_client(tmp_path: Path) -> None:
+    from tests.robotsoccer.drills.test_match import lead_net_file
+
+    net = lead_net_file(tmp_path)
+    with pytest.raises(ValueError, match=r"^client 'cycle' plays the turn decision"):
+        make_drill("pass", {"interceptor": "net", "net": str(net), "client": "cycle"})
+
+
+def test_a_pass_on_the_per_cycle_client_reaches_a_verdict() -> None:
+    from robotsoccer.skills.cycle import CycleDefenderMind
+    from robotsoccer.skills.pass_receivers import ReceiverMind, WaitingInterceptorMind
+
+    s = spec("soccer_server", client="cycle")
+    rngs, drill, arena = build_trial(s, 0)
+    drill.setup(arena, rngs)
+    minds = drill.minds(arena, rngs)
+    for ref in RECEIVERS:
+        mind = minds[ref]
+        assert isinstance(mind, ReceiverMind)
+        assert isinstance(mind.interceptor, CycleDefenderMind)
+    for ref in DEFENDERS:
+        mind = minds[ref]
+        assert isinstance(mind, WaitingInterceptorMind)
+        assert isinstance(mind.interceptor, CycleDefenderMind)
+    results = [run_trial(s, i) for i in range(8)]
+    rows = [r.csv_row() for r in results]
+    assert [run_trial(s, i).csv_row() for i in range(8)] == rows
+    for result in results:
+        assert result.label in ("SUCCESS", "FAILURE", "MISS")
+        assert "time ran out" not in result.reason  # a player took the ball
+    see = [run_trial(spec("soccer_server"), i) for i in range(8)]
+    assert [r.data[0] for r in see] == [r.data[0] for r in results]  # the passer is the same
+    assert [r.csv_row() for r in see] != rows  # the receivers' and defenders' client counts

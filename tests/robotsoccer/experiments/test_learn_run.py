@@ -132,6 +132,33 @@ def test_learn_pass_runs_layer_2_on_a_given_net(
     assert not (out / "models" / FIELD / "net_10.npz").exists()  # the given net, none trained
 
 
+def test_learn_pass_on_the_per_cycle_client_carries_it_into_every_trial_and_the_report(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from robotsoccer.cli.commands.learn import pass_request
+    from robotsoccer.cli.parser import build_parser
+
+    args = build_parser().parse_args(["learn", "pass", "--client", "cycle"])
+    assert pass_request(args).client == "cycle"
+    assert pass_request(build_parser().parse_args(["learn", "pass"])).client == "see"
+    monkeypatch.setattr(layer2, "layer2_plan", lambda quick: TINY_LAYER2)
+    net = net_file(tmp_path / "net.npz", preset="soccer_server_1996")
+    out = tmp_path / "p"
+    request = PassRun(FIELD, net=net, seed=1, out=out, workers=1, client="cycle")
+    report = run_learn_pass(request, print).report.read_text()
+    assert "client, in every trial (collection and tests): the per-cycle client" in report
+    results = sorted((out / "results" / FIELD / "layer2").glob("*.json"))
+    assert len(results) == 8  # the collection and the 7 tests
+    for path in results:
+        options = dict(json.loads(path.read_text())["spec"]["drill_options"])
+        assert options["client"] == "cycle", path.name
+    assert json.loads((out / "config.json").read_text())["plan"]["client"] == "cycle"
+    robots = tmp_path / "r"
+    with pytest.raises(ValueError, match="robots' host"):
+        run_learn_pass(PassRun("robot_physics", out=robots, client="cycle"), print)
+    assert not robots.exists()
+
+
 def test_learn_pass_trains_its_net_when_none_is_given(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
