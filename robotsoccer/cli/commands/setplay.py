@@ -5,41 +5,43 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
-from robotsoccer.cli.options import PAPER_MODELS, UsageError, _index, _positive_int
+from robotsoccer.cli.options import PAPER_MODELS, _index, _positive_int
+from robotsoccer.cli.running import show
 from robotsoccer.cli.shared import Commands, run_options
-from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.pool import default_workers
+
+if TYPE_CHECKING:
+    from robotsoccer.experiments.setplay_run import SetPlayRun
 
 
 def cmd_setplay(args: argparse.Namespace) -> int:
     """The set play on both field models, layered and baseline minds, with its report."""
-    from robotsoccer.experiments.context import RunContext, seeds_for
-    from robotsoccer.experiments.setplay import run_setplay_study
+    from robotsoccer.experiments.setplay_run import run_setplay
 
-    folder = args.models or Path("runs") / f"transfer-seed{args.seed}"
-    models: Path | None = folder / "models"
-    if not all(
-        (folder / "models" / m / f).exists()
-        for m in PAPER_MODELS
-        for f in ("net_750.npz", "pass_tree.json")
-    ):
-        if args.models is not None:
-            raise UsageError(f"{folder}/models lacks a field's net_750.npz or pass_tree.json")
-        print(f"no trained layers in {folder}/models: the baseline minds only", file=sys.stderr)
-        models = None
-    client = "" if args.client == "see" else f"-{args.client}"  # a see run's folder stays
-    quick = "-quick" if args.quick else ""
-    out = args.out or Path("runs") / f"setplay{client}{quick}-seed{args.seed}"
-    prepare_run_folder(out, resume=args.resume, overwrite=args.overwrite)
-    fields = [(m, default_preset(m)) for m in PAPER_MODELS]
-    ctx = RunContext(out, seeds_for(args.seed), args.workers or default_workers(), print, True)
-    report = run_setplay_study(
-        ctx, fields=fields, models=models, plays=args.plays, quick=args.quick, client=args.client
+    def warn(line: str) -> None:
+        print(line, file=sys.stderr)
+
+    return show(lambda: run_setplay(setplay_request(args), print, warn))
+
+
+def setplay_request(args: argparse.Namespace) -> SetPlayRun:
+    """The study ``robotsoccer setplay``'s options ask for."""
+    from robotsoccer.experiments.setplay_run import SetPlayRun
+
+    return SetPlayRun(
+        fields=tuple((m, default_preset(m)) for m in PAPER_MODELS),
+        models=args.models,
+        plays=args.plays,
+        quick=args.quick,
+        client=args.client,
+        seed=args.seed,
+        out=args.out,
+        resume=args.resume,
+        overwrite=args.overwrite,
+        workers=args.workers,
     )
-    print(f"report: {report}")
-    return 0
 
 
 def add_parser(commands: Commands) -> None:

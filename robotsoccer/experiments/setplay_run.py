@@ -1,0 +1,113 @@
+"""``robotsoccer setplay`` as a pipeline: the set-play study into its own run folder.
+
+The CLI (:mod:`robotsoccer.cli.commands.setplay`) only reads its options into a
+:class:`SetPlayRun` and prints what :func:`run_setplay` returns; which layers the layered minds
+get, the run folder, the context and the study
+(:func:`robotsoccer.experiments.setplay.run_setplay_study`) are decided here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from robotsoccer.experiments.context import Log, RunContext, kept_on_interrupt, seeds_for
+from robotsoccer.runs.folders import prepare_run_folder
+from robotsoccer.runs.pool import default_workers
+
+LAYER_FILES = ("net_750.npz", "pass_tree.json")
+"""What each field's ``models/<field>/`` must hold for the layered minds."""
+
+
+@dataclass(frozen=True)
+class SetPlayRun:
+    """What ``robotsoccer setplay`` runs, and where.
+
+    Attributes:
+        fields: (field model, preset) of each field the study plays on.
+        models: The run folder whose ``models/<field>/`` hold the layers; None: the default
+            (``runs/transfer-seed<S>``), where missing layers mean the baseline minds only.
+        plays: Plays per field model and condition.
+        quick: The quick plan.
+        client: The Soccer Server players' client (``see`` or ``cycle``).
+        seed: The experiment seed.
+        out: The run folder; None: ``runs/setplay[-<client>][-quick]-seed<S>``.
+        resume: Continue the run in `out`.
+        overwrite: Replace the run in `out`.
+        workers: Processes (None: all cores).
+    """
+
+    fields: tuple[tuple[str, str], ...]
+    models: Path | None = None
+    plays: int = 1000
+    quick: bool = False
+    client: str = "see"
+    seed: int = 0
+    out: Path | None = None
+    resume: bool = False
+    overwrite: bool = False
+    workers: int | None = None
+
+    @property
+    def folder(self) -> Path:
+        """The run folder: `out`, or one named after the client, the plan and the seed."""
+        client = "" if self.client == "see" else f"-{self.client}"  # a see run's folder stays
+        quick = "-quick" if self.quick else ""
+        return self.out or Path("runs") / f"setplay{client}{quick}-seed{self.seed}"
+
+    def layers(self, warn: Log) -> Path | None:
+        """The ``models`` folder of the layers, or None (the baseline minds only, said in `warn`).
+
+        Raises:
+            ValueError: A `models` folder given that lacks a field's layers.
+        """
+        folder = self.models or Path("runs") / f"transfer-seed{self.seed}"
+        models = folder / "models"
+        if all((models / m / f).exists() for m, _ in self.fields for f in LAYER_FILES):
+            return models
+        if self.models is not None:
+            raise ValueError(f"{folder}/models lacks a field's net_750.npz or pass_tree.json")
+        warn(f"no trained layers in {folder}/models: the baseline minds only")
+        return None
+
+
+@dataclass(frozen=True)
+class SetPlayOutcome:
+    """Where the study's report is.
+
+    Attributes:
+        report: Its ``report.md``.
+    """
+
+    report: Path
+
+    @property
+    def lines(self) -> tuple[str, ...]:
+        """What the command prints."""
+        return (f"report: {self.report}",)
+
+
+def run_setplay(request: SetPlayRun, log: Log, warn: Callable[[str], None]) -> SetPlayOutcome:
+    """Find the layers, prepare the folder, run the study (its report is written as it goes).
+
+    Raises:
+        ValueError: A `models` folder without the layers, or a run folder in the way.
+        RunInterrupted: Ctrl-C; the finished plays are kept (``resume`` finishes the run).
+    """
+    from robotsoccer.experiments.setplay import run_setplay_study
+
+    models = request.layers(warn)
+    out = request.folder
+    prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
+    ctx = RunContext(out, seeds_for(request.seed), request.workers or default_workers(), log, True)
+    with kept_on_interrupt(out, kept="plays"):
+        report = run_setplay_study(
+            ctx,
+            fields=list(request.fields),
+            models=models,
+            plays=request.plays,
+            quick=request.quick,
+            client=request.client,
+        )
+    return SetPlayOutcome(report)
