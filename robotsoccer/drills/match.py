@@ -46,9 +46,14 @@ from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
 from learning.tpot import Experience, load_table
 from robotsoccer.drills.base import Verdict
+from robotsoccer.drills.layered import (
+    CYCLE_ON_ROBOTS,
+    LayeredDrill,
+    control_reach,
+    load_evaluator,
+)
 from robotsoccer.drills.match_options import MatchOptions, TeamKind
 from robotsoccer.drills.match_setup import FORMATIONS, GOALIE, KICKER, team_setup
-from robotsoccer.drills.passing import LayeredDrill, control_reach, load_evaluator
 from robotsoccer.drills.referee import PLAY_ON, SIDE, Referee
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.skills.intercept import (
@@ -218,10 +223,7 @@ class MatchDrill(LayeredDrill):
                 policy = make_policy(Behaviour.NET, rngs["policy"], self.net, factor)
             per_cycle = team in self.options.cycle_teams()
             if per_cycle and setup.sees_all_round:
-                raise ValueError(
-                    "client=cycle is the Soccer Server's per-cycle client; the robots' host "
-                    "already acts on every tick"
-                )
+                raise ValueError(CYCLE_ON_ROBOTS)
             make = partial(CycleTeamMind, facts=facts) if per_cycle else TeamMind
             for number in FORMATIONS[n]:
                 mind = make(

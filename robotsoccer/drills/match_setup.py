@@ -10,7 +10,7 @@ from __future__ import annotations
 from field_models.arena import FieldFacts
 from field_models.protocol import LEFT
 from robotsoccer.drills.intercept_plan import LaunchPlan
-from robotsoccer.drills.passing import control_reach
+from robotsoccer.drills.layered import control_reach
 from robotsoccer.skills.lead import VELOCITY_SPAN_S
 from robotsoccer.skills.motion import dribble_power
 from robotsoccer.skills.setplay import KickPowers

@@ -112,8 +112,8 @@ from field_models.protocol import LEFT, RIGHT, Mind, PlayerRef
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Verdict
 from robotsoccer.drills.intercept_options import ClientKind
+from robotsoccer.drills.layered import CYCLE_ON_ROBOTS, LayeredDrill, load_evaluator
 from robotsoccer.drills.layered_options import SetPlayOptions
-from robotsoccer.drills.passing import CYCLE_ON_ROBOTS, LayeredDrill, load_evaluator
 from robotsoccer.drills.setplay_judge import SetPlayJudge
 from robotsoccer.drills.setplay_kicks import CoachKickRelay, ball_sense, coach_kicks, kick_powers
 from robotsoccer.skills.cycle import CycleDefenderMind

@@ -13,7 +13,7 @@ from typing import Any, ClassVar
 from field_models.arena import Arena, FieldFacts
 from field_models.protocol import LEFT, Mind, PlayerRef, wrap_angle
 from field_models.seeding import TrialRngs
-from robotsoccer.drills.passing import control_reach
+from robotsoccer.drills.layered import control_reach
 from robotsoccer.envs.control import ControlEnv
 
 GO_PLAYER = PlayerRef(LEFT, 1)

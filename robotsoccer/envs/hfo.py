@@ -26,7 +26,7 @@ ball): :data:`ATTACK_HOME_X_UNITS` and :data:`DEFENCE_HOME_X_UNITS` from the cen
 * ``GOAL``: the ball wholly over the goal line between the posts (the project's one goal-line
   rule, :class:`~robotsoccer.drills.base.GoalWatch`);
 * ``CAPTURED_BY_DEFENSE``: a defender or the goalie has the ball within its control reach
-  (:func:`~robotsoccer.drills.passing.control_reach`), checked as the match's referee checks
+  (:func:`~robotsoccer.drills.layered.control_reach`), checked as the match's referee checks
   touches;
 * ``OUT_OF_BOUNDS``: the ball over a side line or the end line wide of the goal, or back over
   the centre line (out of the half);
@@ -56,8 +56,8 @@ from field_models.protocol import LEFT, RIGHT, Crossing, Mind, PlayerRef
 from field_models.registry import FIELD_MODELS
 from field_models.seeding import TrialRngs
 from robotsoccer.drills.base import Drill, GoalWatch, Verdict
+from robotsoccer.drills.layered import control_reach
 from robotsoccer.drills.match import MatchDrill
-from robotsoccer.drills.passing import control_reach
 from robotsoccer.drills.referee import TOUCH_PERIOD_S
 from robotsoccer.envs.agents import controlled_players, play_spec
 from robotsoccer.envs.play import PlayParallelEnv
