@@ -41,6 +41,23 @@ class Shown(Protocol):
         """The lines to print, in order."""
 
 
+def run_settings(args: argparse.Namespace, *, progress: bool | None = None) -> dict[str, Any]:
+    """A command's run-folder options as its request's fields.
+
+    They are :class:`~robotsoccer.experiments.context.RunRequest`'s; the progress bar shows
+    where stderr is a terminal unless `progress` says otherwise.
+    """
+    return {
+        "quick": args.quick,
+        "seed": args.seed,
+        "out": args.out,
+        "resume": args.resume,
+        "overwrite": args.overwrite,
+        "workers": args.workers,
+        "progress": sys.stderr.isatty() if progress is None else progress,
+    }
+
+
 def show(run: Callable[[], Shown]) -> int:
     """Run a pipeline and print its outcome's lines (exit 0), or its interrupt's one line.
 

@@ -46,6 +46,29 @@ def seeds_for(seed: int) -> Seeds:
     return Seeds(evaluation=seed, collection=derived)
 
 
+@dataclass(frozen=True, kw_only=True)
+class RunRequest:
+    """The run-folder settings every command pipeline's request shares (given by keyword).
+
+    Attributes:
+        quick: The quick plan(s).
+        seed: The experiment seed.
+        out: The run folder; None: one the request names after itself (its ``folder``).
+        resume: Continue the run in `out`.
+        overwrite: Replace the run in `out`.
+        workers: Processes (None: all cores).
+        progress: Show a progress bar for each batch of trials.
+    """
+
+    quick: bool = False
+    seed: int = 0
+    out: Path | None = None
+    resume: bool = False
+    overwrite: bool = False
+    workers: int | None = None
+    progress: bool = False
+
+
 class RunInterrupted(Exception):
     """Ctrl-C stopped a run; what it finished is kept, and the message (one line) says where.
 

@@ -23,6 +23,7 @@ from robotsoccer.experiments.context import (
     Log,
     ReportOutcome,
     RunContext,
+    RunRequest,
     kept_on_interrupt,
 )
 from robotsoccer.experiments.lead_study import StudyDrill
@@ -38,7 +39,7 @@ def _quick(quick: bool) -> str:
 
 
 @dataclass(frozen=True)
-class InterceptRun:
+class InterceptRun(RunRequest):
     """What ``robotsoccer learn intercept`` runs, and where (a :class:`~.reproduce.LayersRequest`).
 
     Attributes:
@@ -47,25 +48,15 @@ class InterceptRun:
         client: Layer 1's client on the Soccer Server (``see`` or ``cycle``:
             :class:`~robotsoccer.experiments.reproduce.ReproduceParts`).
         quick: The quick plan.
-        seed: The experiment seed.
         out: The run folder; None:
             ``runs/learn-intercept-<field>-<preset>[-<client>][-quick]-seed<S>``.
-        resume: Continue the run in `out`.
-        overwrite: Replace the run in `out`.
-        workers: Processes (None: all cores).
-        progress: Show a progress bar for each batch of trials.
+
+    The other run-folder settings are :class:`~robotsoccer.experiments.context.RunRequest`'s.
     """
 
     field: str
     preset: str | None = None
     client: str = "see"
-    quick: bool = False
-    seed: int = 0
-    out: Path | None = None
-    resume: bool = False
-    overwrite: bool = False
-    workers: int | None = None
-    progress: bool = False
 
     @property
     def models(self) -> tuple[Field, ...]:
@@ -98,7 +89,7 @@ class InterceptRun:
 
 
 @dataclass(frozen=True)
-class PassRun:
+class PassRun(RunRequest):
     """What ``robotsoccer learn pass`` runs, and where.
 
     Attributes:
@@ -107,26 +98,16 @@ class PassRun:
         net: Layer 1's interception net for receivers and defenders; None: train it first
             (:func:`robotsoccer.experiments.layer1.train_main_net`).
         quick: The quick plans (layer 2's, and layer 1's for the net).
-        seed: The experiment seed.
         out: The run folder; None: ``runs/learn-pass-<field>-<preset>[-quick]-seed<S>``.
-        resume: Continue the run in `out`.
-        overwrite: Replace the run in `out`.
-        workers: Processes (None: all cores).
-        progress: Show a progress bar for each batch of trials.
         client: The receivers' and defenders' client (``see`` or ``cycle``; the layer-2
             plan's ``client``).
+
+    The other run-folder settings are :class:`~robotsoccer.experiments.context.RunRequest`'s.
     """
 
     field: str
     preset: str | None = None
     net: Path | None = None
-    quick: bool = False
-    seed: int = 0
-    out: Path | None = None
-    resume: bool = False
-    overwrite: bool = False
-    workers: int | None = None
-    progress: bool = False
     client: str = "see"
 
     @property
@@ -187,29 +168,19 @@ def run_learn_pass(request: PassRun, log: Log) -> ReportOutcome:
 
 
 @dataclass(frozen=True)
-class LeadRun:
+class LeadRun(RunRequest):
     """What ``robotsoccer learn lead`` runs, and where.
 
     Attributes:
         drills: The study's drill on each field, in report order.
         quick: The quick plan (:func:`robotsoccer.experiments.lead_study.plan_for`).
-        seed: The experiment seed.
         out: The run folder; None: ``runs/learn-lead[-<field>][-quick]-seed<S>``, the field
             named when the study runs on one.
-        resume: Continue the run in `out`.
-        overwrite: Replace the run in `out`.
-        workers: Processes (None: all cores).
-        progress: Show a progress bar for each batch of trials.
+
+    The other run-folder settings are :class:`~robotsoccer.experiments.context.RunRequest`'s.
     """
 
     drills: tuple[StudyDrill, ...]
-    quick: bool = False
-    seed: int = 0
-    out: Path | None = None
-    resume: bool = False
-    overwrite: bool = False
-    workers: int | None = None
-    progress: bool = False
 
     @property
     def folder(self) -> Path:

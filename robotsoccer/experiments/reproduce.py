@@ -23,6 +23,7 @@ from robotsoccer.experiments.context import (
     Log,
     ReportOutcome,
     RunContext,
+    RunRequest,
     kept_on_interrupt,
 )
 from robotsoccer.experiments.lead_study import StudyDrill
@@ -103,30 +104,20 @@ class LayersRequest(Protocol):
 
 
 @dataclass(frozen=True)
-class ReproduceRun:
+class ReproduceRun(RunRequest):
     """What ``robotsoccer reproduce`` runs, and where.
 
     Attributes:
         models: The field models and presets, in report order.
         parts: The steps after layer 1 (by default none).
         quick: The quick plans.
-        seed: The experiment seed.
         out: The run folder; None: ``runs/reproduce[-quick]-seed<S>``.
-        resume: Continue the run in `out`.
-        overwrite: Replace the run in `out`.
-        workers: Processes (None: all cores).
-        progress: Show a progress bar for each batch of trials.
+
+    The other run-folder settings are :class:`~robotsoccer.experiments.context.RunRequest`'s.
     """
 
     models: tuple[Field, ...]
     parts: ReproduceParts = ReproduceParts()
-    quick: bool = False
-    seed: int = 0
-    out: Path | None = None
-    resume: bool = False
-    overwrite: bool = False
-    workers: int | None = None
-    progress: bool = False
 
     @property
     def folder(self) -> Path:

@@ -12,7 +12,13 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from robotsoccer.experiments.context import Log, RunContext, kept_on_interrupt, seeds_for
+from robotsoccer.experiments.context import (
+    Log,
+    RunContext,
+    RunRequest,
+    kept_on_interrupt,
+    seeds_for,
+)
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
 
@@ -21,7 +27,7 @@ LAYER_FILES = ("net_750.npz", "pass_tree.json")
 
 
 @dataclass(frozen=True)
-class SetPlayRun:
+class SetPlayRun(RunRequest):
     """What ``robotsoccer setplay`` runs, and where.
 
     Attributes:
@@ -31,23 +37,15 @@ class SetPlayRun:
         plays: Plays per field model and condition.
         quick: The quick plan.
         client: The Soccer Server players' client (``see`` or ``cycle``).
-        seed: The experiment seed.
         out: The run folder; None: ``runs/setplay[-<client>][-quick]-seed<S>``.
-        resume: Continue the run in `out`.
-        overwrite: Replace the run in `out`.
-        workers: Processes (None: all cores).
+
+    The other run-folder settings are :class:`~robotsoccer.experiments.context.RunRequest`'s.
     """
 
     fields: tuple[tuple[str, str], ...]
     models: Path | None = None
     plays: int = 1000
-    quick: bool = False
     client: str = "see"
-    seed: int = 0
-    out: Path | None = None
-    resume: bool = False
-    overwrite: bool = False
-    workers: int | None = None
 
     @property
     def folder(self) -> Path:
@@ -100,7 +98,8 @@ def run_setplay(request: SetPlayRun, log: Log, warn: Callable[[str], None]) -> S
     models = request.layers(warn)
     out = request.folder
     prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
-    ctx = RunContext(out, seeds_for(request.seed), request.workers or default_workers(), log, True)
+    workers = request.workers or default_workers()
+    ctx = RunContext(out, seeds_for(request.seed), workers, log, request.progress)
     with kept_on_interrupt(out, kept="plays"):
         report = run_setplay_study(
             ctx,

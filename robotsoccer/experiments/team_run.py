@@ -17,7 +17,7 @@ from pathlib import Path
 from field_models.registry import default_preset
 from learning.tpot import WINDOW_CHOICE
 from robotsoccer.experiments import team_study
-from robotsoccer.experiments.context import Log, ReportOutcome, kept_on_interrupt
+from robotsoccer.experiments.context import Log, ReportOutcome, RunRequest, kept_on_interrupt
 from robotsoccer.experiments.match_run import LayerFiles
 from robotsoccer.experiments.team_plan import TeamPlan
 from robotsoccer.runs.folders import prepare_run_folder
@@ -26,13 +26,12 @@ from robotsoccer.runs.runner import check_spec
 
 
 @dataclass(frozen=True)
-class TeamRun:
+class TeamRun(RunRequest):
     """What ``robotsoccer learn team`` runs, and where.
 
     Attributes:
         field: The field model.
         preset: Its preset; None: the model's default.
-        seed: The experiment seed.
         layers: Where the layered team's net and tree come from.
         table: A learned layer-3 table: no training, the series only.
         quick: The quick plan (:func:`robotsoccer.experiments.team_plan.plan_for`).
@@ -43,29 +42,20 @@ class TeamRun:
         games_per_round: Training games that share one table; None: the plan's.
         training_games: Training games; None: the plan's.
         out: The run folder; None: ``runs/learn-team-<field>-<preset>[-...]-seed<S>``.
-        resume: Continue the run in `out`.
-        overwrite: Replace the run in `out`.
-        workers: Processes (None: all cores).
-        progress: Show a progress bar for each series.
+
+    The other run-folder settings are :class:`~robotsoccer.experiments.context.RunRequest`'s.
     """
 
     field: str
     preset: str | None = None
-    seed: int = 0
     layers: LayerFiles = dataclasses.field(default_factory=LayerFiles)
     table: Path | None = None
-    quick: bool = False
     every: bool = False
     window: str = WINDOW_CHOICE
     shot_guard: bool = False
     loss_penalty: float = 0.0
     games_per_round: int | None = None
     training_games: int | None = None
-    out: Path | None = None
-    resume: bool = False
-    overwrite: bool = False
-    workers: int | None = None
-    progress: bool = False
 
     def plan(self) -> TeamPlan:
         """The quick or full plan with the request's changes.

@@ -13,7 +13,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from robotsoccer.experiments import transfer_study
-from robotsoccer.experiments.context import Log, ReportOutcome, RunContext, kept_on_interrupt
+from robotsoccer.experiments.context import (
+    Log,
+    ReportOutcome,
+    RunContext,
+    RunRequest,
+    kept_on_interrupt,
+)
 from robotsoccer.experiments.transfer_study import TransferSetup
 from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
@@ -21,28 +27,18 @@ from robotsoccer.runs.runner import TrialSpec, check_spec
 
 
 @dataclass(frozen=True)
-class TransferRun:
+class TransferRun(RunRequest):
     """What ``robotsoccer transfer`` runs, and where.
 
     Attributes:
         setup: The study's fields, randomisation, parts and lead drills.
         quick: The quick plans.
-        seed: The experiment seed.
         out: The run folder; None: ``runs/transfer[-quick]-seed<S>``.
-        resume: Continue the run in `out`.
-        overwrite: Replace the run in `out`.
-        workers: Processes (None: all cores).
-        progress: Show a progress bar for each batch of trials.
+
+    The other run-folder settings are :class:`~robotsoccer.experiments.context.RunRequest`'s.
     """
 
     setup: TransferSetup
-    quick: bool = False
-    seed: int = 0
-    out: Path | None = None
-    resume: bool = False
-    overwrite: bool = False
-    workers: int | None = None
-    progress: bool = False
 
     @property
     def folder(self) -> Path:

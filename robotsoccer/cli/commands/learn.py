@@ -9,13 +9,12 @@ pipeline's request and prints the outcome.
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from field_models.registry import FIELD_MODELS
 from robotsoccer.cli.options import DEFAULT_FIELD, LEAD_DRILLS, TEAM_FIELD, _positive_int
-from robotsoccer.cli.running import clock_log, show
+from robotsoccer.cli.running import clock_log, run_settings, show
 from robotsoccer.cli.shared import Commands, Parser, experiment_options
 
 if TYPE_CHECKING:
@@ -44,13 +43,7 @@ def intercept_request(args: argparse.Namespace) -> InterceptRun:
         field=args.field,
         preset=args.field_preset,
         client=args.client,
-        quick=args.quick,
-        seed=args.seed,
-        out=args.out,
-        resume=args.resume,
-        overwrite=args.overwrite,
-        workers=args.workers,
-        progress=sys.stderr.isatty(),
+        **run_settings(args),
     )
 
 
@@ -69,14 +62,8 @@ def pass_request(args: argparse.Namespace) -> PassRun:
         field=args.field,
         preset=args.field_preset,
         net=args.net,
-        quick=args.quick,
-        seed=args.seed,
-        out=args.out,
-        resume=args.resume,
-        overwrite=args.overwrite,
-        workers=args.workers,
-        progress=sys.stderr.isatty(),
         client=args.client,
+        **run_settings(args),
     )
 
 
@@ -96,13 +83,7 @@ def lead_request(args: argparse.Namespace) -> LeadRun:
     drills = tuple(StudyDrill(f, *LEAD_DRILLS[f]) for f in fields)
     return LeadRun(
         drills=drills,
-        quick=args.quick,
-        seed=args.seed,
-        out=args.out,
-        resume=args.resume,
-        overwrite=args.overwrite,
-        workers=args.workers,
-        progress=sys.stderr.isatty(),
+        **run_settings(args),
     )
 
 
@@ -121,21 +102,15 @@ def team_request(args: argparse.Namespace) -> TeamRun:
     return TeamRun(
         field=args.field,
         preset=args.field_preset,
-        seed=args.seed,
         layers=layer_files(args),
         table=args.table,
-        quick=args.quick,
         every=args.every,
         window=args.window,
         shot_guard=args.shot_guard,
         loss_penalty=args.loss_penalty,
         games_per_round=args.games_per_round,
         training_games=args.training_games,
-        out=args.out,
-        resume=args.resume,
-        overwrite=args.overwrite,
-        workers=args.workers,
-        progress=sys.stderr.isatty(),
+        **run_settings(args),
     )
 
 

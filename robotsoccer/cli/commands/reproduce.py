@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import argparse
-import sys
 from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
 from robotsoccer.cli.commands.transfer import transfer_setup
 from robotsoccer.cli.options import LEAD_DRILLS, PAPER_MODELS, TEAM_FIELD
-from robotsoccer.cli.running import clock_log, show
+from robotsoccer.cli.running import clock_log, run_settings, show
 from robotsoccer.cli.shared import Commands, experiment_options, transfer_options
 
 if TYPE_CHECKING:
@@ -44,13 +43,7 @@ def reproduce_request(args: argparse.Namespace) -> ReproduceRun:
     return ReproduceRun(
         models=models,
         parts=parts,
-        quick=args.quick,
-        seed=args.seed,
-        out=args.out,
-        resume=args.resume,
-        overwrite=args.overwrite,
-        workers=args.workers,
-        progress=sys.stderr.isatty(),
+        **run_settings(args),
     )
 
 

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
 from robotsoccer.cli.options import PAPER_MODELS, _index, _positive_int
-from robotsoccer.cli.running import show
+from robotsoccer.cli.running import run_settings, show
 from robotsoccer.cli.shared import Commands, run_options
 
 if TYPE_CHECKING:
@@ -34,13 +34,8 @@ def setplay_request(args: argparse.Namespace) -> SetPlayRun:
         fields=tuple((m, default_preset(m)) for m in PAPER_MODELS),
         models=args.models,
         plays=args.plays,
-        quick=args.quick,
         client=args.client,
-        seed=args.seed,
-        out=args.out,
-        resume=args.resume,
-        overwrite=args.overwrite,
-        workers=args.workers,
+        **run_settings(args, progress=True),
     )
 
 

@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import argparse
-import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from field_models.registry import default_preset
 from robotsoccer.cli.options import LEAD_DRILLS, PAPER_MODELS, REFERENCE_FIELD, TARGET_FIELD
-from robotsoccer.cli.running import clock_log, show
+from robotsoccer.cli.running import clock_log, run_settings, show
 from robotsoccer.cli.shared import Commands, experiment_options, transfer_options
 
 if TYPE_CHECKING:
@@ -32,13 +31,7 @@ def transfer_request(args: argparse.Namespace) -> TransferRun:
     models = [(model, default_preset(model)) for model in PAPER_MODELS]
     return TransferRun(
         setup=transfer_setup(args, models),
-        quick=args.quick,
-        seed=args.seed,
-        out=args.out,
-        resume=args.resume,
-        overwrite=args.overwrite,
-        workers=args.workers,
-        progress=sys.stderr.isatty(),
+        **run_settings(args),
     )
 
 
