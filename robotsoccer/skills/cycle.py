@@ -128,6 +128,7 @@ class CycleDefenderMind:
 
     Attributes:
         example: (BD [m], BA [rad], previous BD [m], TA [rad]) recorded at the trigger, or None.
+        reckoner: The server's body equations its world model runs (its clients' too).
         triggered: True once BD came within the trigger distance.
         turn_angle_rad: The TA in use (0 before the trigger).
     """
@@ -146,11 +147,11 @@ class CycleDefenderMind:
         self.kickable_distance_m = kickable_distance_m
         self.ta_clip_rad = ta_clip_rad
         dt = facts.dt_s
-        self._reckoner = BodyReckoner(facts)  # the server's equations, per cycle
-        self.push_m = self._reckoner.push_m  # per cycle, at full power
-        self.top_m = self._reckoner.top_m
-        self.decay = self._reckoner.decay
-        self.inertia = self._reckoner.inertia  # per (m/cycle)
+        self.reckoner = BodyReckoner(facts)  # the server's equations, shared with its client
+        self.push_m = self.reckoner.push_m  # per cycle, at full power
+        self.top_m = self.reckoner.top_m
+        self.decay = self.reckoner.decay
+        self.inertia = self.reckoner.inertia  # per (m/cycle)
         self.touch_m = facts.touch_distance_m
         self.facts = facts
         self.directed = facts.dash_rates is not None
@@ -258,7 +259,7 @@ class CycleDefenderMind:
             if ball is not None:
                 action = self._meeting(state, ball, j, action, error)
             plan.append(action)
-            state = self._reckoner.cycle(state, action)
+            state = self.reckoner.cycle(state, action)
             cycles = max(cycles - 1.0, 1.0)
         return tuple(plan)
 
@@ -345,7 +346,7 @@ class CycleDefenderMind:
         best = math.hypot(bx - state[1], by - state[2])
         for k in range(MEET_HORIZON_CYCLES):
             before = (bx - state[1], by - state[2])
-            state = self._reckoner.cycle(state, actions[k] if k < len(actions) else None)
+            state = self.reckoner.cycle(state, actions[k] if k < len(actions) else None)
             bx, by, bvx, bvy = bx + bvx, by + bvy, bvx * decay, bvy * decay
             best = min(best, _segment_gap(before, (bx - state[1], by - state[2])))
         return best
@@ -354,7 +355,7 @@ class CycleDefenderMind:
         """The predicted miss (:meth:`_miss`) after `actions`, one per cycle, then coasting."""
         best = math.inf
         for k, act in enumerate(actions):
-            state = self._reckoner.cycle(state, act)
+            state = self.reckoner.cycle(state, act)
             if k < len(actions) - 1:
                 best = min(best, self._miss(state, ball, j + k + 1, horizon=0))
         return min(best, self._miss(state, ball, j + len(actions)))
@@ -413,7 +414,7 @@ class CycleDefenderMind:
             return
         state = (self._heading, self._x, self._y, self._vx, self._vy)
         for k in range(tick - self._plan_tick):
-            state = self._reckoner.cycle(state, self._plan[k] if k < len(self._plan) else None)
+            state = self.reckoner.cycle(state, self._plan[k] if k < len(self._plan) else None)
         self._heading, self._x, self._y, self._vx, self._vy = state
         self._plan, self._plan_tick = (), tick
 

@@ -69,6 +69,34 @@ class BodyReckoner:
                 vx, vy = vx * self.top_m / speed, vy * self.top_m / speed
         return h, x + vx, y + vy, vx * self.decay, vy * self.decay
 
+    def run_on(
+        self,
+        start: BodyState,
+        body: tuple[Action, ...],
+        dash: Dash,
+        distance_m: float,
+        cycles: int,
+        *,
+        coast: bool,
+    ) -> tuple[Action, ...]:
+        """`body`, then `dash` every cycle while the run from `start` stays within `distance_m`.
+
+        At most `cycles` commands in all; with `coast` the run counts what the body would still
+        roll after the last dash (a point to stop at), without it only the distance run.
+        """
+        state = start
+        for action in body:
+            state = self.cycle(state, action)
+        plan = list(body)
+        while len(plan) < cycles:
+            after = self.cycle(state, dash)
+            run = math.hypot(after[1] - start[1], after[2] - start[2])
+            if run + (self.coast_m(after) if coast else 0.0) > distance_m:
+                break
+            plan.append(dash)
+            state = after
+        return tuple(plan)
+
     def coast_m(self, state: BodyState) -> float:
         """How far the body still rolls with no more commands (the geometric series) [m]."""
         speed = math.hypot(state[3], state[4])

@@ -50,7 +50,6 @@ from robotsoccer.skills.ball_sense import Heading
 from robotsoccer.skills.ball_tracker import BallTracker
 from robotsoccer.skills.cycle import CycleDefenderMind, Sighting
 from robotsoccer.skills.intercept import DASH_POWER
-from robotsoccer.skills.reckoning import BodyReckoner
 from robotsoccer.skills.team_cycle import PLAN_EXTRA_CYCLES
 
 _NOT_BODY = (Say, TurnNeck, ChangeView)
@@ -133,7 +132,7 @@ class CycleAttacker:
         self.mind = mind
         self.model = model
         self.meet = meet
-        self._reckoner = BodyReckoner(facts)
+        self._reckoner = model.reckoner  # the world model's equations
         self.plan_cycles = math.ceil(facts.sensor_period_s / facts.dt_s - 1e-9) + PLAN_EXTRA_CYCLES
         self._plan: tuple[Action, ...] = ()
         self._plan_tick = -1
@@ -182,19 +181,9 @@ class CycleAttacker:
         if last.direction_rad != 0.0:
             return body
         short = ball.distance_m - self.mind.reach_m
-        reckoner = self._reckoner
-        start = state = self.model.body
-        for action in body:
-            state = reckoner.cycle(state, action)
-        plan = list(body)
-        while len(plan) < self.plan_cycles:
-            after = reckoner.cycle(state, last)
-            run = math.hypot(after[1] - start[1], after[2] - start[2])
-            if run + reckoner.coast_m(after) > short:
-                break
-            plan.append(last)
-            state = after
-        return tuple(plan)
+        return self._reckoner.run_on(
+            self.model.body, body, last, short, self.plan_cycles, coast=True
+        )
 
     def _note_run(self, elapsed: int) -> None:
         """Note for the mind the turns of the last plan it did not note that have now run.

@@ -52,7 +52,7 @@ from robotsoccer.skills.cycle import CycleDefenderMind, Sighting
 from robotsoccer.skills.intercept import TurnPolicy
 from robotsoccer.skills.lead import LeadPolicy
 from robotsoccer.skills.passing import PassEvaluator
-from robotsoccer.skills.reckoning import FULL_POWER, BodyReckoner
+from robotsoccer.skills.reckoning import FULL_POWER
 from robotsoccer.skills.team import TeamMind
 from robotsoccer.skills.team_setup import (
     COMING_SHARE,
@@ -114,13 +114,13 @@ class CycleTeamMind(TeamMind):
             pass_threshold=pass_threshold,
             ball_policy=ball_policy,
         )
-        self._reckoner = BodyReckoner(facts)
         self._see_cycles = facts.sensor_period_s / facts.dt_s
         # Layer 1's per-cycle defender: the world model (own body, the ball's model) and, for a
         # ball coming at the chaser, its plan with the team's TA rule (straight: TA = 0).
         self._meeting = CycleDefenderMind(
             interception or straight_policy, facts, setup.trigger_distance_m
         )
+        self._reckoner = self._meeting.reckoner
         self._plan: tuple[Action, ...] = ()
         self._plan_tick = -1
         self.commands_added = 0
@@ -181,25 +181,17 @@ class CycleTeamMind(TeamMind):
             return body
         reckoner = self._reckoner
         start = self._meeting.body
-        state = start
-        for action in body:
-            state = reckoner.cycle(state, action)
         if isinstance(last, Turn):
-            missed = wrap_angle(last.angle_rad - wrap_angle(state[0] - start[0]))
+            turned = start
+            for action in body:
+                turned = reckoner.cycle(turned, action)
+            missed = wrap_angle(last.angle_rad - wrap_angle(turned[0] - start[0]))
             if abs(missed) > FACING_RAD:
                 return body
         # Home is a point to stop at, so the run allows for the coast; a chased ball is run
         # up to, as the see-triggered client dashes at it at every see.
         stops = self.intent == "home"
-        plan = list(body)
-        while len(plan) < self._plan_cycles():
-            after = reckoner.cycle(state, dash)
-            run = math.hypot(after[1] - start[1], after[2] - start[2])
-            if run + (reckoner.coast_m(after) if stops else 0.0) > distance:
-                break
-            plan.append(dash)
-            state = after
-        return tuple(plan)
+        return reckoner.run_on(start, body, dash, distance, self._plan_cycles(), coast=stops)
 
     def _run_distance(self, percept: Percept) -> float | None:
         """How far the decision runs before it should stop [m], or None (not a run)."""
