@@ -148,10 +148,6 @@ class CycleDefenderMind:
         self.ta_clip_rad = ta_clip_rad
         dt = facts.dt_s
         self.reckoner = BodyReckoner(facts)  # the server's equations, shared with its client
-        self.push_m = self.reckoner.push_m  # per cycle, at full power
-        self.top_m = self.reckoner.top_m
-        self.decay = self.reckoner.decay
-        self.inertia = self.reckoner.inertia  # per (m/cycle)
         self.touch_m = facts.touch_distance_m
         self.facts = facts
         self.directed = facts.dash_rates is not None
@@ -281,7 +277,7 @@ class CycleDefenderMind:
     def _aimed(self, state: _Pose, ball: _Ball, j: int, k: int) -> Action | None:
         """The dash that, repeated `k` cycles, ends them where the ball model puts the ball."""
         h, x, y, vx, vy = state
-        d = self.decay
+        d = self.reckoner.decay
         s_k = sum(d**i for i in range(k))
         t_k = sum(sum(d**m for m in range(i)) for i in range(1, k + 1))
         bx, by = self._ball_at(ball, j + k)
@@ -293,7 +289,7 @@ class CycleDefenderMind:
         factor = self.facts.dash_factor(direction)
         if factor <= 0.0:
             return None
-        power = min(DASH_POWER, DASH_POWER * need / (self.push_m * factor))
+        power = min(DASH_POWER, DASH_POWER * need / (self.reckoner.push_m * factor))
         return Dash(power, direction)
 
     def _meeting(self, state: _Pose, ball: _Ball, j: int, action: Action, error: float) -> Action:
@@ -367,7 +363,7 @@ class CycleDefenderMind:
         """
         _, x, y, vx, vy = state
         tick, bx, by, bvx, bvy = ball
-        decay, d = self.ball_decay, self.decay
+        decay, d = self.ball_decay, self.reckoner.decay
         ahead = self._sighting_tick - tick + j  # cycles from the model's sighting
         for _ in range(ahead):
             bx, by, bvx, bvy = bx + bvx, by + bvy, bvx * decay, bvy * decay
@@ -392,7 +388,7 @@ class CycleDefenderMind:
     def _worth_turning(self, error: float, cycles: float) -> bool:
         """Whether a turn by `error` pays with `cycles` left (module docstring)."""
         lost = cycles * (1.0 - math.cos(error))  # dashes' worth lost along the target direction
-        drift = cycles * self.top_m * abs(math.sin(error))  # sideways off it [m]
+        drift = cycles * self.reckoner.top_m * abs(math.sin(error))  # sideways off it [m]
         return lost > 1.0 or drift > self.touch_m
 
     def _turns_to(self, bearing: float) -> tuple[Action, ...]:
@@ -403,7 +399,7 @@ class CycleDefenderMind:
         return (Dash(DASH_POWER),) * self.plan_cycles
 
     def _moment(self, error: float, speed: float) -> float:
-        moment = error * (1.0 + self.inertia * speed)
+        moment = error * (1.0 + self.reckoner.inertia * speed)
         return max(-math.pi, min(math.pi, moment))
 
     # ------------------------------------------------------------------ dead reckoning
