@@ -89,10 +89,11 @@ from field_models.protocol import (
 )
 from field_models.seeding import Rng
 from field_models.soccer_server.collisions import (
-    any_overlap,
+    any_overlap_swept,
     catch_passing_ball,
     collision_pairs,
     resolve_collisions,
+    sweep_of,
 )
 from field_models.soccer_server.cycle_rules import (
     AFTER_GOAL_MODES,
@@ -180,6 +181,7 @@ class SoccerServerModel:
         self._goal_line = 0.5 * p.pitch_length_m + p.ball_size_m
         self._straight_dash = p.min_dash_angle_rad <= 0.0 <= p.max_dash_angle_rad
         self._pairs = collision_pairs(self._size)
+        self._sweep = sweep_of(self._size)
         self._kind = [NO_COMMAND] * n
         self.kicked_at = [-1] * n
         self._arg1 = [0.0] * n
@@ -250,7 +252,7 @@ class SoccerServerModel:
         self.x[i], self.y[i] = float(x), float(y)
         self.heading[i] = wrap_angle(float(heading_rad))
         self.vx[i], self.vy[i] = float(vx_mps) * dt, float(vy_mps) * dt
-        if any_overlap(self._pairs, self.x, self.y):
+        if any_overlap_swept(self._sweep, self.x, self.y):
             self._resolve_collisions()
 
     def change_mode(self, mode: str) -> None:
@@ -370,7 +372,7 @@ class SoccerServerModel:
                 catch_passing_ball(self._pairs, (self.x, self.y), (x0, y0))
             else:
                 self._move_objects(r)
-            if any_overlap(self._pairs, self.x, self.y):
+            if any_overlap_swept(self._sweep, self.x, self.y):
                 self._resolve_collisions()
             if self.params.referee:
                 self._judge(bx0, by0, messages)
