@@ -30,7 +30,6 @@ from field_models.arena import Arena
 from field_models.protocol import Percept
 from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial, play, run_trial
 
-
 PASS = TrialSpec(drill="pass", field_model="soccer_server", seed=1)
 """The bench's pass drill on the Soccer Server."""
 

@@ -31,8 +31,10 @@ def collision_pairs(sizes: list[float]) -> list[Pair]:
 
 
 def any_overlap(pairs: list[Pair], x: list[float], y: list[float]) -> bool:
-    """Whether any pair overlaps at positions `x`, `y` (every pair in turn; the specification
-    of :func:`any_overlap_swept`)."""
+    """Whether any pair overlaps at positions `x`, `y`.
+
+    Every pair in turn: the specification of :func:`any_overlap_swept`.
+    """
     for a, b, reach2, _ in pairs:
         dx, dy = x[b] - x[a], y[b] - y[a]
         if dx * dx + dy * dy < reach2:
