@@ -9,6 +9,8 @@ server's order.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from functools import lru_cache
 from typing import NamedTuple
 
 from field_models.soccer_server.cycle_rules import (
@@ -30,7 +32,7 @@ def collision_pairs(sizes: list[float]) -> list[Pair]:
     return [(a, b, (sizes[a] + sizes[b]) ** 2, sizes[a] + sizes[b]) for a, b in pairs]
 
 
-def any_overlap(pairs: list[Pair], x: list[float], y: list[float]) -> bool:
+def any_overlap(pairs: Sequence[Pair], x: list[float], y: list[float]) -> bool:
     """Whether any pair overlaps at positions `x`, `y`.
 
     Every pair in turn: the specification of :func:`any_overlap_swept`.
@@ -43,25 +45,32 @@ def any_overlap(pairs: list[Pair], x: list[float], y: list[float]) -> bool:
 
 
 class Sweep(NamedTuple):
-    """What :func:`any_overlap_swept` needs of a set of objects, fixed for a model."""
+    """A set of objects' pairs and what :func:`any_overlap_swept` needs; shared, never changed."""
 
-    pairs: list[Pair]  # every pair, for positions that cannot be sorted (a NaN)
-    rows: list[int]  # 0 .. n-1
-    reach2: list[list[float]]  # reach2[a][b]: the pair's square of radii's sum, as in Pair
+    pairs: tuple[Pair, ...]  # every pair (collision_pairs): the collision rules' table
+    rows: tuple[int, ...]  # 0 .. n-1
+    reach2: tuple[tuple[float, ...], ...]  # reach2[a][b]: the pair's square of radii's sum
     cut: float  # an x gap beyond which no pair can overlap (the largest reach, and a margin)
 
 
-def sweep_of(sizes: list[float]) -> Sweep:
-    """The sweep table of objects of radii `sizes` (row 0 the ball)."""
+@lru_cache(maxsize=16)
+def sweep_of(sizes: tuple[float, ...]) -> Sweep:
+    """The pairs and sweep table of objects of radii `sizes` (row 0 the ball).
+
+    Cached: every trial's model of one preset shares them (a trial used to build its 66
+    pairs anew).
+    """
     n = len(sizes)
+    pairs = tuple(collision_pairs(list(sizes)))
     reach2 = [[0.0] * n for _ in range(n)]
     reach = 0.0
-    for a, b, r2, r in collision_pairs(sizes):
+    for a, b, r2, r in pairs:
         reach2[a][b] = reach2[b][a] = r2
         reach = max(reach, r)
     # A gap dx >= cut has dx * dx >= fl(cut * cut) > every reach2 (which is fl(reach ** 2)),
     # so the pair's test is False there: the margin keeps that true through the rounding.
-    return Sweep(collision_pairs(sizes), list(range(n)), reach2, reach * (1.0 + 1e-9))
+    table = tuple(tuple(row) for row in reach2)
+    return Sweep(pairs, tuple(range(n)), table, reach * (1.0 + 1e-9))
 
 
 def any_overlap_swept(sweep: Sweep, x: list[float], y: list[float]) -> bool:
@@ -90,7 +99,7 @@ def any_overlap_swept(sweep: Sweep, x: list[float], y: list[float]) -> bool:
 
 
 def catch_passing_ball(
-    pairs: list[Pair], xy: tuple[list[float], list[float]], xy0: tuple[list[float], list[float]]
+    pairs: Sequence[Pair], xy: tuple[list[float], list[float]], xy0: tuple[list[float], list[float]]
 ) -> None:
     """Swept ball–player check (``swept_ball_collisions``): rewind a pair that met mid-cycle.
 
@@ -123,7 +132,7 @@ def catch_passing_ball(
 
 
 def resolve_collisions(
-    pairs: list[Pair],
+    pairs: Sequence[Pair],
     xy: tuple[list[float], list[float]],
     vxy: tuple[list[float], list[float]],
     play_on: bool,

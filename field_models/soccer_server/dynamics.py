@@ -91,7 +91,6 @@ from field_models.seeding import Rng
 from field_models.soccer_server.collisions import (
     any_overlap_swept,
     catch_passing_ball,
-    collision_pairs,
     resolve_collisions,
     sweep_of,
 )
@@ -180,8 +179,8 @@ class SoccerServerModel:
         self._pitch = p.pitch()
         self._goal_line = 0.5 * p.pitch_length_m + p.ball_size_m
         self._straight_dash = p.min_dash_angle_rad <= 0.0 <= p.max_dash_angle_rad
-        self._pairs = collision_pairs(self._size)
-        self._sweep = sweep_of(self._size)
+        self._sweep = sweep_of(tuple(self._size))
+        self._pairs = self._sweep.pairs
         self._kind = [NO_COMMAND] * n
         self.kicked_at = [-1] * n
         self._arg1 = [0.0] * n

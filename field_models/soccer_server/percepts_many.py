@@ -399,6 +399,8 @@ class _Builder:
         ball: SeenBall | None = None
         others: list[SeenPlayer] = []
         marks: list[SeenLandmark] = []
+        team: str | None
+        number: int | None
         lo, hi = pairs.bounds[k], pairs.bounds[k + 1]
         shown = (pairs.column[lo:hi], qds[lo:hi], pairs.angle[lo:hi], pairs.in_cone[lo:hi])
         for j, qd, angle, in_cone in zip(*shown, strict=True):

@@ -37,7 +37,7 @@ def states(g: np.random.Generator, n: int, count: int) -> list[tuple[list[float]
 @pytest.mark.parametrize("kind", sorted(SIZES))
 def test_the_sweep_answers_as_every_pair_does(kind: str) -> None:
     sizes = SIZES[kind]
-    pairs, sweep = collision_pairs(sizes), sweep_of(sizes)
+    pairs, sweep = collision_pairs(sizes), sweep_of(tuple(sizes))
     g = np.random.default_rng(len(sizes))
     answers = []
     for x, y in states(g, len(sizes), 3000):
@@ -45,11 +45,12 @@ def test_the_sweep_answers_as_every_pair_does(kind: str) -> None:
         assert any_overlap_swept(sweep, x, y) == want, (x, y)
         answers.append(want)
     assert any(answers) and not all(answers)  # both answers were exercised
+    assert sweep.pairs == tuple(pairs) and sweep_of(tuple(sizes)) is sweep  # shared
 
 
 def test_pairs_exactly_at_their_reach_and_just_inside() -> None:
     sizes = SIZES["server"]
-    pairs, sweep = collision_pairs(sizes), sweep_of(sizes)
+    pairs, sweep = collision_pairs(sizes), sweep_of(tuple(sizes))
     x = [30.0 * i for i in range(len(sizes))]
     y = [0.0] * len(sizes)
     for reach in (0.6, math.nextafter(0.6, 0.0), 0.385, math.nextafter(0.385, 0.0)):
@@ -64,7 +65,7 @@ def test_pairs_exactly_at_their_reach_and_just_inside() -> None:
 
 def test_positions_that_are_not_numbers_fall_back_to_every_pair() -> None:
     sizes = SIZES["server"]
-    pairs, sweep = collision_pairs(sizes), sweep_of(sizes)
+    pairs, sweep = collision_pairs(sizes), sweep_of(tuple(sizes))
     x = [float(i) for i in range(len(sizes))]
     y = [0.0] * len(sizes)
     x[3] = math.nan
