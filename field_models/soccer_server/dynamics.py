@@ -121,6 +121,8 @@ from field_models.soccer_server.params import ServerPreset
 BLOCK_CYCLES = 32
 """Cycles of random numbers drawn at once by the single-trial model."""
 
+_state = tuple.__new__  # a BodyState from its 5 values, without the Python-level __new__
+
 
 class SoccerServerModel:
     """One trial of the Soccer Server: ball and players, stepped one 100 ms cycle at a time.
@@ -149,6 +151,7 @@ class SoccerServerModel:
         p = preset.dynamics
         self.preset = preset
         self.params = p
+        self._per_s = 1.0 / p.dt_s  # cycles per second: m/cycle -> m/s
         self.players = tuple(players)
         self.rng = rng
         n = len(self.players) + 1
@@ -211,14 +214,15 @@ class SoccerServerModel:
 
     def ball_state(self) -> BodyState:
         """The ball's exact state: position [m], velocity [m/s]; heading 0."""
-        k = 1.0 / self.params.dt_s
-        return BodyState(self.x[0], self.y[0], 0.0, self.vx[0] * k, self.vy[0] * k)
+        k = self._per_s
+        return _state(BodyState, (self.x[0], self.y[0], 0.0, self.vx[0] * k, self.vy[0] * k))
 
     def player_state(self, i: int) -> BodyState:
         """Player row `i`'s exact state: position [m], heading [rad], velocity [m/s]."""
-        self._check_player(i)
-        k = 1.0 / self.params.dt_s
-        return BodyState(self.x[i], self.y[i], self.heading[i], self.vx[i] * k, self.vy[i] * k)
+        if not 0 < i < self._n:  # _check_player, in line: a coach reads states every cycle
+            raise IndexError(f"player row {i} outside 1..{self._n - 1}")
+        x, y, h, k = self.x[i], self.y[i], self.heading[i], self._per_s
+        return _state(BodyState, (x, y, h, self.vx[i] * k, self.vy[i] * k))
 
     def said(self) -> list[tuple[int, str]]:
         """Messages said during the cycle the last :meth:`step` completed, as (row, text)."""

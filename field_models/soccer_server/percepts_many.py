@@ -125,7 +125,7 @@ def percepts_of(
             )
             for k, row in enumerate(observers)
         ]
-    layout = _layout(players, tuple(observers), marks, (c.q, c.q_l))
+    layout = _layout_of(players, tuple(observers), marks, (c.q, c.q_l))
     per_see = 1 + 2 * n + (len(c.flags) if landmarks != "none" and c.changes and c.high else 0)
     draws = rng.random(len(observers) * per_see).tolist()
     build = _Builder(c, params, layout, _Geometry.of(layout, bodies), bodies)
@@ -167,11 +167,38 @@ class _Layout(NamedTuple):
     mark_names: tuple[str, ...]  # (L,)
 
 
+Marks = tuple[tuple[int, float, float, str, str], ...]
+"""A see's landmarks, as :class:`SeeConsts` holds them."""
+
+_LayoutKey = tuple[int, tuple[int, ...], int, tuple[float, float]]
+_LAYOUTS: dict[_LayoutKey, tuple[tuple[PlayerRef, ...], Marks, _Layout]] = {}
+"""The layouts by the identity of the players and marks (each arena and SeeConsts keeps its
+tuples): hashing the players' tuple, as the cache of :func:`_layout` does, costs more."""
+
+
+def _layout_of(
+    players: tuple[PlayerRef, ...],
+    observers: tuple[int, ...],
+    marks: Marks,
+    steps: tuple[float, float],
+) -> _Layout:
+    """:func:`_layout`, looked up by the identity of `players` and `marks`."""
+    key = (id(players), observers, id(marks), steps)
+    hit = _LAYOUTS.get(key)
+    if hit is not None and hit[0] is players and hit[1] is marks:
+        return hit[2]
+    layout = _layout(players, observers, marks, steps)
+    if len(_LAYOUTS) >= 64:
+        _LAYOUTS.clear()
+    _LAYOUTS[key] = (players, marks, layout)  # holds them, so that their ids stay theirs
+    return layout
+
+
 @lru_cache(maxsize=64)
 def _layout(
     players: tuple[PlayerRef, ...],
     observers: tuple[int, ...],
-    marks: tuple[tuple[int, float, float, str, str], ...],
+    marks: Marks,
     steps: tuple[float, float],
 ) -> _Layout:
     """The columns of each observer: the ball, the other players in row order, the landmarks.
