@@ -402,55 +402,53 @@ class _Builder:
     def percepts(
         self, players: tuple[PlayerRef, ...], draws: tuple[list[float], int], when: When
     ) -> list[Percept]:
-        """Every observer's percept; `draws` is the cycle's block and each see's share of it."""
+        """Every observer's percept; `draws` is the cycle's block and each see's share of it.
+
+        Each observer's ball, players and landmarks in the see's order, from its shown pairs
+        (one loop for the cycle: the locals are read once, not once per observer).
+        """
         pairs = self.pairs()
         qds = self.distances(pairs)
         time, heard = when
-        out: list[Percept] = []
-        for k, row in enumerate(self.layout.observer_rows):
-            ball, others, marks = self.objects(k, pairs, qds, draws)
-            out.append(
-                _make_percept(players[row - 1], time, time, ball, others, heard[k], marks, 0.0)
-            )
-        return out
-
-    def objects(
-        self, k: int, pairs: _Pairs, qds: list[float], draws: tuple[list[float], int]
-    ) -> tuple[SeenBall | None, tuple[SeenPlayer, ...], tuple[SeenLandmark, ...]]:
-        """Observer `k`'s ball, players and landmarks, in the see's order."""
-        first_mark, names, near = self.first_mark, self.layout.mark_names, self.near
-        ids, team_draws = self.layout.ids[k], self.layout.team_draws[k]
-        tf, ttf, uf, utf = self.fading
         block, per_see = draws
-        start = k * per_see
-        ball: SeenBall | None = None
-        others: list[SeenPlayer] = []
-        marks: list[SeenLandmark] = []
+        layout, near = self.layout, self.near
+        first_mark, names = self.first_mark, layout.mark_names
+        tf, ttf, uf, utf = self.fading
+        bounds, columns, angles, cones = pairs.bounds, pairs.column, pairs.angle, pairs.in_cone
         team: str | None
         number: int | None
-        lo, hi = pairs.bounds[k], pairs.bounds[k + 1]
-        shown = (pairs.column[lo:hi], qds[lo:hi], pairs.angle[lo:hi], pairs.in_cone[lo:hi])
-        for j, qd, angle, in_cone in zip(*shown, strict=True):
-            if j >= first_mark:
-                marks.append(_make_mark(names[j - first_mark], qd, angle))
-            elif not j:
-                ball = self.ball(k, (qd, angle, in_cone), block[start])
-            elif not in_cone:
-                others.append(_make_player(qd, angle, None, None))  # felt "(P)"
-            elif qd <= near:
-                team, number = ids[j - 1]
-                others.append(_make_player(qd, angle, team, number))
-            else:
-                # The fading of §3.5 (the team first), as decide(far_probability(qd, far,
-                # too_far), u) in line: withheld beyond too_far, kept up to far.
-                u = start + team_draws[j - 1]
-                team, number = ids[j - 1]
-                if qd > tf and (qd >= ttf or decide(far_probability(qd, tf, ttf), block[u])):
-                    team = number = None
-                elif qd > uf and (qd >= utf or decide(far_probability(qd, uf, utf), block[u + 1])):
-                    number = None
-                others.append(_make_player(qd, angle, team, number))
-        return ball, tuple(others), tuple(marks)
+        out: list[Percept] = []
+        for k, row in enumerate(layout.observer_rows):
+            ids, team_draws, start = layout.ids[k], layout.team_draws[k], k * per_see
+            ball: SeenBall | None = None
+            others: list[SeenPlayer] = []
+            marks: list[SeenLandmark] = []
+            for p in range(bounds[k], bounds[k + 1]):
+                j, qd, angle = columns[p], qds[p], angles[p]
+                if j >= first_mark:
+                    marks.append(_make_mark(names[j - first_mark], qd, angle))
+                elif not j:
+                    ball = self.ball(k, (qd, angle, cones[p]), block[start])
+                elif not cones[p]:
+                    others.append(_make_player(qd, angle, None, None))  # felt "(P)"
+                elif qd <= near:
+                    team, number = ids[j - 1]
+                    others.append(_make_player(qd, angle, team, number))
+                else:
+                    # The fading of §3.5 (the team first), as decide(far_probability(qd, far,
+                    # too_far), u) in line: withheld beyond too_far, kept up to far.
+                    u = start + team_draws[j - 1]
+                    team, number = ids[j - 1]
+                    if qd > tf and (qd >= ttf or decide(far_probability(qd, tf, ttf), block[u])):
+                        team = number = None
+                    elif qd > uf and (
+                        qd >= utf or decide(far_probability(qd, uf, utf), block[u + 1])
+                    ):
+                        number = None
+                    others.append(_make_player(qd, angle, team, number))
+            seen = (ball, tuple(others), heard[k], tuple(marks), 0.0)
+            out.append(_make_percept(players[row - 1], time, time, *seen))
+        return out
 
     def distances(self, pairs: _Pairs) -> list[float]:
         """Each pair's reported distance: exact when perfect, else its log index's (§3.3)."""
