@@ -89,10 +89,10 @@ from field_models.protocol import (
 )
 from field_models.seeding import Rng
 from field_models.soccer_server.collisions import (
-    any_overlap,
+    any_overlap_swept,
     catch_passing_ball,
-    collision_pairs,
     resolve_collisions,
+    sweep_of,
 )
 from field_models.soccer_server.cycle_rules import (
     AFTER_GOAL_MODES,
@@ -120,6 +120,8 @@ from field_models.soccer_server.params import ServerPreset
 
 BLOCK_CYCLES = 32
 """Cycles of random numbers drawn at once by the single-trial model."""
+
+_state = tuple.__new__  # a BodyState from its 5 values, without the Python-level __new__
 
 
 class SoccerServerModel:
@@ -149,6 +151,7 @@ class SoccerServerModel:
         p = preset.dynamics
         self.preset = preset
         self.params = p
+        self._per_s = 1.0 / p.dt_s  # cycles per second: m/cycle -> m/s
         self.players = tuple(players)
         self.rng = rng
         n = len(self.players) + 1
@@ -179,7 +182,8 @@ class SoccerServerModel:
         self._pitch = p.pitch()
         self._goal_line = 0.5 * p.pitch_length_m + p.ball_size_m
         self._straight_dash = p.min_dash_angle_rad <= 0.0 <= p.max_dash_angle_rad
-        self._pairs = collision_pairs(self._size)
+        self._sweep = sweep_of(tuple(self._size))
+        self._pairs = self._sweep.pairs
         self._kind = [NO_COMMAND] * n
         self.kicked_at = [-1] * n
         self._arg1 = [0.0] * n
@@ -210,14 +214,15 @@ class SoccerServerModel:
 
     def ball_state(self) -> BodyState:
         """The ball's exact state: position [m], velocity [m/s]; heading 0."""
-        k = 1.0 / self.params.dt_s
-        return BodyState(self.x[0], self.y[0], 0.0, self.vx[0] * k, self.vy[0] * k)
+        k = self._per_s
+        return _state(BodyState, (self.x[0], self.y[0], 0.0, self.vx[0] * k, self.vy[0] * k))
 
     def player_state(self, i: int) -> BodyState:
         """Player row `i`'s exact state: position [m], heading [rad], velocity [m/s]."""
-        self._check_player(i)
-        k = 1.0 / self.params.dt_s
-        return BodyState(self.x[i], self.y[i], self.heading[i], self.vx[i] * k, self.vy[i] * k)
+        if not 0 < i < self._n:  # _check_player, in line: a coach reads states every cycle
+            raise IndexError(f"player row {i} outside 1..{self._n - 1}")
+        x, y, h, k = self.x[i], self.y[i], self.heading[i], self._per_s
+        return _state(BodyState, (x, y, h, self.vx[i] * k, self.vy[i] * k))
 
     def said(self) -> list[tuple[int, str]]:
         """Messages said during the cycle the last :meth:`step` completed, as (row, text)."""
@@ -250,7 +255,7 @@ class SoccerServerModel:
         self.x[i], self.y[i] = float(x), float(y)
         self.heading[i] = wrap_angle(float(heading_rad))
         self.vx[i], self.vy[i] = float(vx_mps) * dt, float(vy_mps) * dt
-        if any_overlap(self._pairs, self.x, self.y):
+        if any_overlap_swept(self._sweep, self.x, self.y):
             self._resolve_collisions()
 
     def change_mode(self, mode: str) -> None:
@@ -370,7 +375,7 @@ class SoccerServerModel:
                 catch_passing_ball(self._pairs, (self.x, self.y), (x0, y0))
             else:
                 self._move_objects(r)
-            if any_overlap(self._pairs, self.x, self.y):
+            if any_overlap_swept(self._sweep, self.x, self.y):
                 self._resolve_collisions()
             if self.params.referee:
                 self._judge(bx0, by0, messages)

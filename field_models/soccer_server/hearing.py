@@ -9,13 +9,14 @@ come out in the server's integer degrees and sign.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import NamedTuple
 
 from field_models import fpmath
 from field_models.protocol import PlayerRef, wrap_angle
-from field_models.soccer_server.see_numbers import degrees
+from field_models.soccer_server.see_numbers import RAD2DEG, degrees
 from field_models.soccer_server.sensing_params import SensingParams
 
 SAY_ALLOWED_CHARS = frozenset(
@@ -188,8 +189,40 @@ def _player_hear(
     if not full:
         return HearInfo(time, "player", None, None, team, number) if protocol >= 8 else None
     # Direction from the listener's body, server sign: negate our CCW angle.
-    rel = wrap_angle(-(fpmath.atan2(y[speaker] - y[row], x[speaker] - x[row]) - heading[row]))
-    return HearInfo(time, "player", say.text, degrees(rel, say.trunc), team, number)
+    dy, dx = y[speaker] - y[row], x[speaker] - x[row]
+    return HearInfo(
+        time, "player", say.text, hear_degrees(dy, dx, heading[row], say.trunc), team, number
+    )
+
+
+_fast_atan2 = math.atan2
+"""The C library's atan2 (a module name, so that a test can perturb it)."""
+
+HEAR_MARGIN_RAD = 1e-9
+"""How near a degree boundary or ±π a direction from the C library's ``atan2`` may come before
+the CPU-independent :func:`field_models.fpmath.atan2` decides it; the two differ by a few units
+in the last place (below 1e-14 rad here), so outside this margin both give the same degrees."""
+
+
+def hear_degrees(dy: float, dx: float, heading: float, truncate: bool) -> int:
+    """``degrees(wrap_angle(-(fpmath.atan2(dy, dx) - heading)), truncate)``, the same integer.
+
+    A hear reports whole degrees (truncated: flips at whole degrees; rounded: at halves), so
+    the C library's faster ``atan2`` gives the same report except next to such a boundary or
+    where ±π wraps; there, and on an axis (signed zeros), the scalar :mod:`field_models.fpmath`
+    rule decides.
+    """
+    rel = wrap_angle(-(_fast_atan2(dy, dx) - heading))
+    deg = rel * RAD2DEG
+    edge = deg if truncate else deg + 0.5
+    if (
+        abs(edge - round(edge)) < HEAR_MARGIN_RAD * RAD2DEG
+        or abs(abs(rel) - math.pi) < HEAR_MARGIN_RAD
+        or dx == 0.0
+        or dy == 0.0
+    ):
+        rel = wrap_angle(-(fpmath.atan2(dy, dx) - heading))
+    return degrees(rel, truncate)
 
 
 def referee_hear(time: int, message: str) -> HearInfo:

@@ -125,7 +125,7 @@ def percepts_of(
             )
             for k, row in enumerate(observers)
         ]
-    layout = _layout(players, tuple(observers), marks, (c.q, c.q_l))
+    layout = _layout_of(players, tuple(observers), marks, (c.q, c.q_l))
     per_see = 1 + 2 * n + (len(c.flags) if landmarks != "none" and c.changes and c.high else 0)
     draws = rng.random(len(observers) * per_see).tolist()
     build = _Builder(c, params, layout, _Geometry.of(layout, bodies), bodies)
@@ -145,43 +145,88 @@ def _check(
 
 
 class _Layout(NamedTuple):
-    """Which object each (observer, column) pair is; fixed for a set of observers."""
+    """Which object each (observer, column) pair is; fixed for a set of observers.
 
-    observers: Index  # (K,) rows of the observers
+    A pair's flat position is ``k * M + column`` (row-major (K, M) arrays): the shown pairs are
+    gathered by flat positions, numpy's cheapest gather.
+    """
+
+    observer_rows: tuple[int, ...]  # (K,) rows of the observers
+    observer_column: Index  # (K, 1) the same rows, a column to gather the observers' state
     columns: Index  # (K, M): ball, the other players in row order, then the landmarks
     feels: Mask  # (M,): a close object is felt (ball, players), not a landmark (no name)
-    steps: Array  # (M,): log step of the distance quantisation, q or q_l (§3.3)
+    flat_column: Index  # (K * M,) each flat position's column
+    flat_steps: Array  # (K * M,) log step of the distance quantisation, q or q_l (§3.3)
+    flat_log_edge: Array  # (K * M,) 0.5 less twice SAFE_MARGIN_LOG in steps (_log_indices)
+    row_starts: Index  # (K + 1,) flat position of each observer's first pair, then K * M
     team_draws: tuple[tuple[int, ...], ...]  # per observer, each player column's team draw
-    refs: tuple[tuple[PlayerRef, ...], ...]  # per observer, the players of its columns
-    mark_x: Array  # (L,) landmark x [m]
-    mark_y: Array  # (L,) landmark y [m], server frame (down)
+    ids: tuple[tuple[tuple[str, int], ...], ...]  # per observer, its columns' (team, number)
+    mark_x: tuple[float, ...]  # (L,) landmark x [m]
+    mark_y_up: tuple[float, ...]  # (L,) landmark y [m] in our frame (up): the server's negated
+    mark_pad: tuple[float, ...]  # (L,) zeros: the landmarks' "headings", never read
     mark_names: tuple[str, ...]  # (L,)
+
+
+Marks = tuple[tuple[int, float, float, str, str], ...]
+"""A see's landmarks, as :class:`SeeConsts` holds them."""
+
+_LayoutKey = tuple[int, tuple[int, ...], int, tuple[float, float]]
+_LAYOUTS: dict[_LayoutKey, tuple[tuple[PlayerRef, ...], Marks, _Layout]] = {}
+"""The layouts by the identity of the players and marks (each arena and SeeConsts keeps its
+tuples): hashing the players' tuple, as the cache of :func:`_layout` does, costs more."""
+
+
+def _layout_of(
+    players: tuple[PlayerRef, ...],
+    observers: tuple[int, ...],
+    marks: Marks,
+    steps: tuple[float, float],
+) -> _Layout:
+    """:func:`_layout`, looked up by the identity of `players` and `marks`."""
+    key = (id(players), observers, id(marks), steps)
+    hit = _LAYOUTS.get(key)
+    if hit is not None and hit[0] is players and hit[1] is marks:
+        return hit[2]
+    layout = _layout(players, observers, marks, steps)
+    if len(_LAYOUTS) >= 64:
+        _LAYOUTS.clear()
+    _LAYOUTS[key] = (players, marks, layout)  # holds them, so that their ids stay theirs
+    return layout
 
 
 @lru_cache(maxsize=64)
 def _layout(
     players: tuple[PlayerRef, ...],
     observers: tuple[int, ...],
-    marks: tuple[tuple[int, float, float, str, str], ...],
+    marks: Marks,
     steps: tuple[float, float],
 ) -> _Layout:
     """The columns of each observer: the ball, the other players in row order, the landmarks.
 
     `steps` is the quantisation step of ball and players, then of flags and goals.
     """
-    n = len(players)
+    n, k = len(players), len(observers)
     kept = [m for m in marks if m[3][0] in "fg" and len(m[3]) > 1]  # what a percept keeps
     others = [[row for row in range(1, n + 1) if row != me] for me in observers]
     columns = [[0, *rows, *range(n + 1, n + 1 + len(kept))] for rows in others]
+    m = n + len(kept)
+    flat_steps = np.tile(np.array([steps[0]] * n + [steps[1]] * len(kept)), k)
     return _Layout(
-        observers=np.array(observers, dtype=np.intp),
-        columns=np.array(columns, dtype=np.intp).reshape(len(observers), -1),
+        observer_rows=tuple(observers),
+        observer_column=np.array(observers, dtype=np.intp).reshape(k, 1),
+        columns=np.array(columns, dtype=np.intp).reshape(k, m),
         feels=np.array([True] * n + [False] * len(kept)),
-        steps=np.array([steps[0]] * n + [steps[1]] * len(kept)),
+        flat_column=np.tile(np.arange(m, dtype=np.intp), k),
+        flat_steps=flat_steps,
+        flat_log_edge=0.5 - 2.0 * SAFE_MARGIN_LOG / flat_steps,
+        row_starts=np.arange(k + 1, dtype=np.intp) * m,
         team_draws=tuple(tuple(2 * row - 1 for row in rows) for rows in others),
-        refs=tuple(tuple(players[row - 1] for row in rows) for rows in others),
-        mark_x=np.array([m[1] for m in kept], dtype=np.float64),
-        mark_y=np.array([m[2] for m in kept], dtype=np.float64),
+        ids=tuple(
+            tuple((players[r - 1].team, players[r - 1].number) for r in rows) for rows in others
+        ),
+        mark_x=tuple(float(m[1]) for m in kept),
+        mark_y_up=tuple(-float(m[2]) for m in kept),
+        mark_pad=(0.0,) * len(kept),
         mark_names=tuple(m[3] for m in kept),
     )
 
@@ -196,14 +241,25 @@ class _Geometry(NamedTuple):
 
     @classmethod
     def of(cls, layout: _Layout, bodies: Bodies) -> _Geometry:
-        """The offsets, computed as ``observe`` does (the negations are exact)."""
-        x = np.concatenate((np.asarray(bodies.x, dtype=np.float64), layout.mark_x))
-        y = np.concatenate((-np.asarray(bodies.y, dtype=np.float64), layout.mark_y))
-        heading = -np.asarray(bodies.heading, dtype=np.float64)
-        me = layout.observers[:, None]
-        dx = x[layout.columns] - x[me]
-        dy = y[layout.columns] - y[me]
-        return cls(dx, dy, dx * dx + dy * dy, heading[me])
+        """The offsets, computed as ``observe`` does (the negations are exact).
+
+        x, y and heading of every object and landmark make one (3, N + L) array, so that one
+        negation gives the server's y and headings (the landmarks' y go in ours, so that it
+        gives theirs back bit for bit) and one gather and one subtraction both offsets.
+        """
+        p = np.array(
+            (
+                [*bodies.x, *layout.mark_x],
+                [*bodies.y, *layout.mark_y_up],
+                [*bodies.heading, *layout.mark_pad],
+            ),
+            dtype=np.float64,
+        )
+        np.negative(p[1:], out=p[1:])
+        me = p.take(layout.observer_column, axis=1)  # (3, K, 1)
+        d = p[:2].take(layout.columns, axis=1) - me[:2]
+        dx, dy = d[0], d[1]
+        return cls(dx, dy, dx * dx + dy * dy, me[2])
 
 
 _numpy_atan2 = np.arctan2
@@ -222,7 +278,14 @@ step the logarithm may come. numpy's and fdlibm's logarithms differ by a few uni
 place, below 1e-13 for any distance below 10^6 m."""
 
 
-def _view_angles(c: SeeConsts, g: _Geometry) -> Array:
+class _Angles(NamedTuple):
+    """Each pair's direction from the observer's view (server frame, [-π, π)), (K, M) arrays."""
+
+    size: Array  # its magnitude: the cone test is size < half angle
+    degrees: Array  # in the server's degrees, before truncating or rounding
+
+
+def _view_angles(c: SeeConsts, g: _Geometry) -> _Angles:
     """Each pair's direction from the observer's view (server frame, [-π, π)), as ``observe``.
 
     Perfect perception reports the angle itself, so every bit comes from
@@ -232,27 +295,34 @@ def _view_angles(c: SeeConsts, g: _Geometry) -> Array:
     ten million) take the scalar ``atan2``.
     """
     if c.perfect:
-        return wrap_angle(fpmath.atan2_array(g.dy, g.dx) - g.heading)
+        ang = wrap_angle(fpmath.atan2_array(g.dy, g.dx) - g.heading)
+        return _Angles(np.abs(ang), ang * RAD2DEG)
     ang = wrap_angle(_numpy_atan2(g.dy, g.dx) - g.heading)
     size = np.abs(ang)
     deg = ang * RAD2DEG
     edge = deg if c.truncate else deg + 0.5  # truncation flips at whole degrees, rounding at halves
     near = np.abs(size - c.half_angle) < SAFE_MARGIN_RAD
-    near |= (g.dx == 0.0) | (g.dy == 0.0)  # on an axis: signed zeros, exact constants
+    # On an axis: signed zeros, exact constants. A product that underflows to 0 also takes the
+    # scalar rule, which is never wrong.
+    near |= g.dx * g.dy == 0.0
     near |= np.abs(edge - np.rint(edge)) < SAFE_MARGIN_RAD * RAD2DEG
     if not c.truncate:  # where ±π wraps, rounding flips sign (truncation: ±180 is a boundary)
         near |= np.abs(size - math.pi) < SAFE_MARGIN_RAD
-    for k, j in zip(*np.nonzero(near), strict=True):
-        exact = fpmath.atan2(float(g.dy[k, j]), float(g.dx[k, j])) - float(g.heading[k, 0])
-        ang[k, j] = wrap_angle(exact)
-    return ang
+    if near.any():
+        for k, j in zip(*np.nonzero(near), strict=True):
+            exact = fpmath.atan2(float(g.dy[k, j]), float(g.dx[k, j])) - float(g.heading[k, 0])
+            exact = wrap_angle(exact)
+            size[k, j], deg[k, j] = abs(exact), exact * RAD2DEG
+    return _Angles(size, deg)
 
 
-def _log_indices(exact: Array, steps: Array) -> list[int]:
+def _log_indices(exact: Array, steps: Array, edge: Array) -> list[int]:
     """``round(fpmath.log(d + EPS) / step)`` per distance (§3.3), through numpy's ``log``.
 
     As for angles, only a logarithm within :data:`SAFE_MARGIN_LOG` of a half step takes the
-    scalar one: elsewhere both round to the same index.
+    scalar one: elsewhere both round to the same index. There ``|q - rint(q)|`` of the quotient
+    ``q`` is within the margin (in steps) of 0.5; `edge` is 0.5 less twice that (a superset:
+    the rounding of these few operations is far below the margin).
 
     Raises:
         ValueError: A distance that is not finite (a position became NaN or inf).
@@ -261,8 +331,7 @@ def _log_indices(exact: Array, steps: Array) -> list[int]:
     if not np.isfinite(quotient).all():
         raise ValueError("see: a distance that is not finite (a position became NaN or inf)")
     index = np.rint(quotient)
-    edge = quotient + 0.5
-    for p in np.flatnonzero(np.abs(edge - np.rint(edge)) * steps < SAFE_MARGIN_LOG):
+    for p in np.flatnonzero(np.abs(quotient - index) > edge):
         index[p] = round(fpmath.log(float(exact[p]) + EPS) / float(steps[p]))
     out: list[int] = index.astype(np.intp).tolist()
     return out
@@ -298,79 +367,88 @@ class _Builder:
         self.first_mark = layout.columns.shape[1] - len(layout.mark_names)
         # Within both fading lengths a player shows team and number: far_probability is 0.
         self.near = math.inf if c.perfect else min(c.team_far, c.unum_far)
+        self.fading = (c.team_far, c.team_too_far, c.unum_far, c.unum_too_far)
 
     def pairs(self) -> _Pairs:
         """The pairs shown, with the operations of ``observe`` (arrays over all pairs first)."""
         c, layout, g = self.c, self.layout, self.geometry
-        ang = _view_angles(c, g)
-        in_cone = (-c.half_angle < ang) & (ang < c.half_angle)
+        size, degrees = _view_angles(c, g)
+        in_cone = size < c.half_angle  # -half < angle < half
         shown = in_cone | ((g.d2 <= c.vis_dist2) & layout.feels)
         if not c.high:
             shown[...] = False  # low quality: no distances, and a percept keeps none without
-        ks, js = np.nonzero(shown)  # row-major: each observer's pairs in column order
-        exact = np.sqrt(g.d2[ks, js])
-        deg = ang[ks, js] * RAD2DEG
+        flat = np.flatnonzero(shown)  # row-major: each observer's pairs in column order
+        exact = np.sqrt(g.d2.ravel()[flat])
+        deg = degrees.ravel()[flat]
         exact_list: list[float] = []
         index: list[int] = []
         if c.perfect:
             exact_list, direction = exact.tolist(), deg
         else:
-            index = _log_indices(exact, layout.steps[js])
+            index = _log_indices(exact, layout.flat_steps[flat], layout.flat_log_edge[flat])
             direction = np.trunc(deg) if c.truncate else np.rint(deg)
-        bounds = np.searchsorted(ks, np.arange(len(layout.observers) + 1))
-        angle = -(direction * _DEG2RAD) + 0.0  # server degrees -> our CCW radians
+        bounds = np.searchsorted(flat, layout.row_starts)
+        # Server degrees -> our CCW radians: -(d * r) is d * -r bit for bit; + 0.0 clears -0.
+        angle = direction * -_DEG2RAD + 0.0
         return _Pairs(
             bounds.tolist(),
-            js.tolist(),
+            layout.flat_column[flat].tolist(),
             exact_list,
             index,
             angle.tolist(),
-            in_cone[ks, js].tolist(),
+            in_cone.ravel()[flat].tolist(),
         )
 
     def percepts(
         self, players: tuple[PlayerRef, ...], draws: tuple[list[float], int], when: When
     ) -> list[Percept]:
-        """Every observer's percept; `draws` is the cycle's block and each see's share of it."""
+        """Every observer's percept; `draws` is the cycle's block and each see's share of it.
+
+        Each observer's ball, players and landmarks in the see's order, from its shown pairs
+        (one loop for the cycle: the locals are read once, not once per observer).
+        """
         pairs = self.pairs()
         qds = self.distances(pairs)
         time, heard = when
-        out: list[Percept] = []
-        for k, row in enumerate(self.layout.observers.tolist()):
-            ball, others, marks = self.objects(k, pairs, qds, draws)
-            out.append(
-                _make_percept(players[row - 1], time, time, ball, others, heard[k], marks, 0.0)
-            )
-        return out
-
-    def objects(
-        self, k: int, pairs: _Pairs, qds: list[float], draws: tuple[list[float], int]
-    ) -> tuple[SeenBall | None, tuple[SeenPlayer, ...], tuple[SeenLandmark, ...]]:
-        """Observer `k`'s ball, players and landmarks, in the see's order."""
-        first_mark, names = self.first_mark, self.layout.mark_names
-        refs, team_draws = self.layout.refs[k], self.layout.team_draws[k]
         block, per_see = draws
-        start = k * per_see
-        ball: SeenBall | None = None
-        others: list[SeenPlayer] = []
-        marks: list[SeenLandmark] = []
-        lo, hi = pairs.bounds[k], pairs.bounds[k + 1]
-        shown = (pairs.column[lo:hi], qds[lo:hi], pairs.angle[lo:hi], pairs.in_cone[lo:hi])
-        for j, qd, angle, in_cone in zip(*shown, strict=True):
-            if j >= first_mark:
-                marks.append(_make_mark(names[j - first_mark], qd, angle))
-            elif not j:
-                ball = self.ball(k, (qd, angle, in_cone), block[start])
-            elif not in_cone:
-                others.append(_make_player(qd, angle, None, None))  # felt "(P)"
-            elif qd <= self.near:
-                ref = refs[j - 1]
-                others.append(_make_player(qd, angle, ref.team, ref.number))
-            else:
-                u = start + team_draws[j - 1]
-                team, number = self.identity(qd, refs[j - 1], block[u], block[u + 1])
-                others.append(_make_player(qd, angle, team, number))
-        return ball, tuple(others), tuple(marks)
+        layout, near = self.layout, self.near
+        first_mark, names = self.first_mark, layout.mark_names
+        tf, ttf, uf, utf = self.fading
+        bounds, columns, angles, cones = pairs.bounds, pairs.column, pairs.angle, pairs.in_cone
+        team: str | None
+        number: int | None
+        out: list[Percept] = []
+        for k, row in enumerate(layout.observer_rows):
+            ids, team_draws, start = layout.ids[k], layout.team_draws[k], k * per_see
+            ball: SeenBall | None = None
+            others: list[SeenPlayer] = []
+            marks: list[SeenLandmark] = []
+            for p in range(bounds[k], bounds[k + 1]):
+                j, qd, angle = columns[p], qds[p], angles[p]
+                if j >= first_mark:
+                    marks.append(_make_mark(names[j - first_mark], qd, angle))
+                elif not j:
+                    ball = self.ball(k, (qd, angle, cones[p]), block[start])
+                elif not cones[p]:
+                    others.append(_make_player(qd, angle, None, None))  # felt "(P)"
+                elif qd <= near:
+                    team, number = ids[j - 1]
+                    others.append(_make_player(qd, angle, team, number))
+                else:
+                    # The fading of §3.5 (the team first), as decide(far_probability(qd, far,
+                    # too_far), u) in line: withheld beyond too_far, kept up to far.
+                    u = start + team_draws[j - 1]
+                    team, number = ids[j - 1]
+                    if qd > tf and (qd >= ttf or decide(far_probability(qd, tf, ttf), block[u])):
+                        team = number = None
+                    elif qd > uf and (
+                        qd >= utf or decide(far_probability(qd, uf, utf), block[u + 1])
+                    ):
+                        number = None
+                    others.append(_make_player(qd, angle, team, number))
+            seen = (ball, tuple(others), heard[k], tuple(marks), 0.0)
+            out.append(_make_percept(players[row - 1], time, time, *seen))
+        return out
 
     def distances(self, pairs: _Pairs) -> list[float]:
         """Each pair's reported distance: exact when perfect, else its log index's (§3.3)."""
@@ -394,17 +472,6 @@ class _Builder:
         c = self.c
         return quantised_distance_for_index(self.params, index, c.q_l if mark else c.q)
 
-    def identity(
-        self, qd: float, ref: PlayerRef, u_team: float, u_number: float
-    ) -> tuple[str | None, int | None]:
-        """A player's team and number as fading shows them (§3.5): the team fades first."""
-        c = self.c
-        if decide(far_probability(qd, c.team_far, c.team_too_far), u_team):
-            return None, None
-        if decide(far_probability(qd, c.unum_far, c.unum_too_far), u_number):
-            return ref.team, None
-        return ref.team, ref.number
-
     def ball(self, k: int, seen: tuple[float, float, bool], u: float) -> SeenBall:
         """Observer `k`'s ball, with its changes where the see reports them (§3.4)."""
         qd, angle, in_cone = seen
@@ -414,7 +481,7 @@ class _Builder:
             reports = not decide(far_probability(qd, c.unum_far, c.unum_too_far), u)
         if not reports:
             return _make_ball(qd, angle, None, None)
-        g, b, row = self.geometry, self.bodies, int(self.layout.observers[k])
+        g, b, row = self.geometry, self.bodies, self.layout.observer_rows[k]
         # Velocity relative to the observer in the server frame (y down), as observe has it.
         wx = b.vx[0] - b.vx[row]
         wy = -b.vy[0] - -b.vy[row]

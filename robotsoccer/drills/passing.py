@@ -288,7 +288,7 @@ class _PassJudge:
         # from the first tick it could be within reach: far fewer truth reads per tick.
         self.closing_mps = 1.5 * (facts.ball_max_speed_mps + facts.player_top_speed_mps)
         self.reach = reach
-        self.next_look = dict.fromkeys(self.order, 0)
+        self.next_look = [0] * len(self.order)  # by place in `order` (no hashing per tick)
         self.score = arena.score()
 
     def judge(self, arena: Arena) -> Verdict | None:
@@ -308,15 +308,15 @@ class _PassJudge:
         x, y, _, vx, vy = arena.ball_state()
         chosen = self.chosen
         next_look = self.next_look
-        for ref in self.order:
-            if tick < next_look[ref]:
+        for i, ref in enumerate(self.order):
+            if tick < next_look[i]:
                 continue
             p = arena.player_state(ref)
             d2 = (p.x - x) ** 2 + (p.y - y) ** 2
             if d2 <= self.reach2:
                 return self._taken(ref, chosen)
             gap_s = (math.sqrt(d2) - self.reach) / self.closing_mps
-            next_look[ref] = tick + max(1, int(gap_s / self.dt_s))
+            next_look[i] = tick + max(1, int(gap_s / self.dt_s))
         if abs(x) > self.half_length or abs(y) > self.half_width:
             return Verdict("MISS", "the ball left the field")
         if tick > self.launched_tick + 2 and vx * vx + vy * vy < self.eps2:

@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from field_models.protocol import LEFT, RIGHT, Dash, Kick, PlayerRef, Say, Turn
+from field_models.protocol import LEFT, RIGHT, BodyState, Dash, Kick, PlayerRef, Say, Turn
 from field_models.soccer_server.cycle_rules import (
     PLAY_ON,
     dash_direction,
@@ -532,3 +532,21 @@ def run_noisy(seed: int) -> list[tuple[float, ...]]:
 def test_same_seed_same_trajectory() -> None:
     assert run_noisy(11) == run_noisy(11)
     assert run_noisy(11) != run_noisy(12)
+
+
+# ----------------------------------------------------------------------------- state reads
+
+
+def test_states_are_body_states_with_velocities_per_second() -> None:
+    m = model(players=(ME, THEM))
+    m.move_ball(1.0, 2.0, 3.0, -4.0)
+    m.move_player(2, -5.0, 6.0, 0.5, 1.5, -2.5)
+    dt = m.params.dt_s
+    ball, player = m.ball_state(), m.player_state(2)
+    assert type(ball) is BodyState and type(player) is BodyState
+    assert ball == BodyState(1.0, 2.0, 0.0, m.vx[0] * (1.0 / dt), m.vy[0] * (1.0 / dt))
+    assert player == BodyState(-5.0, 6.0, 0.5, m.vx[2] * (1.0 / dt), m.vy[2] * (1.0 / dt))
+    assert player.vx == pytest.approx(1.5) and player.heading == 0.5
+    for row in (0, 3, -1):
+        with pytest.raises(IndexError, match="outside"):
+            m.player_state(row)

@@ -261,3 +261,21 @@ def test_whole_pass_trials_are_identical_percept_for_percept(
     ref_rows, ref_seen = _pass_trials(monkeypatch, one_at_a_time, 12)
     assert len(seen) > 100 and seen == ref_seen
     assert rows == ref_rows
+
+
+def test_layouts_are_looked_up_by_the_players_and_marks_they_were_built_for() -> None:
+    bodies = random_state(np.random.default_rng(12), 1)
+    swapped = tuple(PlayerRef(RIGHT if p.team == LEFT else LEFT, p.number) for p in PLAYERS)
+    observers, heard = [1, 3, 4, 7], [()] * 4
+    for players in (PLAYERS, swapped, PLAYERS, tuple(swapped)):
+        for mode in MODES:
+            want = one_at_a_time(
+                observers, bodies, players, SENSING_1996, np.random.default_rng(2), 3, heard, mode
+            )
+            got = percepts_of(
+                observers, bodies, players, SENSING_1996, np.random.default_rng(2), 3, heard, mode
+            )
+            assert bits(got) == bits(want)
+            assert [p.player for p in got] == [players[row - 1] for row in observers]
+    key = (id(PLAYERS), (1, 3, 4, 7))
+    assert any(k[:2] == key for k in percepts_many._LAYOUTS)
