@@ -1,11 +1,17 @@
 """Layer 2's receivers and waiting defenders as client minds (paper §6, Figures 10, 12, 13).
 
-:class:`ReceiverMind` faces the ball once it hears the passer's intention, says its report in
-its own slot (:data:`REPORT_SLOT_PERIODS` apart, module :mod:`robotsoccer.skills.passing`'s
-step 2), and from the announcement on intercepts with layer 1 if it is the one chosen, else
-stands still. :class:`WaitingInterceptorMind` is a defender that faces the ball until the
-announcement and then intercepts. Angles in radians; distances in metres (in units inside the
-reports).
+:class:`ReceiverMind` faces the ball once it hears the passer's intention, says its report in its
+own slot (:data:`REPORT_SLOT_PERIODS` apart, module :mod:`robotsoccer.skills.passing`'s step 2), and
+from the announcement on intercepts with layer 1 if it is the one chosen, else stands still. Looking
+with the neck (a :class:`~robotsoccer.skills.team_look.NeckLook` given, the set play's
+``look=neck``), it reads its percepts with directions from the body, keeps the ball in view with its
+head and turns its body only toward a ball its head cannot point at (beyond
+:data:`~robotsoccer.skills.team_look.NECK_MAX_RAD` from the body: the report needs the head to face
+the ball, so the view's margin, ``LOOK_COVER_RAD``, does not do here); it reports once its *head*
+faces the ball, measured from the head, so that its report reads as one from a receiver facing the
+ball, the view layer 2's tree learned from. :class:`WaitingInterceptorMind` is a defender that faces
+the ball until the announcement and then intercepts. Angles in radians; distances in metres (in
+units inside the reports).
 """
 
 from __future__ import annotations
@@ -17,6 +23,7 @@ from field_models.protocol import Action, Mind, Percept, Say, SeenPlayer, Turn, 
 from learning.pass_codec import MAX_DISTANCE, encode_view
 from robotsoccer.skills.pass_messages import INTENT, announced_number, report_text
 from robotsoccer.skills.passing import view_arrays
+from robotsoccer.skills.team_look import NECK_MAX_RAD, NeckLook, head_relative
 
 REPORT_SLOT_PERIODS = 2.0
 """Sensor periods between two receivers' report slots (step 2 of the conversation in
@@ -36,6 +43,9 @@ class ReceiverMind:
         dt_s: One tick [s].
         slot: Its report slot (0, 1, 2, ...).
         say_max_chars: The field's say limit; None: no limit.
+        head: Its head, looking with the neck (module docstring): percepts come with their
+            directions from the body, the head's neck angle noted; None: it looks with its
+            body (percepts from the body, which is the head).
     """
 
     def __init__(
@@ -48,8 +58,10 @@ class ReceiverMind:
         dt_s: float,
         slot: int,
         say_max_chars: int | None,
+        head: NeckLook | None = None,
     ) -> None:
         self.number = number
+        self.head = head
         self.interceptor = interceptor
         self.unit_m = unit_m
         self.slot_ticks = round(slot * REPORT_SLOT_PERIODS * sensor_period_s / dt_s)
@@ -72,10 +84,20 @@ class ReceiverMind:
                 return self.interceptor.act(percept)
             self.done = True  # stands still from now on: it needs no more percepts
             return ()
+        if self.head is not None:
+            # The neck keeps the ball in view; the body turns only where the head cannot point.
+            ball = percept.ball
+            if ball is None:
+                return ()  # the head scans for it
+            if abs(ball.angle_rad) > NECK_MAX_RAD:
+                return (Turn(ball.angle_rad),)
+            percept = head_relative(percept, self.head.neck_rad)
         ball = percept.ball
         if ball is None:
             return (Turn(math.pi / 2),)  # look for it
         if abs(ball.angle_rad) > FACING_TOLERANCE_RAD:
+            if self.head is not None:
+                return ()  # the neck turns to the ball: report at a see that shows it ahead
             return (Turn(ball.angle_rad),)
         if (
             self.intent_tick is not None
