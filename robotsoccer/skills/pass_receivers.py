@@ -1,17 +1,22 @@
 """Layer 2's receivers and waiting defenders as client minds (paper §6, Figures 10, 12, 13).
 
-:class:`ReceiverMind` faces the ball once it hears the passer's intention, says its report in its
-own slot (:data:`REPORT_SLOT_PERIODS` apart, module :mod:`robotsoccer.skills.passing`'s step 2), and
-from the announcement on intercepts with layer 1 if it is the one chosen, else stands still. Looking
-with the neck (a :class:`~robotsoccer.skills.team_look.NeckLook` given, the set play's
-``look=neck``), it reads its percepts with directions from the body, keeps the ball in view with its
-head and turns its body only toward a ball its head cannot point at (beyond
-:data:`~robotsoccer.skills.team_look.NECK_MAX_RAD` from the body: the report needs the head to face
-the ball, so the view's margin, ``LOOK_COVER_RAD``, does not do here); it reports once its *head*
-faces the ball, measured from the head, so that its report reads as one from a receiver facing the
-ball, the view layer 2's tree learned from. :class:`WaitingInterceptorMind` is a defender that faces
-the ball until the announcement and then intercepts. Angles in radians; distances in metres (in
-units inside the reports).
+:class:`ReceiverMind` faces the ball once it hears the passer's intention, says its report in
+its own slot (:data:`REPORT_SLOT_PERIODS` apart, module :mod:`robotsoccer.skills.passing`'s
+step 2), and from the announcement on intercepts with layer 1 if it is the one chosen, else
+stands still. :class:`WaitingInterceptorMind` is a defender that faces the ball until the
+announcement and then intercepts. Angles in radians; distances in metres (in units inside the
+reports).
+
+**Looking with the neck** (a :class:`~robotsoccer.skills.team_look.NeckLook` given: the set
+play's ``look=neck``). The receiver reads its percepts with their directions from the body and
+keeps the ball in view with its head: its body turns only toward a ball the head cannot point
+at (beyond :data:`~robotsoccer.skills.team_look.NECK_MAX_RAD`; the report needs the head to
+face the ball, so the view's margin, ``LOOK_COVER_RAD``, does not do here). It reports once its
+*head* faces the ball, with the directions measured from the head, so that its report reads as
+one from a receiver facing the ball, the view layer 2's tree learned from. Chosen, it turns its
+body to the ball once before layer 1 takes over (:meth:`ReceiverMind._face_once`): layer 1
+learned from a defender that faces the ball as it starts (measured: without that turn the set
+play's first pass failed more often, README "The set play (measured)").
 """
 
 from __future__ import annotations
@@ -62,6 +67,7 @@ class ReceiverMind:
     ) -> None:
         self.number = number
         self.head = head
+        self._faced = False
         self.interceptor = interceptor
         self.unit_m = unit_m
         self.slot_ticks = round(slot * REPORT_SLOT_PERIODS * sensor_period_s / dt_s)
@@ -81,7 +87,7 @@ class ReceiverMind:
                 self.chosen = number == self.number
         if self.chosen is not None:
             if self.chosen:
-                return self.interceptor.act(percept)
+                return self._face_once(percept) or self.interceptor.act(percept)
             self.done = True  # stands still from now on: it needs no more percepts
             return ()
         if self.head is not None:
@@ -109,6 +115,22 @@ class ReceiverMind:
                 self.reported = True
                 return (Say(text),)
         return ()
+
+    def _face_once(self, percept: Percept) -> tuple[Action, ...]:
+        """Looking with the neck, at its first decision as the one chosen: face the ball.
+
+        Layer 1 learned from a defender facing the ball as it starts (the interception drill,
+        §5), and a receiver that kept the ball in view with its neck may stand well off it: it
+        turns its body to the ball once, then intercepts. Empty: no turn (facing it, or looking
+        with its body, or done already).
+        """
+        if self.head is None or self._faced:
+            return ()
+        self._faced = True
+        ball = percept.ball
+        if ball is None or abs(ball.angle_rad) <= FACING_TOLERANCE_RAD:
+            return ()
+        return (Turn(ball.angle_rad),)
 
     def _report(self, percept: Percept) -> str | None:
         """Its report; None when it cannot see the passer (next to the ball)."""

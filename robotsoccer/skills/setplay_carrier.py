@@ -13,13 +13,14 @@ from the first pass's announcement on, and collects the pass with layer 1's inte
 hears the cue :data:`~robotsoccer.skills.setplay.WINGER_CUE`.
 
 Carriers dribble by dead reckoning (their own kicks,
-:meth:`~robotsoccer.skills.ball_tracker.BallTracker.detach`), as on the server; a winger uses the
-camera while it collects. Looking with the neck (a :class:`~robotsoccer.skills.team_look.NeckLook`
-given: the set play's ``look=neck``, :mod:`robotsoccer.skills.setplay_look`), its percepts come with
-their directions from the body and a waiting winger keeps the ball in view with its head, turning
-its body only where the head cannot (:data:`~robotsoccer.skills.team_look.LOOK_COVER_RAD`). The
-shared skills are :mod:`robotsoccer.skills.setplay`'s; angles are radians, left positive; distances
-metres.
+:meth:`~robotsoccer.skills.ball_tracker.BallTracker.detach`), as on the server; a winger uses
+the camera while it collects. Looking with the neck (a
+:class:`~robotsoccer.skills.team_look.NeckLook` given: the set play's ``look=neck``,
+:mod:`robotsoccer.skills.setplay_look`), its percepts come with their directions from the body
+and a waiting winger keeps the ball in view with its head, turning its body only where the head
+cannot (:data:`~robotsoccer.skills.team_look.LOOK_COVER_RAD`); on the cue it faces the ball with
+its body once before collecting. The shared skills are :mod:`robotsoccer.skills.setplay`'s;
+angles are radians, left positive; distances metres.
 """
 
 from __future__ import annotations
@@ -179,6 +180,12 @@ class CarrierMind:
             self.tracker.launched(percept, self.pass_speed_mps, kick_tick)
             self.phase = "collect"
             self.calling = False
+            if self.head is not None:
+                # Its body may stand well off the ball (the neck kept it): face it once, as
+                # layer 1 learned to start (pass_receivers' module docstring).
+                turn = face_ball(percept)
+                if turn != STAND:
+                    return turn
             return self._decide(percept)
         for heard in percept.heard:
             if announced_number(heard.text) in self.calls_after:
