@@ -16,7 +16,7 @@ face the ball, so the view's margin, ``LOOK_COVER_RAD``, does not do here). It r
 one from a receiver facing the ball, the view layer 2's tree learned from. Chosen, it turns its
 body to the ball once before layer 1 takes over (:meth:`ReceiverMind._face_once`): layer 1
 learned from a defender that faces the ball as it starts (measured: without that turn the set
-play's first pass failed more often, README "The set play (measured)").
+play's first pass failed more often: README, "The set play looking with the neck").
 """
 
 from __future__ import annotations
