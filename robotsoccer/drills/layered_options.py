@@ -18,6 +18,7 @@ from robotsoccer.drills.intercept_options import ClientKind
 from robotsoccer.options import choice, duration, flag
 from robotsoccer.skills.intercept import Behaviour, check_behaviour, model_decision
 from robotsoccer.skills.passing import Chooser
+from robotsoccer.skills.team_setup import LOOK_MODES
 
 PASS_DEFENDERS = ("intercept", "still")
 """The pass drill's defender modes (:class:`PassOptions`, ``defenders``)."""
@@ -112,10 +113,13 @@ class SetPlayOptions:
             (``straight``: the field's baseline defenders, whatever the attackers use).
         client: ``see`` (the paper's client) or ``cycle`` (the per-cycle client;
             :mod:`robotsoccer.drills.setplay`'s module docstring, "Client").
+        look: How the attackers look: ``body`` (the paper's client, no neck) or ``neck``
+            (:mod:`robotsoccer.drills.setplay`'s module docstring, "Looking").
 
     Raises:
-        ValueError: An unknown chooser, interceptor or client, a missing model file, a limit
-            <= 0, a lead net with ``client=cycle``; at set-up, ``client=cycle`` on the robots.
+        ValueError: An unknown chooser, interceptor, client or look, a missing model file, a
+            limit <= 0, a lead net with ``client=cycle``; at set-up, ``client=cycle`` on the
+            robots.
     """
 
     chooser: Chooser = Chooser.CLOSEST
@@ -127,6 +131,7 @@ class SetPlayOptions:
     pass_speed_mps: float | None = None
     defenders: Behaviour | str = "same"
     client: ClientKind = ClientKind.SEE
+    look: str = "body"
 
     def __post_init__(self) -> None:
         chooser = choice(Chooser, self.chooser, "chooser")
@@ -141,6 +146,8 @@ class SetPlayOptions:
         if self.defenders != "same":
             self._set("defenders", check_behaviour(self.defenders, self.net))
         self._set("client", _client(self.client, self.net))
+        if self.look not in LOOK_MODES:
+            raise ValueError(f"unknown look {self.look!r} (known: {', '.join(LOOK_MODES)})")
 
     def _set(self, name: str, value: object) -> None:
         """Store a checked value (the record is frozen once built)."""

@@ -65,6 +65,16 @@ builds it) and the attackers' decisions are carried on every cycle from a world 
 the robots, whose host already acts on every tick, and with a lead net (the per-cycle client
 plays the turn decision).
 
+**Looking** (option ``look``, issue 28 item 3): ``body`` (the default, the paper's client: the
+head is the body, a player turns its body to look) or ``neck``: every attacker, on either
+client, reads its percepts with their directions from the body, points its head at the ball
+(scanning with a wide view while it has none) and waits without turning its body to keep the
+ball in view; a first receiver reports once its head faces the ball; a last receiver looks for
+the goal with its head (:mod:`robotsoccer.skills.setplay_look`). Defenders and goalie keep
+layer 1's drill minds. The robots have no neck (their camera sees all round, and their host
+ignores neck and view actions, as in a match): there ``look=neck`` is accepted and the
+attackers play as with ``body``.
+
 **Kicks.** Where the players have an aimable kick (the Soccer Server), they kick. Where they do
 not (the 1997 robots pushed the ball), the coach stands in for the kicker, as layer 1 and layer
 2's drills launch the ball on that field: a ``Kick`` a set-play attacker sends is not passed to
@@ -122,7 +132,9 @@ from robotsoccer.skills.pass_receivers import ReceiverMind
 from robotsoccer.skills.passing import PasserMind
 from robotsoccer.skills.setplay_carrier import CarrierMind
 from robotsoccer.skills.setplay_cycle import CycleAttacker, CycleIntercept
+from robotsoccer.skills.setplay_look import NeckAttacker
 from robotsoccer.skills.setplay_receiver import SetPlayReceiverMind
+from robotsoccer.skills.team_look import NeckLook
 
 STARTER = PlayerRef(LEFT, 1)
 FIRST_RECEIVERS = (PlayerRef(LEFT, 2), PlayerRef(LEFT, 3))
@@ -194,6 +206,7 @@ class SetPlayDrill(LayeredDrill):
         self.pass_speed_mps = o.pass_speed_mps
         self.defenders = o.defenders
         self.client = o.client
+        self.look = o.look
         self._judge: SetPlayJudge | None = None
         self._checked: FieldFacts | None = None
 
@@ -249,6 +262,13 @@ class SetPlayDrill(LayeredDrill):
         per_cycle = self.client is ClientKind.CYCLE
         # The per-cycle client's world models and layer-1 plans, by attacker.
         models: dict[PlayerRef, tuple[CycleDefenderMind, CycleIntercept | None]] = {}
+        # Each attacker's head, looking with the neck (none on the robots: module docstring).
+        heads: dict[PlayerRef, NeckLook] = {}
+
+        def head(ref: PlayerRef) -> NeckLook | None:
+            if self.look != "neck" or facts.walled:
+                return None
+            return heads.setdefault(ref, NeckLook())
 
         def interceptor(kickable: float | None = None) -> Mind:
             return self.interceptor_for(facts, plan, rng, self.interceptor, kickable)
@@ -281,11 +301,14 @@ class SetPlayDrill(LayeredDrill):
                 dt_s=facts.dt_s,
                 slot=slot,
                 say_max_chars=facts.say_max_chars,
+                head=head(ref),
             )
 
         blocked = BLOCKED_UNITS * facts.unit_m
 
-        def carrier(receivers: tuple[PlayerRef, ...], collect: Mind | None) -> CarrierMind:
+        def carrier(
+            ref: PlayerRef, receivers: tuple[PlayerRef, ...], collect: Mind | None
+        ) -> CarrierMind:
             return CarrierMind(
                 passer(receivers),
                 collect,
@@ -294,6 +317,7 @@ class SetPlayDrill(LayeredDrill):
                 blocked_distance_m=blocked,
                 powers=powers,
                 calls_after=() if collect is None else tuple(r.number for r in FIRST_RECEIVERS),
+                head=head(ref),
             )
 
         def kicker(ref: PlayerRef, slot: int, to: int | None) -> SetPlayReceiverMind:
@@ -305,6 +329,7 @@ class SetPlayDrill(LayeredDrill):
                 powers=powers,
                 armed=to is not None,
                 goal_half_width_m=0.5 * facts.pitch.goal_width_m,
+                head=head(ref),
             )
 
         # The winger collects a kick on that may pass it anywhere (§7: "since the winger is not
@@ -319,8 +344,8 @@ class SetPlayDrill(LayeredDrill):
             )
             collect = self.interceptor_for(facts, anywhere, rng, self.interceptor)
         minds: dict[PlayerRef, Mind] = {
-            STARTER: carrier(FIRST_RECEIVERS, None),
-            WINGER: carrier(LAST_RECEIVERS, collect),
+            STARTER: carrier(STARTER, FIRST_RECEIVERS, None),
+            WINGER: carrier(WINGER, LAST_RECEIVERS, collect),
         }
         for slot, ref in enumerate(FIRST_RECEIVERS):
             minds[ref] = kicker(ref, slot, WINGER.number)
@@ -342,6 +367,12 @@ class SetPlayDrill(LayeredDrill):
                 attacker = minds[ref]
                 assert isinstance(attacker, CarrierMind | SetPlayReceiverMind)
                 minds[ref] = CycleAttacker(attacker, model, meet, facts)
+        for ref, look in heads.items():
+            mind = minds[ref]
+            client = mind if isinstance(mind, CycleAttacker) else None
+            attacker = mind if client is None else client.mind
+            assert isinstance(attacker, CarrierMind | SetPlayReceiverMind)
+            minds[ref] = NeckAttacker(attacker, look, client)
         if self._judge.kicks is not None:
             for ref in (STARTER, WINGER, *FIRST_RECEIVERS, *LAST_RECEIVERS):
                 minds[ref] = CoachKickRelay(minds[ref], ref, self._judge.kicks)

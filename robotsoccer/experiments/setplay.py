@@ -32,6 +32,10 @@ comes from the run.
 host already acts on every tick). The option is in each condition's drill options, so the
 configuration and report say which client each table used.
 
+**Looking** (``look``): the Soccer Server's attackers look with the body (``body``, the default,
+the paper's client) or with the neck (``neck``: the drill's option ``look``); the robots, which
+have no neck, keep theirs. Like the client it is in each condition's drill options.
+
 The study names no field model: the caller passes the (model, preset) pairs.
 """
 
@@ -110,17 +114,20 @@ def model_files(models: Path, field_model: str) -> tuple[Path, Path]:
 
 
 def play_conditions(
-    field: Field, models: Path | None, seed: int, client: str = "see"
+    field: Field, models: Path | None, seed: int, client: str = "see", look: str = "body"
 ) -> list[PlayCondition]:
     """The layered minds (when `models` is given) and the baseline on one field, paired.
 
-    `client`: the Soccer Server's client (module docstring); a field with walls (the robots)
-    keeps its own.
+    `client`: the Soccer Server's client, `look` how its attackers look (module docstring); a
+    field with walls (the robots) keeps its own.
     """
     model, preset = field
     base = TrialSpec(drill=DRILL, field_model=model, preset=preset, seed=seed)
-    if client != "see" and not field_facts(model, preset).walled:
+    server = not field_facts(model, preset).walled
+    if client != "see" and server:
         base = base.with_options(client=client)
+    if look != "body" and server:
+        base = base.with_options(look=look)
     conditions = []
     if models is not None:
         tree, net = model_files(models, model)
@@ -143,6 +150,7 @@ def run_setplay_study(
     plays: int = 1000,
     quick: bool = False,
     client: str = "see",
+    look: str = "body",
 ) -> Path:
     """Run the set play on each field with both sets of minds; write the run; return the report.
 
@@ -155,6 +163,7 @@ def run_setplay_study(
         plays: Plays per field and condition.
         quick: At most :data:`QUICK_PLAYS` plays per condition.
         client: The Soccer Server fields' client, ``see`` or ``cycle`` (module docstring).
+        look: How the Soccer Server fields' attackers look, ``body`` or ``neck``.
 
     Raises:
         PipelineError: A model file is missing, or `out` holds another study's run.
@@ -164,7 +173,7 @@ def run_setplay_study(
         raise ValueError(f"plays must be > 0, got {plays!r}")
     n = min(plays, QUICK_PLAYS) if quick else plays
     out, seed, workers, log = ctx.out, ctx.seeds.evaluation, ctx.workers, ctx.log
-    conditions = {field: play_conditions(field, models, seed, client) for field in fields}
+    conditions = {field: play_conditions(field, models, seed, client, look) for field in fields}
     header = study_header(conditions, n, seed, quick)
     claim_folder(out, header)
     start = time.perf_counter()

@@ -37,7 +37,8 @@ class SetPlayRun(RunRequest):
         plays: Plays per field model and condition.
         quick: The quick plan.
         client: The Soccer Server players' client (``see`` or ``cycle``).
-        out: The run folder; None: ``runs/setplay[-<client>][-quick]-seed<S>``.
+        look: How the Soccer Server attackers look (``body`` or ``neck``).
+        out: The run folder; None: ``runs/setplay[-<client>][-neck][-quick]-seed<S>``.
 
     The other run-folder settings are :class:`~robotsoccer.experiments.context.RunRequest`'s.
     """
@@ -46,13 +47,15 @@ class SetPlayRun(RunRequest):
     models: Path | None = None
     plays: int = 1000
     client: str = "see"
+    look: str = "body"
 
     @property
     def folder(self) -> Path:
-        """The run folder: `out`, or one named after the client, the plan and the seed."""
+        """The run folder: `out`, or one named after the client, the look, the plan, the seed."""
         client = "" if self.client == "see" else f"-{self.client}"  # a see run's folder stays
+        look = "" if self.look == "body" else f"-{self.look}"  # and so does a body run's
         quick = "-quick" if self.quick else ""
-        return self.out or Path("runs") / f"setplay{client}{quick}-seed{self.seed}"
+        return self.out or Path("runs") / f"setplay{client}{look}{quick}-seed{self.seed}"
 
     def layers(self, warn: Log) -> Path | None:
         """The ``models`` folder of the layers, or None (the baseline minds only, said in `warn`).
@@ -108,5 +111,6 @@ def run_setplay(request: SetPlayRun, log: Log, warn: Callable[[str], None]) -> S
             plays=request.plays,
             quick=request.quick,
             client=request.client,
+            look=request.look,
         )
     return SetPlayOutcome(report)

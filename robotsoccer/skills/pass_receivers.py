@@ -6,6 +6,17 @@ step 2), and from the announcement on intercepts with layer 1 if it is the one c
 stands still. :class:`WaitingInterceptorMind` is a defender that faces the ball until the
 announcement and then intercepts. Angles in radians; distances in metres (in units inside the
 reports).
+
+**Looking with the neck** (a :class:`~robotsoccer.skills.team_look.NeckLook` given: the set
+play's ``look=neck``). The receiver reads its percepts with their directions from the body and
+keeps the ball in view with its head: its body turns only toward a ball the head cannot point
+at (beyond :data:`~robotsoccer.skills.team_look.NECK_MAX_RAD`; the report needs the head to
+face the ball, so the view's margin, ``LOOK_COVER_RAD``, does not do here). It reports once its
+*head* faces the ball, with the directions measured from the head, so that its report reads as
+one from a receiver facing the ball, the view layer 2's tree learned from. Chosen, it turns its
+body to the ball once before layer 1 takes over (:meth:`ReceiverMind._face_once`): layer 1
+learned from a defender that faces the ball as it starts (measured: without that turn the set
+play's first pass failed more often: README, "The set play looking with the neck").
 """
 
 from __future__ import annotations
@@ -17,6 +28,7 @@ from field_models.protocol import Action, Mind, Percept, Say, SeenPlayer, Turn, 
 from learning.pass_codec import MAX_DISTANCE, encode_view
 from robotsoccer.skills.pass_messages import INTENT, announced_number, report_text
 from robotsoccer.skills.passing import view_arrays
+from robotsoccer.skills.team_look import NECK_MAX_RAD, NeckLook, head_relative
 
 REPORT_SLOT_PERIODS = 2.0
 """Sensor periods between two receivers' report slots (step 2 of the conversation in
@@ -36,6 +48,9 @@ class ReceiverMind:
         dt_s: One tick [s].
         slot: Its report slot (0, 1, 2, ...).
         say_max_chars: The field's say limit; None: no limit.
+        head: Its head, looking with the neck (module docstring): percepts come with their
+            directions from the body, the head's neck angle noted; None: it looks with its
+            body (percepts from the body, which is the head).
     """
 
     def __init__(
@@ -48,8 +63,11 @@ class ReceiverMind:
         dt_s: float,
         slot: int,
         say_max_chars: int | None,
+        head: NeckLook | None = None,
     ) -> None:
         self.number = number
+        self.head = head
+        self._faced = False
         self.interceptor = interceptor
         self.unit_m = unit_m
         self.slot_ticks = round(slot * REPORT_SLOT_PERIODS * sensor_period_s / dt_s)
@@ -69,13 +87,23 @@ class ReceiverMind:
                 self.chosen = number == self.number
         if self.chosen is not None:
             if self.chosen:
-                return self.interceptor.act(percept)
+                return self._face_once(percept) or self.interceptor.act(percept)
             self.done = True  # stands still from now on: it needs no more percepts
             return ()
+        if self.head is not None:
+            # The neck keeps the ball in view; the body turns only where the head cannot point.
+            ball = percept.ball
+            if ball is None:
+                return ()  # the head scans for it
+            if abs(ball.angle_rad) > NECK_MAX_RAD:
+                return (Turn(ball.angle_rad),)
+            percept = head_relative(percept, self.head.neck_rad)
         ball = percept.ball
         if ball is None:
             return (Turn(math.pi / 2),)  # look for it
         if abs(ball.angle_rad) > FACING_TOLERANCE_RAD:
+            if self.head is not None:
+                return ()  # the neck turns to the ball: report at a see that shows it ahead
             return (Turn(ball.angle_rad),)
         if (
             self.intent_tick is not None
@@ -87,6 +115,22 @@ class ReceiverMind:
                 self.reported = True
                 return (Say(text),)
         return ()
+
+    def _face_once(self, percept: Percept) -> tuple[Action, ...]:
+        """Looking with the neck, at its first decision as the one chosen: face the ball.
+
+        Layer 1 learned from a defender facing the ball as it starts (the interception drill,
+        §5), and a receiver that kept the ball in view with its neck may stand well off it: it
+        turns its body to the ball once, then intercepts. Empty: no turn (facing it, or looking
+        with its body, or done already).
+        """
+        if self.head is None or self._faced:
+            return ()
+        self._faced = True
+        ball = percept.ball
+        if ball is None or abs(ball.angle_rad) <= FACING_TOLERANCE_RAD:
+            return ()
+        return (Turn(ball.angle_rad),)
 
     def _report(self, percept: Percept) -> str | None:
         """Its report; None when it cannot see the passer (next to the ball)."""

@@ -204,12 +204,15 @@ def heard_text(percept: Percept, text: str) -> bool:
     return any(h.text == text for h in percept.heard)
 
 
-def face_ball(percept: Percept) -> tuple[Action, ...]:
-    """Turn to the ball if it is off the heading; else stand."""
+def face_ball(percept: Percept, within_rad: float = FACING_RAD) -> tuple[Action, ...]:
+    """Turn to the ball if it is more than `within_rad` off the heading; else stand.
+
+    A player looking with its neck waits with a wider `within_rad`: the head keeps the ball.
+    """
     ball = percept.ball
     if ball is None:
         return STAND
-    return turn_then_go(ball.angle_rad, STAND, facing_rad=FACING_RAD, turn_only=True)
+    return turn_then_go(ball.angle_rad, STAND, facing_rad=within_rad, turn_only=True)
 
 
 def heard_tick(percept: Percept, texts: Iterable[str]) -> int:

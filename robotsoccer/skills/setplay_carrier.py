@@ -14,8 +14,13 @@ hears the cue :data:`~robotsoccer.skills.setplay.WINGER_CUE`.
 
 Carriers dribble by dead reckoning (their own kicks,
 :meth:`~robotsoccer.skills.ball_tracker.BallTracker.detach`), as on the server; a winger uses
-the camera while it collects. The shared skills are :mod:`robotsoccer.skills.setplay`'s; angles
-are radians, left positive; distances metres.
+the camera while it collects. Looking with the neck (a
+:class:`~robotsoccer.skills.team_look.NeckLook` given: the set play's ``look=neck``,
+:mod:`robotsoccer.skills.setplay_look`), its percepts come with their directions from the body
+and a waiting winger keeps the ball in view with its head, turning its body only where the head
+cannot (:data:`~robotsoccer.skills.team_look.LOOK_COVER_RAD`); on the cue it faces the ball with
+its body once before collecting. The shared skills are :mod:`robotsoccer.skills.setplay`'s;
+angles are radians, left positive; distances metres.
 """
 
 from __future__ import annotations
@@ -28,6 +33,7 @@ from robotsoccer.skills.ball_tracker import BallTracker
 from robotsoccer.skills.pass_messages import announced_number
 from robotsoccer.skills.passing import PasserMind
 from robotsoccer.skills.setplay import (
+    FACING_RAD,
     SEARCH_TURN_RAD,
     STAND,
     STILL_SHARE,
@@ -44,6 +50,7 @@ from robotsoccer.skills.setplay import (
     opponent_in_path,
     receive,
 )
+from robotsoccer.skills.team_look import LOOK_COVER_RAD, NeckLook
 
 VIEW_HALF_ANGLE_RAD = math.radians(40.0)
 """A carrier turns so that its receivers lie within this of its heading: inside the Soccer
@@ -66,6 +73,7 @@ class CarrierMind:
         powers: The field's kick powers.
         calls_after: The receivers of the pass before this player's (a winger calls from their
             announcement on); empty: it never calls.
+        head: Its head, looking with the neck (module docstring); None: with its body.
 
     Attributes:
         phase: ``"wait"``, ``"collect"``, ``"dribble"``, ``"look"``, ``"pass"``, ``"deliver"``
@@ -83,8 +91,11 @@ class CarrierMind:
         blocked_distance_m: float,
         powers: KickPowers,
         calls_after: tuple[int, ...] = (),
+        head: NeckLook | None = None,
     ) -> None:
         self.passer = passer
+        self.head = head
+        self.waiting_rad = FACING_RAD if head is None else LOOK_COVER_RAD
         self.interceptor = interceptor
         self.sense = sense
         self.reach_m = sense.reach_m
@@ -108,6 +119,11 @@ class CarrierMind:
         """The percept of the decision under way, as it came (for layer 1 and layer 2's minds)."""
         assert self._raw is not None, "act() first"
         return self._raw
+
+    @property
+    def seeking_goal(self) -> bool:
+        """Never: a carrier looks for the goal with its body, the ball at its feet."""
+        return False
 
     @property
     def pass_speed_mps(self) -> float:
@@ -164,11 +180,17 @@ class CarrierMind:
             self.tracker.launched(percept, self.pass_speed_mps, kick_tick)
             self.phase = "collect"
             self.calling = False
+            if self.head is not None:
+                # Its body may stand well off the ball (the neck kept it): face it once, as
+                # layer 1 learned to start (pass_receivers' module docstring).
+                turn = face_ball(percept)
+                if turn != STAND:
+                    return turn
             return self._decide(percept)
         for heard in percept.heard:
             if announced_number(heard.text) in self.calls_after:
                 self.calling = True
-        actions = face_ball(percept)
+        actions = face_ball(percept, self.waiting_rad)
         return (*actions, Say(WINGER_CALL)) if self.calling else actions
 
     def _in_reach(self, percept: Percept) -> bool:

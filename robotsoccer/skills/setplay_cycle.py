@@ -35,8 +35,13 @@ minds do (:mod:`robotsoccer.skills.team_cycle`):
 
 Plans run to the next expected see plus :data:`~robotsoccer.skills.team_cycle.
 PLAN_EXTRA_CYCLES`. It is a Soccer Server client: the robots' host already acts on every tick
-(:mod:`field_models.robot_physics.host`), and the drill refuses it there. The neck is not used:
-the set-play minds read their percepts' directions as from the body and face with the body.
+(:mod:`field_models.robot_physics.host`), and the drill refuses it there.
+
+**The neck** (the set play's ``look=neck``): :class:`~robotsoccer.skills.setplay_look.
+NeckAttacker` wraps this client, gives it percepts with their directions from the body and adds
+the head's neck turn and view to its decision; a wide view (the head scanning) makes sees come
+less often, so the plans then run to the next see of that view (:attr:`CycleAttacker.
+view_share`). With ``look=body`` the head is the body, as in the paper's client.
 """
 
 from __future__ import annotations
@@ -45,14 +50,12 @@ import math
 from typing import Protocol
 
 from field_models.arena import FieldFacts
-from field_models.protocol import Action, ChangeView, Dash, Percept, Say, Turn, TurnNeck
+from field_models.protocol import Action, Dash, Percept, Turn
 from robotsoccer.skills.ball_sense import Heading
 from robotsoccer.skills.ball_tracker import BallTracker
 from robotsoccer.skills.cycle import CycleDefenderMind, Sighting
 from robotsoccer.skills.intercept import DASH_POWER
-from robotsoccer.skills.team_cycle import PLAN_EXTRA_CYCLES
-
-_NOT_BODY = (Say, TurnNeck, ChangeView)
+from robotsoccer.skills.team_cycle import NOT_BODY, PLAN_EXTRA_CYCLES
 
 
 class SetPlayMind(Protocol):
@@ -120,6 +123,8 @@ class CycleAttacker:
     Attributes:
         commands_added: Body commands sent beyond the mind's own decisions (runs continued,
             layer 1's plans, plans kept through an empty decision).
+        view_share: The next see's interval as a share of the normal view's (set by a head
+            that widens its view: :data:`~robotsoccer.skills.team_cycle.VIEW_PERIOD_SHARE`).
     """
 
     def __init__(
@@ -133,7 +138,8 @@ class CycleAttacker:
         self.model = model
         self.meet = meet
         self._reckoner = model.reckoner  # the world model's equations
-        self.plan_cycles = math.ceil(facts.sensor_period_s / facts.dt_s - 1e-9) + PLAN_EXTRA_CYCLES
+        self._see_cycles = facts.sensor_period_s / facts.dt_s
+        self.view_share = 1.0
         self._plan: tuple[Action, ...] = ()
         self._plan_tick = -1
         self._noted = 0  # leading commands of the plan whose turns the mind noted itself
@@ -144,6 +150,11 @@ class CycleAttacker:
         """The mind's ``done``."""
         return bool(self.mind.done)
 
+    @property
+    def plan_cycles(self) -> int:
+        """Cycles a plan runs: to the next see of the view, and ``PLAN_EXTRA_CYCLES``."""
+        return math.ceil(self._see_cycles * self.view_share - 1e-9) + PLAN_EXTRA_CYCLES
+
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """The mind's decision at this see, carried on every cycle until the next."""
         tick = percept.tick
@@ -151,13 +162,14 @@ class CycleAttacker:
         self._note_run(elapsed)
         left = self._plan[elapsed:]
         from_body = percept.body_relative()
+        self.model.plan_cycles = self.plan_cycles  # layer 1's plans too run to the next see
         sighting = self.model.observe(from_body)
         meet = self.meet
         if meet is not None:
             meet.sighting = sighting
         actions = self.mind.act(percept)
-        others = tuple(a for a in actions if isinstance(a, _NOT_BODY))
-        body = tuple(a for a in actions if not isinstance(a, _NOT_BODY))
+        others = tuple(a for a in actions if isinstance(a, NOT_BODY))
+        body = tuple(a for a in actions if not isinstance(a, NOT_BODY))
         if meet is not None and meet.tick == tick and meet.plan and body == meet.plan[:1]:
             planned, noted = meet.plan, 1  # layer 1's plan: a command every cycle already
         elif body:

@@ -15,8 +15,16 @@ kick on first time as soon as the ball will come into reach within :data:`ONE_TO
 (:func:`~robotsoccer.skills.setplay.reach_entry`): the drill's coach fires it when the ball
 gets there. A first-time kick whose path would run back into the body is bent round it
 (:meth:`~robotsoccer.skills.ball_tracker.BallTracker.aim`). It checks afterwards that the
-ball went, and meets it again if not. The shared skills are :mod:`robotsoccer.skills.setplay`'s;
-angles are radians, left positive; distances metres.
+ball went, and meets it again if not.
+
+**Looking with the neck** (a :class:`~robotsoccer.skills.team_look.NeckLook` given: the set play's
+``look=neck``, :mod:`robotsoccer.skills.setplay_look`). Its percepts come with their directions from
+the body; layer 2's receiver waits as its module says; a last receiver waiting for the winger looks
+for the goal with its head (:attr:`SetPlayReceiverMind.seeking_goal`: the head scans, the body
+stands) and keeps the ball in view without turning its body while the head can
+(:data:`~robotsoccer.skills.team_look.LOOK_COVER_RAD`). The goal it then remembers is a direction
+from the body, as its shot needs. The shared skills are :mod:`robotsoccer.skills.setplay`'s; angles
+are radians, left positive; distances metres.
 """
 
 from __future__ import annotations
@@ -29,6 +37,7 @@ from robotsoccer.skills.ball_tracker import BallTracker
 from robotsoccer.skills.pass_messages import announced_number
 from robotsoccer.skills.pass_receivers import ReceiverMind
 from robotsoccer.skills.setplay import (
+    FACING_RAD,
     SEARCH_TURN_RAD,
     SLOW_ZONE_REACHES,
     STAND,
@@ -47,6 +56,7 @@ from robotsoccer.skills.setplay import (
     receive,
     shot_direction,
 )
+from robotsoccer.skills.team_look import LOOK_COVER_RAD, NeckLook
 
 ONE_TOUCH_PERIODS = 1.0
 """A camera-guided receiver sends its kick on when the ball will come into reach within this
@@ -71,6 +81,7 @@ class SetPlayReceiverMind:
             or cue on, looking for the goal meanwhile.
         goal_half_width_m: Half the goal's width [m] (a shot aims inside it, away from the
             goalie: :func:`shot_direction`); 0: at the centre.
+        head: Its head, looking with the neck (module docstring); None: with its body.
 
     Attributes:
         kicked_tick: The tick of its kick on (to the winger, or the shot), or None.
@@ -86,8 +97,11 @@ class SetPlayReceiverMind:
         powers: KickPowers,
         armed: bool = True,
         goal_half_width_m: float = 0.0,
+        head: NeckLook | None = None,
     ) -> None:
         self.receiver = receiver
+        self.head = head
+        self.waiting_rad = FACING_RAD if head is None else LOOK_COVER_RAD
         self.goal_half_width_m = goal_half_width_m
         self.next_teammate = next_teammate
         self.sense = sense
@@ -111,6 +125,16 @@ class SetPlayReceiverMind:
     def shoots(self) -> bool:
         """Whether it shoots (a last receiver) rather than kicking to the winger."""
         return self.next_teammate is None
+
+    @property
+    def seeking_goal(self) -> bool:
+        """A last receiver looking with its neck for a goal it has not seen yet (docstring)."""
+        return (
+            self.head is not None
+            and not self.armed
+            and self.shoots
+            and self.heading.relative("goal") is None
+        )
 
     def act(self, percept: Percept) -> tuple[Action, ...]:
         """Report and intercept as layer 2's receiver; holding the ball, kick on.
@@ -210,9 +234,11 @@ class SetPlayReceiverMind:
 
     def _look_for_goal(self, percept: Percept) -> tuple[Action, ...]:
         """A last receiver, before the play reaches it: find the goal once, then face the ball."""
+        if self.seeking_goal:
+            return STAND  # the head scans for it
         if self.shoots and self.heading.relative("goal") is None:
             return (Turn(SEARCH_TURN_RAD),)
-        return face_ball(percept)
+        return face_ball(percept, self.waiting_rad)
 
     def _pass_announced(self, percept: Percept) -> None:
         """The pass to it was just announced: the ball comes at the pass speed."""

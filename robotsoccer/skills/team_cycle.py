@@ -75,7 +75,8 @@ VIEW_PERIOD_SHARE = {"narrow": 0.5, "normal": 1.0, "wide": 2.0}
 RUN_INTENTS = ("chase", "intercept", "home")
 """The decisions that run toward a point the mind knows, and so go on running between sees."""
 
-_NOT_BODY = (Say, TurnNeck, ChangeView)
+NOT_BODY = (Say, TurnNeck, ChangeView)
+"""Actions that are not body commands: they go out at once, beside the cycle's body command."""
 
 
 class CycleTeamMind(TeamMind):
@@ -134,8 +135,8 @@ class CycleTeamMind(TeamMind):
         previous = self._previous_bd
         holding = self.setup.turn_latency == "hold" and self.turns.holding(percept.observed_tick)
         actions = super().act(percept)
-        others = tuple(a for a in actions if isinstance(a, _NOT_BODY))
-        body: tuple[Action, ...] = tuple(a for a in actions if not isinstance(a, _NOT_BODY))
+        others = tuple(a for a in actions if isinstance(a, NOT_BODY))
+        body: tuple[Action, ...] = tuple(a for a in actions if not isinstance(a, NOT_BODY))
         if not body and holding:
             planned = left  # the held turn's plan goes on (an empty decision would drop it)
         elif sighting is not None and self._meets_coming(sighting, previous):

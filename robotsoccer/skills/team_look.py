@@ -21,6 +21,7 @@ ignored (their camera sees all round), so the same minds run there.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 from field_models.protocol import Action, ChangeView, Percept, Turn, TurnNeck, wrap_angle
@@ -84,6 +85,20 @@ class NeckLook:
         if abs(moment) >= NECK_STEP_RAD:
             out.append(TurnNeck(moment))
         return tuple(out)
+
+
+def head_relative(percept: Percept, neck_rad: float) -> Percept:
+    """A body-relative `percept` with its directions measured from the head again.
+
+    The head points `neck_rad` from the body (:attr:`NeckLook.neck_rad`): a direction from the
+    head is the one from the body less the neck. The result carries that neck angle, so its
+    :meth:`~field_models.protocol.Percept.body_relative` gives `percept` back.
+    """
+    if neck_rad == 0.0:
+        return percept
+    # Measuring from the body adds the neck; adding its negative measures from the head.
+    turned = dataclasses.replace(percept, neck_rad=-neck_rad).body_relative()
+    return dataclasses.replace(turned, neck_rad=neck_rad)
 
 
 def look_target(

@@ -35,6 +35,7 @@ def setplay_request(args: argparse.Namespace) -> SetPlayRun:
         models=args.models,
         plays=args.plays,
         client=args.client,
+        look=args.look,
         **run_settings(args, progress=True),
     )
 
@@ -61,6 +62,13 @@ def add_parser(commands: Commands) -> None:
         default="see",
         help="the Soccer Server players' client: see (the paper's: a decision at each see) or "
         "cycle (a command every cycle from a world model); the robots keep theirs",
+    )
+    setplay.add_argument(
+        "--look",
+        choices=("body", "neck"),
+        default="body",
+        help="how the Soccer Server attackers look: body (the paper's client: turning the body) "
+        "or neck (the head keeps the ball in view, a wide view to search); the robots keep theirs",
     )
     setplay.add_argument("--seed", type=_index, default=0, help="experiment seed")
     run_options(setplay)

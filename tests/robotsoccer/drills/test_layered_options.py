@@ -37,6 +37,7 @@ def test_the_registry_names_the_records_fields_in_the_old_keyword_order() -> Non
         "pass_speed_mps",
         "defenders",
         "client",
+        "look",
     )
     assert drill_options("pass") == tuple(f.name for f in dataclasses.fields(PassOptions))
 
