@@ -279,6 +279,24 @@ def net_turn_function(net: NetFile, distance_factor: float = 1.0) -> TurnAngleFu
     return turn_function(*folded(net, distance_factor))
 
 
+def training_spread(
+    net: NetFile, distance_factor: float = 1.0
+) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    """The mean and standard deviation of the net's training inputs, in raw units.
+
+    (BD [m], BA [rad], previous BD [m]) as the net reads them on a field of `distance_factor`
+    (:func:`folded`): the stored scaler undone, distances multiplied by the distance scale.
+    """
+    scale = np.ones(3)
+    scale[list(DISTANCE_COLUMNS)] = net.schema.distance_scale_m * distance_factor
+    mean = np.asarray(net.input_mean, dtype=np.float64) * scale
+    spread = np.asarray(net.input_scale, dtype=np.float64) * scale
+    return (
+        (float(mean[0]), float(mean[1]), float(mean[2])),
+        (float(spread[0]), float(spread[1]), float(spread[2])),
+    )
+
+
 def load_batch_turn_function(
     path: str | os.PathLike[str], distance_factor: float = 1.0
 ) -> BatchTurnFunction:

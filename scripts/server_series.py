@@ -125,6 +125,12 @@ def main() -> None:
         help="the minds' client: see-triggered or per-cycle (issue 28 item 3)",
     )
     parser.add_argument(
+        "--net-domain",
+        choices=("any", "trained"),
+        default="any",
+        help="where the layered team asks its net: any ball met, or inside its training domain",
+    )
+    parser.add_argument(
         "--transfer", action="store_true", help="net and tree trained on another preset"
     )
     parser.add_argument("--reversal-games", type=int, default=2, help="per side")
@@ -140,6 +146,8 @@ def main() -> None:
         minds["look"] = args.look
     if args.client != "see":
         minds["client"] = args.client
+    if args.net_domain != "any":
+        minds["net_domain"] = args.net_domain
     if args.dither is not None:
         if args.half_time is not None:
             minds["half_time_s"] = args.half_time
@@ -181,6 +189,8 @@ def main() -> None:
         which = "looking with the neck (and steady turns)"
     if args.client == "cycle":
         which += ", per-cycle client"
+    if args.net_domain == "trained":
+        which += ", net asked inside its training domain only"
     title = f"Layered vs baseline on soccer_server ({args.preset}), seed {args.seed}, {which}"
     write_report(games, args.out, title, print)
     start = time.perf_counter()

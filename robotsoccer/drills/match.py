@@ -61,6 +61,7 @@ from robotsoccer.skills.intercept import (
     load_net_function,
     make_policy,
     model_decision,
+    trained_domain,
     transfer_distance_factor,
 )
 from robotsoccer.skills.layer3 import TpotBallPolicy
@@ -221,6 +222,8 @@ class MatchDrill(LayeredDrill):
                 lead = load_net_function(self.net, factor)
             elif layered:
                 policy = make_policy(Behaviour.NET, rngs["policy"], self.net, factor)
+                if policy is not None and self.options.net_domain == "trained":
+                    policy = trained_domain(policy, self.net, factor)
             per_cycle = team in self.options.cycle_teams()
             if per_cycle and setup.sees_all_round:
                 raise ValueError(CYCLE_ON_ROBOTS)

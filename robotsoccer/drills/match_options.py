@@ -40,6 +40,8 @@ class TeamKind(StrEnum):
 
 DEAD_BAND_VALUES = ("false", "true", LEFT, RIGHT)
 """What the match's ``dead_band`` option takes (:func:`dead_band_teams`)."""
+NET_DOMAINS = ("any", "trained")
+"""Where a layered team asks its turn-angle net (:attr:`MatchOptions.net_domain`)."""
 
 
 def dead_band_teams(value: bool | str) -> frozenset[str]:
@@ -119,6 +121,11 @@ class MatchOptions:
         tpot_guard: Layer 3's shot-range guard (needs ``tpot_every``): the goal destination is
             a shot only within the teams' shooting range.
         tpot_loss: Layer 3's loss penalty in [0, 1] (0: the ball's advance alone).
+        net_domain: Where a layered team asks its turn-angle net (:data:`NET_DOMAINS`):
+            ``any`` (default: every ball coming at its chaser within the trigger distance) or
+            ``trained``: only inside the net's training domain, straight elsewhere
+            (:class:`~robotsoccer.skills.turn_policies.TrainedDomainPolicy`). A lead net has its
+            own domain rule and ignores it.
 
     Raises:
         ValueError: An unknown team kind, a layered team without its model files, a layer3
@@ -146,6 +153,7 @@ class MatchOptions:
     tpot_window: str = WINDOW_CHOICE
     tpot_guard: bool = False
     tpot_loss: float = 0.0
+    net_domain: str = "any"
 
     def __post_init__(self) -> None:
         # The checks run in this order so that, of several bad options, the same one is named
@@ -170,6 +178,9 @@ class MatchOptions:
         self._set("players", size)
         self._set("half_time_s", duration("half_time_s", self.half_time_s))
         self._set("transfer", flag("transfer", self.transfer))
+        if self.net_domain not in NET_DOMAINS:
+            known = ", ".join(NET_DOMAINS)
+            raise ValueError(f"net_domain: expected one of {known}; got {self.net_domain!r}")
 
     def _set(self, name: str, value: object) -> None:
         """Store a checked value (the record is frozen once built)."""

@@ -77,7 +77,12 @@ from field_models.arena import FieldFacts
 from field_models.protocol import Action, Dash, Kick, Percept, PlayerRef, wrap_angle
 from field_models.registry import field_facts
 from field_models.seeding import Rng
-from learning.interception_file import TurnAngleFunction, load_turn_function, read_net_file
+from learning.interception_file import (
+    TurnAngleFunction,
+    load_turn_function,
+    read_net_file,
+    training_spread,
+)
 from learning.lookup import LookupTable
 from robotsoccer.options import choice
 from robotsoccer.skills.motion import TurnsInFlight, turn_then_go
@@ -87,6 +92,7 @@ from robotsoccer.skills.turn_policies import (
     NetPolicy,
     Point,
     RandomPolicy,
+    TrainedDomainPolicy,
     straight_policy,
 )
 
@@ -172,6 +178,18 @@ def load_net_function(
     if function is None:
         function = _NETS[key] = load_turn_function(path, distance_factor)
     return function
+
+
+def trained_domain(
+    policy: TurnPolicy, path: str | os.PathLike[str], distance_factor: float = 1.0
+) -> TrainedDomainPolicy:
+    """`policy` (the net of `path`) asked only inside that net's training domain.
+
+    Raises:
+        learning.features.ModelFileError: The file is missing, corrupt or not a net.
+    """
+    mean, spread = training_spread(read_net_file(path), distance_factor)
+    return TrainedDomainPolicy(policy, mean, spread)
 
 
 def transfer_distance_factor(path: str | os.PathLike[str], facts: FieldFacts) -> float:

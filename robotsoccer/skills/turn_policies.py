@@ -4,7 +4,8 @@ Each rule is a :class:`~robotsoccer.skills.intercept.TurnPolicy` the interceptio
 (:class:`~robotsoccer.skills.intercept.DefenderMind`) calls once it is triggered: ``straight``
 (:func:`straight_policy`), ``random`` (:class:`RandomPolicy`), ``net`` (:class:`NetPolicy`),
 ``lookup`` (:class:`LookupPolicy`) and ``analytic`` (:class:`AnalyticPolicy`, Mike Bowling's
-rule). :func:`~robotsoccer.skills.intercept.make_policy` picks one for a behaviour and loads its
+rule); :class:`TrainedDomainPolicy` asks a rule only inside the net's training domain.
+:func:`~robotsoccer.skills.intercept.make_policy` picks one for a behaviour and loads its
 model file. Angles are radians, left positive; distances metres.
 """
 
@@ -71,6 +72,68 @@ class NetPolicy:
     ) -> float:
         """The net's TA [rad]."""
         return self.function(ball_distance_m, ball_angle_rad, previous_ball_distance_m)
+
+
+TRAINED_DOMAIN_Z = 3.0
+"""A net input more than this many training standard deviations from the training mean lies
+outside what the net learned (our choice: the usual three-sigma bound)."""
+
+
+class TrainedDomainPolicy:
+    """A turn-angle rule asked only inside its training domain; straight (TA = 0) outside.
+
+    The paper's net learned from one drill's shots (§5): each of its three inputs lies in a
+    narrow band (:func:`learning.interception_file.training_spread`). A match asks it of balls
+    that come slower and nearer (a pass, a dribble), where its TA is an extrapolation; outside
+    :data:`TRAINED_DOMAIN_Z` standard deviations on any input this rule runs straight at the
+    ball instead, the baseline's pursuit.
+
+    Attributes:
+        asked: Calls so far.
+        outside: Of them, calls outside the domain (answered straight).
+    """
+
+    def __init__(
+        self,
+        policy: Callable[[float, float, float, Point | None, Point], float],
+        mean: tuple[float, float, float],
+        spread: tuple[float, float, float],
+        z: float = TRAINED_DOMAIN_Z,
+    ) -> None:
+        self.policy = policy
+        self.mean = mean
+        self.spread = spread
+        self.z = z
+        self.asked = 0
+        self.outside = 0
+
+    def inside(self, ball_distance_m: float, ball_angle_rad: float, previous_m: float) -> bool:
+        """Every input within `z` training standard deviations of its training mean."""
+        values = (ball_distance_m, ball_angle_rad, previous_m)
+        return all(
+            abs(v - m) <= self.z * s for v, m, s in zip(values, self.mean, self.spread, strict=True)
+        )
+
+    def __call__(
+        self,
+        ball_distance_m: float,
+        ball_angle_rad: float,
+        previous_ball_distance_m: float,
+        previous_ball_xy_m: Point | None,
+        ball_xy_m: Point,
+    ) -> float:
+        """The rule's TA inside the domain, else 0 [rad]."""
+        self.asked += 1
+        if not self.inside(ball_distance_m, ball_angle_rad, previous_ball_distance_m):
+            self.outside += 1
+            return 0.0
+        return self.policy(
+            ball_distance_m,
+            ball_angle_rad,
+            previous_ball_distance_m,
+            previous_ball_xy_m,
+            ball_xy_m,
+        )
 
 
 class LookupPolicy:

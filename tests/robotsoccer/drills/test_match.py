@@ -199,3 +199,23 @@ def test_a_robot_match_with_a_lead_team_is_the_same_whatever_the_worker_count(
     lead_team = [m for r, m in minds.items() if r.team == LEFT]
     assert all(m.lead is not None and m.setup.push_kick for m in lead_team)
     assert all(m.lead is None for r, m in minds.items() if r.team == RIGHT)
+
+
+@pytest.mark.parametrize("client", ["see", "cycle"])
+def test_net_domain_trained_gives_the_layered_team_the_guarded_net_only(
+    tmp_path: Path, client: str
+) -> None:
+    from robotsoccer.skills.turn_policies import NetPolicy, TrainedDomainPolicy
+
+    net = net_file(tmp_path / "net.npz", preset="soccer_server_1996")
+    tree = _tree_file(tmp_path, "soccer_server")
+    spec = TrialSpec(drill="match", field_model="soccer_server").with_options(
+        net=str(net), tree=str(tree), half_time_s=1.0, client=client
+    )
+    for domain, kind in (("any", NetPolicy), ("trained", TrainedDomainPolicy)):
+        drill, _ = started(spec.with_options(net_domain=domain))
+        for ref, mind in drill.minds_by_ref.items():
+            if ref.team == LEFT:  # the layered team
+                assert isinstance(mind.interception, kind)
+            else:
+                assert mind.interception is None

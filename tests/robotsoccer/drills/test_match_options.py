@@ -83,3 +83,11 @@ def test_a_record_and_keywords_together_are_refused() -> None:
 def test_bad_options_are_one_line_errors(given: dict[str, object], message: str) -> None:
     with pytest.raises(ValueError, match=message):
         make_drill("match", given)
+
+
+def test_net_domain_takes_any_or_trained_and_refuses_the_rest_in_one_line() -> None:
+    assert MatchOptions(left=TeamKind.BASELINE).net_domain == "any"
+    trained = MatchOptions(left=TeamKind.BASELINE, net_domain="trained")
+    assert trained.net_domain == "trained"
+    with pytest.raises(ValueError, match=r"^net_domain: expected one of any, trained; got 'x'$"):
+        MatchOptions(left=TeamKind.BASELINE, net_domain="x")

@@ -32,6 +32,7 @@ from robotsoccer.skills.intercept import (
     load_lookup_table,
     load_net_function,
     make_policy,
+    trained_domain,
 )
 from robotsoccer.skills.turn_policies import (
     RANDOM_TA_HALF_RANGE_RAD,
@@ -381,3 +382,27 @@ def test_a_net_from_another_field_sees_distances_in_drill_units(
     drill = InterceptDrill(behaviour="net", model=path, transfer=True)
     assert drill.distance_factor(server) == pytest.approx(factor)
     assert InterceptDrill(behaviour="net", model=path).distance_factor(server) == 1.0
+
+
+def test_the_trained_domain_asks_the_net_inside_and_runs_straight_outside(tmp_path: Path) -> None:
+    # net_file's scaler: BD 11.0 ± 1.7 m, BA 0.01 ± 0.05 rad, previous BD 12.5 ± 1.9 m.
+    path = net_file(tmp_path / "net.npz", seed=3)
+    net = make_policy("net", np.random.default_rng(0), str(path))
+    assert net is not None
+    guarded = trained_domain(net, path)
+    inside = (11.0 + 2.9 * 1.7, 0.01 - 2.9 * 0.05, 12.5)
+    assert guarded(*inside, None, (0.0, 0.0)) == net(*inside, None, (0.0, 0.0)) != 0.0
+    for outside in ((11.0 + 3.1 * 1.7, 0.01, 12.5), (11.0, 0.2, 12.5), (11.0, 0.01, 6.0)):
+        assert guarded(*outside, None, (0.0, 0.0)) == 0.0
+    assert (guarded.asked, guarded.outside) == (4, 3)
+
+
+def test_the_trained_domain_scales_with_the_distance_factor(tmp_path: Path) -> None:
+    path = net_file(tmp_path / "net.npz", seed=3)
+    net = make_policy("net", np.random.default_rng(0), str(path), 2.0)
+    assert net is not None
+    guarded = trained_domain(net, path, 2.0)
+    assert guarded.mean == pytest.approx((22.0, 0.01, 25.0))
+    assert guarded.spread == pytest.approx((3.4, 0.05, 3.8))
+    assert guarded.inside(22.0 + 2.9 * 3.4, 0.0, 25.0)
+    assert not guarded.inside(11.0, 0.0, 12.5)  # the training field's distances, unscaled
