@@ -76,7 +76,12 @@ def facts(preset: ServerPreset) -> FieldFacts:
         ball_noise_period_s=dt,
         kick=KickFacts(
             speed_per_power_mps=d.kick_power_rate_m_per_cycle2 / dt,
-            max_speed_mps=min(d.ball_speed_max_m_per_cycle, d.ball_accel_max_m_per_cycle2) / dt,
+            max_speed_mps=min(
+                d.ball_speed_max_m_per_cycle,
+                d.ball_accel_max_m_per_cycle2,
+                d.maxpower * d.kick_power_rate_m_per_cycle2,  # the strongest kick (spec §2.3)
+            )
+            / dt,
             reach_m=d.kickable_area_m,
             aimable=True,
             half_angle_rad=math.pi,

@@ -50,3 +50,19 @@ def test_facts_give_the_servers_directed_dash_rates() -> None:
     paper = field_facts("soccer_server", "soccer_server_1996")
     assert paper.dash_rates is None and paper.dash_factor(0.0) == 1.0
     assert paper.dash_factor(0.5) == 0.0
+
+
+@pytest.mark.parametrize(
+    ("preset", "top_mps"),
+    [("soccer_server_1996", 100 * 0.016 / 0.1), ("rcssserver_19", 27.0)],
+)
+def test_a_kicks_top_speed_is_the_strongest_kick_within_the_balls_caps(
+    preset: str, top_mps: float
+) -> None:
+    # 1996: no ball speed or acceleration cap (32 m/cycle, inf), so maxpower x kick_power_rate
+    # bounds it; today the 2.7 m/cycle² acceleration cap equals that product.
+    kick = field_facts("soccer_server", preset).kick
+    assert kick is not None
+    assert kick.max_speed_mps == pytest.approx(top_mps)
+    assert kick.power_for(top_mps * 1.01) is None
+    assert kick.power_for(top_mps) == pytest.approx(100.0)
