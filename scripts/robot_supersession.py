@@ -212,7 +212,7 @@ def main() -> None:
     parser.add_argument("--series", type=int, default=0, help="dead band v default games")
     parser.add_argument(
         "--lead-net",
-        default="/work/main/runs/learn-lead-seed0/models/robot_physics/lead_net.npz",
+        default="runs/learn-lead-seed0/models/robot_physics/lead_net.npz",
         help="the lead study's robot lead net ('none': no lead net row)",
     )
     parser.add_argument("--out", type=Path, default=Path("runs/robot-supersession"))

@@ -11,10 +11,10 @@ reversals per player-minute (:class:`~robotsoccer.skills.reversals.TurnReversals
 attackers' true headings, every cycle, over each play's length):
 
     python scripts/setplay_look_table.py --plays 500 --workers 2 \
-        --tree soccer_server_1996=/work/runs/lp_ss0/models/soccer_server/pass_tree.json \
-        --net soccer_server_1996=/work/runs/li_cycle_1996/models/soccer_server/net_750.npz \
-        --tree rcssserver_19=/work/runs/lp_v19/models/soccer_server/pass_tree.json \
-        --net rcssserver_19=/work/runs/li_cycle_v19/models/soccer_server/net_750.npz \
+        --tree soccer_server_1996=runs/lp_ss0/models/soccer_server/pass_tree.json \
+        --net soccer_server_1996=runs/li_cycle_1996/models/soccer_server/net_750.npz \
+        --tree rcssserver_19=runs/lp_v19/models/soccer_server/pass_tree.json \
+        --net rcssserver_19=runs/li_cycle_v19/models/soccer_server/net_750.npz \
         soccer_server_1996 rcssserver_19
 """
 

@@ -6,19 +6,21 @@ each play twice, ``client=see`` and ``client=cycle`` (layered minds: ``lp_ss0``'
 build's attackers and the other's defenders and goalie (the coach of the attackers' build
 judges). Prints the labels and the shares of plays with ≥ 1, 2, 3 passes and a shot:
 
-    python scripts/setplay_mixed_clients.py soccer_server_1996 500
+    ROBOTSOCCER_RUNS=runs python scripts/setplay_mixed_clients.py soccer_server_1996 500
 """
 
 from __future__ import annotations
 
 import collections
+import os
 import sys
 
 from robotsoccer.drills.setplay import DEFENDERS
 from robotsoccer.experiments.report_cells import percent_cell
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 
-RUNS = "/work/runs"
+RUNS = os.environ.get("ROBOTSOCCER_RUNS", "runs")
+"""The run folders of the models (``learn pass``/``learn intercept`` runs named as above)."""
 SEE = f"{RUNS}/lp_ss0/models/soccer_server/"
 CYCLE_NET = f"{RUNS}/li_cycle_1996/models/soccer_server/net_750.npz"
 
