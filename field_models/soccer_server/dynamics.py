@@ -103,7 +103,7 @@ from field_models.soccer_server.cycle_rules import (
     unit_noise,
 )
 from field_models.soccer_server.params import ServerPreset
-from field_models.soccer_server.referee import Referee
+from field_models.soccer_server.referee import ModelReferee
 
 BLOCK_CYCLES = 32
 """Cycles of random numbers drawn at once by the single-trial model."""
@@ -111,7 +111,7 @@ BLOCK_CYCLES = 32
 _state = tuple.__new__  # a BodyState from its 5 values, without the Python-level __new__
 
 
-class SoccerServerModel(PlayerCommands, Referee):
+class SoccerServerModel(PlayerCommands, ModelReferee):
     """One trial of the Soccer Server: ball and players, stepped one 100 ms cycle at a time.
 
     Attributes:
@@ -133,7 +133,7 @@ class SoccerServerModel(PlayerCommands, Referee):
     The ball starts at rest on the centre mark, the players at rest off the pitch (3 m apart
     below the bottom touchline) until the coach places them. The players' commands (queued,
     then run at the step) are :class:`~field_models.soccer_server.commands.PlayerCommands`',
-    the play mode and the referee :class:`~field_models.soccer_server.referee.Referee`'s.
+    the play mode and the referee :class:`~field_models.soccer_server.referee.ModelReferee`'s.
     """
 
     def __init__(self, preset: ServerPreset, players: tuple[PlayerRef, ...], rng: Rng) -> None:

@@ -1,6 +1,6 @@
 """The one-trial model's referee: goals, the after-goal wait, kick-offs, play modes (§6).
 
-:class:`Referee` is the part of
+:class:`ModelReferee` is the part of
 :class:`~field_models.soccer_server.dynamics.SoccerServerModel` that keeps the play mode:
 the trainer's ``change_mode`` (§5), and, with ``DynamicsParams.referee`` on, the goal
 judged at the end of each cycle, the stopped ball and the wait after a goal, the kick-off
@@ -18,7 +18,7 @@ from field_models.soccer_server.cycle_rules import AFTER_GOAL_MODES, PLAY_MODES,
 from field_models.soccer_server.params import DynamicsParams
 
 
-class Referee:
+class ModelReferee:
     """The play mode and score of one trial, and the referee's rules that change them (§6).
 
     A mixin of :class:`~field_models.soccer_server.dynamics.SoccerServerModel`, which owns
