@@ -52,7 +52,7 @@ import numpy.typing as npt
 import torch
 from torch import nn
 
-from learning.datasets import Provenance, write_npz
+from learning.datasets import Provenance
 from learning.features import (
     FEATURE_NAMES,
     FeatureSchema,
@@ -71,6 +71,7 @@ from learning.interception_file import (
     fold_net,
     read_net_file,
     turn_function,
+    write_net_file,
 )
 from learning.interception_file import check_params as _check_params
 
@@ -261,7 +262,9 @@ class InterceptionModel:
         with _one_thread():
             generator = torch.Generator().manual_seed(tuned.random_state)
             net = self.to_torch()
-            history = tuned._epochs(net, torch.from_numpy(z), torch.from_numpy(targets), generator)
+            history = _epochs(
+                net, torch.from_numpy(z), torch.from_numpy(targets), generator, tuned.get_params()
+            )
         tuned.weights_ = {k: v.detach().numpy().copy() for k, v in net.state_dict().items()}
         tuned.loss_history_ = history
         tuned.n_train_ = int(rows.shape[0])
@@ -274,35 +277,9 @@ class InterceptionModel:
             generator = torch.Generator().manual_seed(self.random_state)
             net = _new_net(self.hidden)
             _initialise(net, generator)
-            return net, self._epochs(net, torch.from_numpy(z), torch.from_numpy(targets), generator)
-
-    def _epochs(
-        self, net: InterceptionNet, xs: torch.Tensor, ys: torch.Tensor, generator: torch.Generator
-    ) -> Array:
-        rate = self.learning_rate
-        if rate is None:
-            rate = DEFAULT_LEARNING_RATES[self.optimizer]
-        step: torch.optim.Optimizer
-        if self.optimizer == "adam":
-            step = torch.optim.Adam(net.parameters(), lr=rate)
-        else:
-            step = torch.optim.SGD(net.parameters(), lr=rate)
-        history = np.empty(self.epochs)
-        for epoch in range(self.epochs):
-            # Paper §5: input-to-hidden decay "linearly decreasing ... starting at .1%".
-            keep = 1.0 - self.weight_decay * (1.0 - epoch / self.epochs)
-            total = 0.0
-            for rows in _batches(len(ys), self.batch_size, generator):
-                xb, yb = (xs, ys) if rows is None else (xs[rows], ys[rows])
-                loss = torch.mean((net(xb) - yb) ** 2)
-                step.zero_grad()
-                loss.backward()
-                step.step()
-                with torch.no_grad():
-                    net.hidden.weight.mul_(keep)
-                total += loss.item() * len(yb)
-            history[epoch] = total / len(ys)
-        return history
+            return net, _epochs(
+                net, torch.from_numpy(z), torch.from_numpy(targets), generator, self.get_params()
+            )
 
     # ------------------------------------------------------------------------- inference
 
@@ -379,22 +356,17 @@ class InterceptionModel:
                 f"provenance schema version {provenance.schema_version} is not the model's "
                 f"{self.feature_schema_.version}"
             )
-        meta = {
-            "format": MODEL_FORMAT,
-            "format_version": MODEL_FORMAT_VERSION,
-            "schema": self.feature_schema_.to_dict(),
-            "hyperparameters": self.get_params(),
-            "provenance": provenance.to_dict(),
-            "n_train": self.n_train_,
-            "torch_version": torch.__version__,
-        }
-        arrays = {
-            **self.weights_,
-            "input_mean": self.input_mean_,
-            "input_scale": self.input_scale_,
-            "loss_history": self.loss_history_,
-        }
-        return write_npz(Path(path), arrays, meta)
+        net = NetFile(
+            dict(self.weights_),
+            self.input_mean_,
+            self.input_scale_,
+            self.loss_history_,
+            self.feature_schema_,
+            self.get_params(),
+            self.n_train_,
+            provenance,
+        )
+        return write_net_file(path, net, torch.__version__)
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> InterceptionModel:
@@ -445,6 +417,45 @@ def _initialise(net: InterceptionNet, generator: torch.Generator) -> None:
             bound = 1.0 / math.sqrt(layer.in_features)
             layer.weight.uniform_(-bound, bound, generator=generator)
             layer.bias.uniform_(-bound, bound, generator=generator)
+
+
+def _epochs(
+    net: InterceptionNet,
+    xs: torch.Tensor,
+    ys: torch.Tensor,
+    generator: torch.Generator,
+    params: dict[str, Any],
+) -> Array:
+    """Train `net` in place on (`xs`, `ys`) for the estimator's `params`; the loss per epoch.
+
+    The module docstring's optimiser and the paper's decay of the input-to-hidden weights,
+    mini-batches (if any) drawn from `generator`.
+    """
+    optimizer, epochs, weight_decay = params["optimizer"], params["epochs"], params["weight_decay"]
+    rate = params["learning_rate"]
+    if rate is None:
+        rate = DEFAULT_LEARNING_RATES[optimizer]
+    step: torch.optim.Optimizer
+    if optimizer == "adam":
+        step = torch.optim.Adam(net.parameters(), lr=rate)
+    else:
+        step = torch.optim.SGD(net.parameters(), lr=rate)
+    history = np.empty(epochs)
+    for epoch in range(epochs):
+        # Paper §5: input-to-hidden decay "linearly decreasing ... starting at .1%".
+        keep = 1.0 - weight_decay * (1.0 - epoch / epochs)
+        total = 0.0
+        for rows in _batches(len(ys), params["batch_size"], generator):
+            xb, yb = (xs, ys) if rows is None else (xs[rows], ys[rows])
+            loss = torch.mean((net(xb) - yb) ** 2)
+            step.zero_grad()
+            loss.backward()
+            step.step()
+            with torch.no_grad():
+                net.hidden.weight.mul_(keep)
+            total += loss.item() * len(yb)
+        history[epoch] = total / len(ys)
+    return history
 
 
 def _batches(

@@ -13,6 +13,8 @@ holds everything a control loop needs and imports nothing heavier than numpy:
   (:func:`batch_turn_function`), the same operations in the same order on arrays, so that a
   trial gives the same bits alone or in a batch (numpy's ``tanh`` in both: ``math.tanh``
   differs from it in the last bit for about one argument in five);
+* :func:`write_net_file`, the same layout written (the trainer's, which passes its torch
+  version for the metadata);
 * :func:`load_turn_function`: path in, ``f(BD [m], BA [rad], previous BD [m]) -> TA [rad]`` out.
 
 :class:`learning.interception.InterceptionModel` saves, loads and evaluates through these same
@@ -31,7 +33,7 @@ from typing import Any, TypeGuard
 import numpy as np
 import numpy.typing as npt
 
-from learning.datasets import DatasetError, Provenance, read_npz
+from learning.datasets import DatasetError, Provenance, read_npz, write_npz
 from learning.features import (
     DISTANCE_COLUMNS,
     FEATURE_NAMES,
@@ -98,6 +100,32 @@ class NetFile:
     hyperparameters: dict[str, Any]
     n_train: int
     provenance: Provenance
+
+
+def write_net_file(path: str | os.PathLike[str], net: NetFile, torch_version: str) -> Path:
+    """Write `net` to `path` in the layout :func:`read_net_file` reads, atomically.
+
+    `torch_version` (the trainer's) is recorded in the metadata; reading ignores it.
+
+    Returns:
+        The path written.
+    """
+    meta = {
+        "format": MODEL_FORMAT,
+        "format_version": MODEL_FORMAT_VERSION,
+        "schema": net.schema.to_dict(),
+        "hyperparameters": net.hyperparameters,
+        "provenance": net.provenance.to_dict(),
+        "n_train": net.n_train,
+        "torch_version": torch_version,
+    }
+    arrays = {
+        **net.weights,
+        "input_mean": net.input_mean,
+        "input_scale": net.input_scale,
+        "loss_history": net.loss_history,
+    }
+    return write_npz(Path(path), arrays, meta)
 
 
 def read_net_file(path: str | os.PathLike[str]) -> NetFile:

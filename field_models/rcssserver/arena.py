@@ -22,17 +22,15 @@ One :class:`WireArena` per trial (shared `specs/soccer_server.md` §5):
   ``(think)``; a see becomes a percept through the same parser as the Soccer Server arena's
   trace path, with the neck angle of the cycle's sense_body (``head_angle``: the see's
   directions are relative to the head).
+
+Starting, connecting and shutting down the server and the clients are
+:mod:`~field_models.rcssserver.launch`'s; writing and reading the trainer's and the clients'
+texts (frames and units on the wire) :mod:`~field_models.rcssserver.wire_text`'s.
 """
 
 from __future__ import annotations
 
-import contextlib
 import math
-import os
-import socket
-import subprocess
-import tempfile
-import threading
 import time
 import weakref
 from collections import deque
@@ -40,8 +38,6 @@ from collections import deque
 from field_models.arena import ArenaEvent, EventChannel, FieldFacts
 from field_models.commands import render_command
 from field_models.protocol import (
-    LEFT,
-    RIGHT,
     Action,
     BodyState,
     ChangeView,
@@ -53,20 +49,22 @@ from field_models.protocol import (
     TurnNeck,
 )
 from field_models.rcssserver.client import WireClient, WireError
-from field_models.rcssserver.config import WirePreset, server_options
+from field_models.rcssserver.config import WirePreset
+from field_models.rcssserver.launch import connect_players, shut, start_server
+from field_models.rcssserver.wire_text import (
+    TEAM_NAMES,
+    head_angle,
+    move_text,
+    parse_look,
+    sense_time,
+)
 from field_models.seeding import TrialRngs
 from field_models.soccer_server.messages import (
     MessageParseError,
-    Quoted,
     parse_hear,
     parse_see,
-    parse_sexpr,
 )
 from field_models.soccer_server.percepts import heard_from_hear, percept_from_see
-
-_RAD2DEG = 180.0 / math.pi
-TEAM_NAMES = {LEFT: "left", RIGHT: "right"}
-"""Team names on the wire: the model's own, so a see names players as our refs do."""
 
 
 class WireArena:
@@ -114,58 +112,17 @@ class WireArena:
         self._look: tuple[int, BodyState, dict[PlayerRef, BodyState]] | None = None
         self._score = [0, 0]
         self._server_time: int | None = None  # the server's clock at the last step's sense_body
-        self._clients: dict[PlayerRef, WireClient] = {}
-        resources: list[object] = []
+        resources: list[object] = []  # what the arena opened, for shut
         self._resources = resources
-        self._finalizer = weakref.finalize(self, _shut, resources)
-        host, port, trainer_port = self._start_server(rngs)
-        timeout = preset.timeout_s
-        self._trainer = WireClient(host, trainer_port, timeout)
+        self._finalizer = weakref.finalize(self, shut, resources)
+        host, port, trainer_port = start_server(preset, rngs, resources)
+        self._trainer = WireClient(host, trainer_port, preset.timeout_s)
         resources.append(self._trainer)
         self._connect_trainer()
-        self._connect_players(host, port, timeout)
+        self._clients = connect_players(preset, players, (host, port), resources)
         self._command("(change_mode play_on)", "(ok change_mode)")
 
     # ------------------------------------------------------------------ set-up
-
-    def _start_server(self, rngs: TrialRngs) -> tuple[str, int, int]:
-        p = self.preset
-        if p.start == "address":
-            return p.host, p.port, p.trainer_port
-        if p.start == "binary":
-            port = _free_port_triple()
-            # rcssserver writes its ~/.rcssserver/*.conf on start (a literal "~" folder in the
-            # working directory where it does not expand it) and reads them back: a folder of
-            # its own keeps a user's configuration out, and nothing is left behind.
-            home = tempfile.TemporaryDirectory(prefix="rcssserver-")
-            self._resources.append(home)
-            process = subprocess.Popen(
-                [p.binary, *server_options(p, port)],
-                stdout=subprocess.DEVNULL,
-                stderr=subprocess.DEVNULL,
-                cwd=home.name,
-                env={**os.environ, "HOME": home.name},
-            )
-            self._resources.append(process)
-            return "127.0.0.1", port, port + 1
-        # Imported here: the served model is needed only by this kind of preset.
-        from field_models.soccer_server.serving import ServedGame
-        from field_models.soccer_server.udp import UdpServer
-
-        game = ServedGame(p.server, rngs=rngs, synch=True)
-        # The arena is the only client: the server never needs to step without it.
-        server = UdpServer(
-            game, port=0, trainer_port=0, olcoach_port=0, synch_timeout_s=3600.0,
-            idle_timeout_s=3600.0,
-        )  # fmt: skip
-        stop = threading.Event()
-        thread = threading.Thread(
-            target=server.serve, kwargs={"stop": stop.is_set}, daemon=True, name="served"
-        )
-        thread.start()
-        self._resources.append((stop, thread, server))
-        player, trainer, _ = server.ports
-        return "127.0.0.1", player, trainer
 
     def _connect_trainer(self) -> None:
         version = self.preset.client_version
@@ -182,28 +139,6 @@ class WireArena:
         self._trainer.timeout_s = self.preset.timeout_s
         self._command("(change_mode before_kick_off)", "(ok change_mode)")
         self._command("(ear on)", "(ok ear")
-
-    def _connect_players(self, host: str, port: int, timeout: float) -> None:
-        version = self.preset.client_version
-        for team in (LEFT, RIGHT):
-            wanted = sorted(ref.number for ref in self.players if ref.team == team)
-            if not wanted:
-                continue
-            fillers = []
-            for number in range(1, wanted[-1] + 1):
-                client = WireClient(host, port, timeout)
-                self._resources.append(client)
-                client.send(f"(init {TEAM_NAMES[team]} (version {version}))")
-                reply = client.until("(init ")[-1]
-                if reply.split()[2] != str(number):
-                    raise WireError(f"expected uniform number {number}, the server gave {reply}")
-                ref = PlayerRef(team, number)
-                if ref in self._plans:
-                    self._clients[ref] = client
-                else:
-                    fillers.append(client)
-            for client in fillers:
-                client.send("(bye)")  # a number the trial does not use: its slot stays empty
 
     # ------------------------------------------------------------------ the trainer
 
@@ -223,11 +158,6 @@ class WireArena:
                 self._score[side] = int(message[len(prefix) :])
         self._log(self._tick, "referee", message)
 
-    def _state_text(self, x: float, y: float, heading: float, vx: float, vy: float) -> str:
-        dt = self._dt
-        deg = -heading * _RAD2DEG
-        return f"{x!r} {-y!r} {deg!r} {vx * dt!r} {-vy * dt!r}"
-
     # ------------------------------------------------------------------ coach side
 
     @property
@@ -239,14 +169,14 @@ class WireArena:
         """The trainer's ``(move (player Team Unum) X Y Dir 0 0)``."""
         if ref not in self._clients:
             raise KeyError(f"{ref} is not a player of this arena")
-        text = self._state_text(x, y, heading, 0.0, 0.0)
+        text = move_text(x, y, heading, 0.0, 0.0, self._dt)
         self._command(f"(move (player {TEAM_NAMES[ref.team]} {ref.number}) {text})", "(ok move)")
         self._placed[ref] = BodyState(float(x), float(y), float(heading))
         self._look = None
 
     def place_ball(self, x: float, y: float, vx: float = 0.0, vy: float = 0.0) -> None:
         """The trainer's ``(move (ball) X Y 0 VX VY)``."""
-        self._command(f"(move (ball) {self._state_text(x, y, 0.0, vx, vy)})", "(ok move)")
+        self._command(f"(move (ball) {move_text(x, y, 0.0, vx, vy, self._dt)})", "(ok move)")
         self._placed[None] = BodyState(float(x), float(y), 0.0, float(vx), float(vy))
         self._look = None
 
@@ -273,7 +203,7 @@ class WireArena:
     def _looked(self) -> tuple[int, BodyState, dict[PlayerRef, BodyState]]:
         if self._look is None or self._look[0] != self._tick:
             reply = self._command("(look)", "(ok look ")
-            ball, players = self._parse_look(reply)
+            ball, players = parse_look(reply, self._dt)
             ball = self._as_placed(None, ball)
             players = {ref: self._as_placed(ref, st) for ref, st in players.items()}
             self._look = (self._tick, ball, players)
@@ -292,32 +222,6 @@ class WireArena:
             and abs(seen.vy - placed.vy) <= 1e-3 * max(1.0, abs(placed.vy))
         )
         return placed if close else seen
-
-    def _parse_look(self, text: str) -> tuple[BodyState, dict[PlayerRef, BodyState]]:
-        try:
-            tree = parse_sexpr(text)
-        except MessageParseError as exc:
-            raise WireError(f"unreadable look: {exc}") from None
-        dt = self._dt
-        ball = BodyState(0.0, 0.0, 0.0)
-        players: dict[PlayerRef, BodyState] = {}
-        teams = {name: team for team, name in TEAM_NAMES.items()}
-        for item in tree[3:]:
-            if not isinstance(item, list) or not isinstance(item[0], list):
-                continue
-            name, values = item[0], [float(v) for v in item[1:] if isinstance(v, str)]
-            if name == ["b"]:
-                x, y, vx, vy = values[:4]
-                ball = BodyState(x, -y + 0.0, 0.0, vx / dt, -vy / dt + 0.0)
-            elif name and name[0] == "p" and len(name) >= 3 and isinstance(name[1], Quoted):
-                team = teams.get(str(name[1]))
-                if team is None:
-                    continue
-                x, y, vx, vy, body = values[:5]
-                ref = PlayerRef(team, int(str(name[2])))
-                heading = math.remainder(-body / _RAD2DEG, math.tau)
-                players[ref] = BodyState(x, -y + 0.0, heading, vx / dt, -vy / dt + 0.0)
-        return ball, players
 
     # ------------------------------------------------------------------ client side
 
@@ -344,7 +248,7 @@ class WireArena:
         self._placed.clear()
         self._look = None
         batches = {ref: client.until("(think)") for ref, client in self._clients.items()}
-        times = {ref: _sense_time(batch) for ref, batch in batches.items()}
+        times = {ref: sense_time(batch) for ref, batch in batches.items()}
         known = [t for t in (*times.values(), target) if t is not None]
         now = max(known) if known else None
         if now is not None:
@@ -352,7 +256,7 @@ class WireArena:
                 while (behind := times[ref]) is None or behind < now:  # stale: read on
                     more = client.until("(think)")
                     batches[ref] += more
-                    times[ref] = _sense_time(more)
+                    times[ref] = sense_time(more)
             self._server_time = now
         percepts = []
         for ref, batch in batches.items():
@@ -363,7 +267,7 @@ class WireArena:
                 elif text.startswith("(hear "):
                     self._hear(ref, text)
             if seen is not None and ref in self._listening:
-                percepts.append(self._percept(ref, seen, now, _head_angle(batch)))
+                percepts.append(self._percept(ref, seen, now, head_angle(batch)))
         return percepts
 
     def _trainer_time(self) -> int:
@@ -433,76 +337,3 @@ class WireArena:
     ) -> None:
         if self.keep_events:
             self._events.append(ArenaEvent(tick, channel, text, ref))
-
-
-def _shut(resources: list[object]) -> None:
-    """Close what an arena opened, newest first (kept apart from the arena: a finalizer)."""
-    for item in reversed(resources):
-        if isinstance(item, WireClient):
-            with contextlib.suppress(OSError):
-                item.send("(bye)")
-            item.close()
-        elif isinstance(item, subprocess.Popen):
-            item.terminate()
-            try:
-                item.wait(timeout=5.0)
-            except subprocess.TimeoutExpired:
-                item.kill()
-        elif isinstance(item, tempfile.TemporaryDirectory):
-            item.cleanup()
-        elif isinstance(item, tuple):
-            stop, thread, server = item
-            stop.set()
-            thread.join(timeout=5.0)
-            server.close()
-    resources.clear()
-
-
-def _head_angle(batch: list[str]) -> float:
-    """The neck angle [rad, CCW] of the last ``sense_body``'s ``(head_angle H)`` (0: none).
-
-    H is in the server's degrees, clockwise on our field, so its sign flips.
-    """
-    angle = 0.0
-    for text in batch:
-        if text.startswith("(sense_body "):
-            start = text.find("(head_angle ")
-            if start >= 0:
-                token = text[start + len("(head_angle ") :].split(")", 1)[0]
-                with contextlib.suppress(ValueError):
-                    angle = -math.radians(float(token)) + 0.0
-    return angle
-
-
-def _sense_time(batch: list[str]) -> int | None:
-    """The time of the last ``sense_body`` in a client's messages (None: there was none)."""
-    time_ = None
-    for text in batch:
-        if text.startswith("(sense_body "):
-            with contextlib.suppress(IndexError, ValueError):
-                time_ = int(text.split(maxsplit=2)[1])
-    return time_
-
-
-def _free_port_triple() -> int:
-    """A port p with p, p+1 and p+2 free now (a real server's player, trainer, coach ports)."""
-    for _ in range(100):
-        probe = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-        probe.bind(("127.0.0.1", 0))
-        base = int(probe.getsockname()[1])
-        probe.close()
-        if base + 2 > 65535:
-            continue
-        held = []
-        try:
-            for p in (base, base + 1, base + 2):
-                s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-                held.append(s)
-                s.bind(("127.0.0.1", p))
-            return base
-        except OSError:
-            continue
-        finally:
-            for s in held:
-                s.close()
-    raise WireError("no three free consecutive UDP ports")

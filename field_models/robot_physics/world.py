@@ -19,7 +19,9 @@ Modelling (shared `specs/robot_physics.md` §3, measured there):
   :class:`~field_models.robot_physics.config.BallConfig`) perturbs the ball's velocity every
   ``noise_period_s`` by a uniform amount per axis proportional to its speed.
 
-Time is counted in integer ticks of ``1/physics_hz`` s. This module imports no drawing, logging
+The walls, the ball and the robots' bodies and joints are built by
+:mod:`~field_models.robot_physics.world_build`. Time is counted in integer ticks of
+``1/physics_hz`` s. This module imports no drawing, logging
 or CLI code; observers read :meth:`RobotWorld.truth`.
 """
 
@@ -32,8 +34,10 @@ from collections.abc import Sequence
 import pymunk
 from pymunk._chipmunk import lib as _cp
 
-from field_models.protocol import TWO_PI, BodyState, PlayerRef, Truth, wrap_angle
-from field_models.robot_physics.config import GRAVITY_MPS2, RobotPhysicsPreset
+from field_models.protocol import PlayerRef, wrap_angle
+from field_models.robot_physics.config import RobotPhysicsPreset
+from field_models.robot_physics.world_build import add_ball, add_robot, add_walls
+from field_models.robot_physics.world_truth import WorldTruth
 from field_models.seeding import Rng
 
 # The hot loop calls Chipmunk through pymunk's cffi layer, skipping pymunk's Python property
@@ -41,14 +45,11 @@ from field_models.seeding import Rng
 # velocity writes and the step go this way; bodies and shapes are built and placed through the
 # public API. Pinned to pymunk 7 in pyproject.toml.
 _get_angle = _cp.cpBodyGetAngle
-_get_position = _cp.cpBodyGetPosition
-_get_velocity = _cp.cpBodyGetVelocity
 _set_velocity = _cp.cpBodySetVelocity
 _set_spin = _cp.cpBodySetAngularVelocity
 _space_step = _cp.cpSpaceStep
 
 _row_of = operator.attrgetter("row")  # a drive's index among the robots (sort key)
-_new_tuple = tuple.__new__  # what a NamedTuple's __new__ calls, without its Python frame
 _NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same numbers either way)
 
 
@@ -98,13 +99,16 @@ class _Drive:
         )
 
 
-class RobotWorld:
+class RobotWorld(WorldTruth):
     """A walled field with robots and a ball, stepped in fixed ticks of ``1/physics_hz`` s.
 
     Args:
         preset: The robot-physics preset.
         refs: The robots, in a fixed order; index ``i`` in every method means ``refs[i]``.
         noise_rng: Generator for the ball-motion noise (the trial's "movement" stream).
+
+    Its read-outs (states, poses, the truth) are
+    :class:`~field_models.robot_physics.world_truth.WorldTruth`'s.
     """
 
     def __init__(
@@ -124,9 +128,13 @@ class RobotWorld:
         self.space.iterations = preset.timing.solver_iterations
         # pymunk's default slop is 0.1 length units: 10 cm in SI (robot_physics.md §3.1).
         self.space.collision_slop = preset.timing.collision_slop_m
-        self._build_walls()
-        self.ball = self._build_ball()
-        self._drives = [self._build_robot(row) for row in range(len(self.refs))]
+        # Walls, ball, robots: the order the space holds them in (world_build).
+        add_walls(self.space, preset.field, preset.ball.wall_restitution)
+        self.ball = add_ball(self.space, preset.ball)
+        self._drives = [
+            _Drive(*add_robot(self.space, preset.robot), row) for row in range(len(self.refs))
+        ]
+        self._body_ptrs = [d.body_ptr for d in self._drives]  # what the read-outs read
         self._index = {ref: i for i, ref in enumerate(self.refs)}
         self._noise_rng = noise_rng
         self._noise_ticks = max(1, round(preset.ball.noise_period_s / self.dt_s))
@@ -147,80 +155,6 @@ class RobotWorld:
         """
         self._ball_ptr = self.ball._body
         self.space.step(0.0)  # lets pymunk run its one-off body checks before the fast path
-
-    # ------------------------------------------------------------------ construction
-
-    def _build_walls(self) -> None:
-        f = self.preset.field
-        hl, hw, t = 0.5 * f.length_m, 0.5 * f.width_m, f.wall_thickness_m
-        gw, gd = 0.5 * f.goal_width_m, f.goal_depth_m
-        boxes = [
-            (-hl - gd - t, hw, hl + gd + t, hw + t),  # top side wall (spans the goal boxes too)
-            (-hl - gd - t, -hw - t, hl + gd + t, -hw),  # bottom side wall
-        ]
-        for sign in (-1.0, 1.0):
-            line_out = sign * hl, sign * (hl + t)
-            back = sign * (hl + gd), sign * (hl + gd + t)
-            boxes += [
-                (min(line_out), gw + t, max(line_out), hw),  # end wall above the goal
-                (min(line_out), -hw, max(line_out), -gw - t),  # end wall below the goal
-                (min(sign * hl, back[1]), gw, max(sign * hl, back[1]), gw + t),  # goal side (post)
-                (min(sign * hl, back[1]), -gw - t, max(sign * hl, back[1]), -gw),
-                (min(back), -gw - t, max(back), gw + t),  # goal back wall
-            ]
-        shapes: list[pymunk.Shape] = [self._static_box(*b) for b in boxes]
-        shapes += self._corner_panels(hl, hw, f.corner_fillet_m)
-        for shape in shapes:
-            shape.elasticity = self.preset.ball.wall_restitution
-            shape.friction = 0.2
-        self.space.add(*shapes)
-
-    def _static_box(self, x0: float, y0: float, x1: float, y1: float) -> pymunk.Poly:
-        corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
-        return pymunk.Poly(self.space.static_body, corners)
-
-    def _corner_panels(self, hl: float, hw: float, leg: float) -> list[pymunk.Shape]:
-        if leg <= 0:
-            return []
-        panels: list[pymunk.Shape] = []
-        for sx in (-1.0, 1.0):
-            for sy in (-1.0, 1.0):
-                cx, cy = sx * hl, sy * hw
-                # A triangle filling the corner, extended into the walls so it has no thin edge.
-                tri = [(cx, cy), (cx - sx * leg, cy), (cx, cy - sy * leg)]
-                panels.append(pymunk.Poly(self.space.static_body, tri))
-        return panels
-
-    def _build_ball(self) -> pymunk.Body:
-        b = self.preset.ball
-        body = pymunk.Body(b.mass_kg, math.inf)
-        shape = pymunk.Circle(body, b.radius_m)
-        shape.elasticity = 1.0  # the per-pair value sits on the other shape (§3.1)
-        shape.friction = 0.2
-        roll = pymunk.PivotJoint(self.space.static_body, body, (0, 0), (0, 0))
-        roll.max_bias = 0.0  # velocity-only: a friction, not a spring
-        roll.max_force = b.mass_kg * b.rolling_decel_mps2
-        self.space.add(body, shape, roll)
-        body.position = (0.0, 0.0)
-        return body
-
-    def _build_robot(self, row: int) -> _Drive:
-        r = self.preset.robot
-        body = pymunk.Body(r.mass_kg, pymunk.moment_for_box(r.mass_kg, (r.size_m, r.size_m)))
-        shape = pymunk.Poly.create_box(body, (r.size_m, r.size_m))
-        shape.elasticity = r.elasticity
-        shape.friction = 0.3
-        control = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
-        grip = r.tyre_mu * r.mass_kg * GRAVITY_MPS2
-        drive = pymunk.PivotJoint(control, body, (0, 0), (0, 0))
-        drive.max_bias = 0.0
-        drive.max_force = grip
-        # Yaw torque the two tyres can give: each carries m·g/2 at ±track/2 (§3.2 option A).
-        spin = pymunk.GearJoint(control, body, 0.0, 1.0)
-        spin.max_bias = 0.0
-        spin.max_force = grip * 0.5 * r.track_m
-        self.space.add(body, shape, control, drive, spin)
-        return _Drive(body, control, row)
 
     # ------------------------------------------------------------------ coach side
 
@@ -441,44 +375,3 @@ class RobotWorld:
         nx = self._noise_buf.pop()
         ny = self._noise_buf.pop()
         self.ball.velocity = self._clamp_speed(vx + amp * nx, vy + amp * ny)
-
-    # ------------------------------------------------------------------ truth
-
-    def ball_xy(self) -> tuple[float, float]:
-        """The ball's position [m] (fast path for coaches that check it every tick)."""
-        p = _get_position(self._ball_ptr)
-        return p.x, p.y
-
-    def ball_state(self) -> BodyState:
-        """The ball's exact state."""
-        p, v = _get_position(self._ball_ptr), _get_velocity(self._ball_ptr)
-        return _new_tuple(BodyState, (p.x, p.y, 0.0, v.x, v.y))
-
-    def robot_state(self, index: int) -> BodyState:
-        """Robot `index`'s exact state."""
-        ptr = self._drives[index].body_ptr
-        p, v = _get_position(ptr), _get_velocity(ptr)
-        heading = _get_angle(ptr)
-        if not -math.pi <= heading < math.pi:  # wrap_angle, inlined (field_models.protocol)
-            heading = (heading + math.pi) % TWO_PI - math.pi
-        return _new_tuple(BodyState, (p.x, p.y, heading, v.x, v.y))
-
-    def robot_pose(self, index: int) -> tuple[float, float, float]:
-        """Robot `index`'s (x, y, heading) [m, m, rad] (fast path for the camera)."""
-        ptr = self._drives[index].body_ptr
-        p = _get_position(ptr)
-        return p.x, p.y, _get_angle(ptr)
-
-    def robot_poses(self) -> list[tuple[float, float, float]]:
-        """Every robot's (x, y, heading) [m, m, rad], in the robots' order (the camera's read)."""
-        out = []
-        for d in self._drives:
-            ptr = d.body_ptr
-            p = _get_position(ptr)
-            out.append((p.x, p.y, _get_angle(ptr)))
-        return out
-
-    def truth(self) -> Truth:
-        """Exact state of the ball and every robot."""
-        players = {ref: self.robot_state(i) for i, ref in enumerate(self.refs)}
-        return Truth(self.tick, self.tick * self.dt_s, self.ball_state(), players)

@@ -18,46 +18,39 @@ Numbers: positions [m] and stored velocities [m/cycle] in :attr:`BatchSoccerServ
 command arguments as in the single model (power in server units, angles in radians, counter-
 clockwise). Each argument may be a scalar or an array of K values; `mask` (K booleans)
 selects the trials a call applies to.
+
+As the single model, the batch keeps its parts with a job of their own in mixins: the players'
+commands in :mod:`~field_models.soccer_server.batch_commands`, the play modes and the referee
+in :mod:`~field_models.soccer_server.batch_referee`; this module keeps the state, the
+read-outs, the trainer's moves and the cycle.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
 
-from field_models.protocol import BodyState, PlayerRef, end_line_crossing, wrap_angle
+from field_models.protocol import BodyState, PlayerRef, wrap_angle
 from field_models.seeding import Rng, StreamBatch
 from field_models.soccer_server.batch_collisions import PairTable, collide
+from field_models.soccer_server.batch_commands import BatchCommands, FloatArg
 from field_models.soccer_server.batch_random import BatchRandom
+from field_models.soccer_server.batch_referee import BatchReferee
 from field_models.soccer_server.cycle_rules import (
-    AFTER_GOAL_MODES,
     BEFORE_KICK_OFF,
-    DASH,
-    HALF_PI,
-    KICK,
     NO_COMMAND,
+    PLAY_MODE_CODE,
     PLAY_MODES,
     PLAY_ON,
-    RESTART_MODES,
-    TURN,
     side_of,
-    unit_noise,
 )
 from field_models.soccer_server.params import ServerPreset
 
-_CODE = {mode: code for code, mode in enumerate(PLAY_MODES)}
-_BKO, _PLAY_ON = _CODE[BEFORE_KICK_OFF], _CODE[PLAY_ON]
-_GOAL_L, _GOAL_R = _CODE["goal_l"], _CODE["goal_r"]
-_KICK_OFF_L, _KICK_OFF_R = _CODE["kick_off_l"], _CODE["kick_off_r"]
-_RESTART_CODES = np.array([_CODE[m] for m in RESTART_MODES])
-
-FloatArg = float | np.ndarray
-"""A scalar for every trial, or one value per trial."""
+_BKO, _PLAY_ON = PLAY_MODE_CODE[BEFORE_KICK_OFF], PLAY_MODE_CODE[PLAY_ON]
 
 
-class BatchSoccerServer:
+class BatchSoccerServer(BatchCommands, BatchReferee):
     """K independent Soccer Server trials of one preset, stepped together.
 
     Attributes:
@@ -221,64 +214,6 @@ class BatchSoccerServer:
         self.vy[:, i] = np.where(m, np.multiply(vy_mps, dt), self.vy[:, i])
         self._collide(m)
 
-    def change_mode(self, mode: str, mask: np.ndarray | None = None) -> None:
-        """Set the play mode in the trials of `mask`; announced at the next step."""
-        if mode not in PLAY_MODES:
-            raise ValueError(f"unknown play mode {mode!r}; known: {', '.join(PLAY_MODES)}")
-        m = self._mask(mask)
-        self.mode[m] = _CODE[mode]
-        self._after_goal[m] = 0
-        if mode not in AFTER_GOAL_MODES:
-            for trial in np.flatnonzero(m).tolist():
-                self._announce.setdefault(trial, []).append(mode)
-
-    # ------------------------------------------------------------------ player commands
-
-    def dash(
-        self,
-        i: int,
-        power: FloatArg,
-        direction_rad: FloatArg = 0.0,
-        mask: np.ndarray | None = None,
-    ) -> np.ndarray:
-        """Queue ``(dash power direction)`` for player row `i`; returns the trials that took it.
-
-        Power and direction are clamped (and the direction rounded) as in the single model
-        (:func:`~field_models.soccer_server.cycle_rules.dash_direction`).
-        """
-        p = self.params
-        power = np.clip(power, p.min_dash_power, p.max_dash_power)
-        d = -np.clip(np.negative(direction_rad), p.min_dash_angle_rad, p.max_dash_angle_rad)
-        step = p.dash_angle_step_rad
-        if step > 0.0:
-            d = step * np.round(d / step)  # half to even, as the single model's round
-        return self._queue(i, DASH, power, d + 0.0, mask)
-
-    def turn(self, i: int, angle_rad: FloatArg, mask: np.ndarray | None = None) -> np.ndarray:
-        """Queue a turn by `angle_rad` (left positive), clamped in the server's sign."""
-        p = self.params
-        angle = -np.clip(np.negative(angle_rad), p.minmoment_rad, p.maxmoment_rad)
-        return self._queue(i, TURN, angle, 0.0, mask)
-
-    def kick(
-        self, i: int, power: FloatArg, direction_rad: FloatArg, mask: np.ndarray | None = None
-    ) -> np.ndarray:
-        """Queue a kick; power and direction clamped as in the single model."""
-        p = self.params
-        power = np.clip(power, p.minpower, p.maxpower)
-        direction = -np.clip(np.negative(direction_rad), p.minmoment_rad, p.maxmoment_rad)
-        return self._queue(i, KICK, power, direction, mask)
-
-    def _queue(
-        self, i: int, kind: int, arg1: FloatArg, arg2: FloatArg, mask: np.ndarray | None
-    ) -> np.ndarray:
-        self._check_player(i)
-        ok = self._mask(mask) & (self._kind[:, i] == NO_COMMAND)
-        self._kind[:, i] = np.where(ok, kind, self._kind[:, i])
-        self._arg1[:, i] = np.where(ok, arg1, self._arg1[:, i])
-        self._arg2[:, i] = np.where(ok, arg2, self._arg2[:, i])
-        return ok
-
     # ------------------------------------------------------------------ the cycle
 
     def step(self) -> list[tuple[int, str]]:
@@ -298,103 +233,6 @@ class BatchSoccerServer:
             self._judge(bx0, by0, moving, messages)
         self.cycle += 1
         return [(trial, text) for trial in sorted(messages) for text in messages[trial]]
-
-    def _run_commands(self, r: int, messages: dict[int, list[str]]) -> None:
-        kicked = np.zeros(self.k, dtype=bool)
-        for i in range(1, self._n):
-            kind = self._kind[:, i]
-            if (kind == DASH).any():
-                self._do_dash(i, kind == DASH)
-            if (kind == TURN).any():
-                self._do_turn(i, kind == TURN, self._random.turn_noise(r, i, kind == TURN))
-            if (kind == KICK).any():
-                kicked |= self._do_kick(i, kind == KICK, r)
-        self._kind[:] = NO_COMMAND
-        restart = kicked & np.isin(self.mode, _RESTART_CODES)
-        if self.params.referee and restart.any():
-            self.mode[restart] = _PLAY_ON
-            for trial in np.flatnonzero(restart).tolist():
-                messages.setdefault(trial, []).append(PLAY_ON)
-
-    def _do_dash(self, i: int, m: np.ndarray) -> None:
-        """The single model's ``_do_dash`` elementwise: rate 1 and no turn for direction 0."""
-        p = self.params
-        d = self._arg2[:, i]
-        power, dpr = self._arg1[:, i], p.dash_power_rate_m_per_cycle2
-        h = self.heading[:, i]
-        a = power * dpr
-        directed = d != 0.0
-        if directed.any():
-            a_abs = np.abs(d)
-            side, back = p.side_dash_rate, p.back_dash_rate
-            rate = np.where(
-                a_abs > HALF_PI,
-                back - (back - side) * (1.0 - (a_abs - HALF_PI) / HALF_PI),
-                side + (1.0 - side) * (1.0 - a_abs / HALF_PI),
-            )
-            a = np.where(directed, power * np.clip(rate, 0.0, 1.0) * dpr, a)
-            h = np.where(directed, h + d, h)
-        self._ax[:, i] = np.where(m, self._ax[:, i] + a * np.cos(h), self._ax[:, i])
-        self._ay[:, i] = np.where(m, self._ay[:, i] + a * np.sin(h), self._ay[:, i])
-
-    def _do_turn(self, i: int, m: np.ndarray, factor: np.ndarray) -> None:
-        vx, vy = self.vx[:, i], self.vy[:, i]
-        speed = np.sqrt(vx * vx + vy * vy)
-        inertia = self.params.inertia_moment_cycle_per_m
-        h = wrap_angle(self.heading[:, i] + factor * self._arg1[:, i] / (1.0 + inertia * speed))
-        self.heading[:, i] = np.where(m, h, self.heading[:, i])
-
-    def _do_kick(self, i: int, m: np.ndarray, r: int) -> np.ndarray:
-        """Kick in the trials of `m` where allowed and in reach; returns where it was taken."""
-        p = self.params
-        stopped = (self.mode == _BKO) | (self.mode == _GOAL_L) | (self.mode == _GOAL_R)
-        rx = self.x[:, 0] - self.x[:, i]
-        ry = self.y[:, 0] - self.y[:, i]
-        dist2 = rx * rx + ry * ry
-        reach = p.kickable_area_m
-        ok = m & ~stopped & ~(dist2 > reach * reach)
-        idx = np.flatnonzero(ok)
-        if idx.size == 0:
-            return ok
-        h = self.heading[idx, i]
-        ch, sh = np.cos(h), np.sin(h)
-        rx, ry, dist2 = rx[idx], ry[idx], dist2[idx]
-        cross = np.abs(ch * ry - sh * rx)
-        dot = ch * rx + sh * ry
-        # math.atan2, not np.arctan2: the two differ in the last bit (kicks are few).
-        dir_diff = np.array(
-            [math.atan2(c, d) for c, d in zip(cross.tolist(), dot.tolist(), strict=True)]
-        )
-        gap = np.sqrt(dist2) - p.player_size_m - p.ball_size_m
-        if p.kick_reduction:
-            k = 1.0 - 0.25 * dir_diff / math.pi - 0.25 * gap / p.kickable_margin_m
-        else:
-            k = np.ones(idx.size)
-        power = self._arg1[idx, i]
-        a = power * p.kick_power_rate_m_per_cycle2 * k
-        ang = h + self._arg2[idx, i]
-        ax = a * np.cos(ang)
-        ay = a * np.sin(ang)
-        if p.kick_rand:
-            bvx, bvy = self.vx[idx, 0], self.vy[idx, 0]
-            radius = self._kick_noise_radius(power, gap, dir_diff, np.sqrt(bvx * bvx + bvy * bvy))
-            nx, ny = unit_noise(*self._random.kick_uniforms(r, i, idx), p.noise_model)
-            ax = ax + radius * nx
-            ay = ay + radius * ny
-        self._ax[idx, 0] = self._ax[idx, 0] + ax
-        self._ay[idx, 0] = self._ay[idx, 0] + ay
-        return ok
-
-    def _kick_noise_radius(
-        self, power: np.ndarray, gap: np.ndarray, dir_diff: np.ndarray, ball_speed: np.ndarray
-    ) -> np.ndarray:
-        p = self.params
-        scale = p.kick_rand * (power / p.maxpower)
-        if p.noise_model == "box":
-            return scale
-        pos_rate = 0.5 + 0.25 * (dir_diff / math.pi + gap / p.kickable_margin_m)
-        speed_rate = 0.5 + 0.5 * (ball_speed / (p.ball_speed_max_m_per_cycle * p.ball_decay))
-        return scale * (pos_rate + speed_rate)
 
     def _hold_players(self, held: np.ndarray) -> None:
         if held.any():
@@ -444,85 +282,3 @@ class BatchSoccerServer:
         (self.x, self.y), (self.vx, self.vy) = collide(
             self._pairs, (self.x, self.y), (self.vx, self.vy), trials, self.mode == _PLAY_ON
         )
-
-    # ------------------------------------------------------------------ referee (§6)
-
-    def _judge(
-        self, bx0: np.ndarray, by0: np.ndarray, moving: np.ndarray, messages: dict[int, list[str]]
-    ) -> None:
-        mode = self.mode.copy()
-        after = moving & ((mode == _GOAL_L) | (mode == _GOAL_R))
-        self._after_goal[after] += 1
-        ready = after & (self._after_goal >= self.params.after_goal_wait_cycles)
-        if ready.any():
-            self._kick_off(np.flatnonzero(ready), messages)
-        side = self._goal_side(bx0, by0, moving & ~after)
-        if side.any():
-            self._score(side, messages)
-        kick_off = moving & ~after & (side == 0) & ((mode == _KICK_OFF_L) | (mode == _KICK_OFF_R))
-        if kick_off.any():
-            self._keep_halves(kick_off, np.where(mode == _KICK_OFF_L, 1, -1))
-
-    def _goal_side(self, x0: np.ndarray, y0: np.ndarray, judged: np.ndarray) -> np.ndarray:
-        """Per trial +1 (goal at +x, for the left team), -1 (at -x) or 0, among `judged`.
-
-        A vector test picks the trials whose ball crossed an end line this cycle; only those
-        go through the scalar rule, ``field_models.protocol.end_line_crossing``.
-        """
-        x1, y1 = self.x[:, 0], self.y[:, 0]
-        line = 0.5 * self._pitch.length_m + self._pitch.ball_radius_m
-        crossed = judged & (np.abs(x1) > line) & ~(np.abs(x0) > line)
-        side = np.zeros(self.k, dtype=int)
-        for trial in np.flatnonzero(crossed).tolist():
-            crossing = end_line_crossing(
-                self._pitch, float(x0[trial]), float(y0[trial]), float(x1[trial]), float(y1[trial])
-            )
-            if crossing.is_goal:
-                side[trial] = int(crossing)
-        return side
-
-    def _score(self, side: np.ndarray, messages: dict[int, list[str]]) -> None:
-        """The goals of this cycle: side[k] +1 (the left team scored), -1 (the right), 0."""
-        scored = np.flatnonzero(side)
-        left = side[scored] > 0
-        self.score_left[scored[left]] += 1 if self._has_left else 0
-        self.score_right[scored[~left]] += 1 if self._has_right else 0
-        for trial, by_left in zip(scored.tolist(), left.tolist(), strict=True):
-            count = self.score_left[trial] if by_left else self.score_right[trial]
-            messages.setdefault(trial, []).append(f"goal_{'l' if by_left else 'r'}_{count}")
-        self.mode[scored] = np.where(left, _GOAL_L, _GOAL_R)
-        for arr in (self.vx, self.vy, self._ax, self._ay):
-            arr[scored, 0] = 0.0
-        self._after_goal[scored] = 0
-        if self.params.after_goal_wait_cycles == 0:
-            self._kick_off(scored, messages)
-
-    def _kick_off(self, trials: np.ndarray, messages: dict[int, list[str]]) -> None:
-        """Kick-offs after goals in `trials` (indices): ball to the centre, players placed."""
-        kicker = np.where(self.mode[trials] == _GOAL_L, -1, 1)
-        self.mode[trials] = np.where(kicker < 0, _KICK_OFF_R, _KICK_OFF_L)
-        for trial in trials.tolist():
-            messages.setdefault(trial, []).append(PLAY_MODES[int(self.mode[trial])])
-        for arr in (self.x, self.y, self.vx, self.vy, self._ax, self._ay):
-            arr[trials, 0] = 0.0
-        chosen = np.zeros(self.k, dtype=bool)
-        chosen[trials] = True
-        kickers = np.zeros(self.k, dtype=int)
-        kickers[trials] = kicker
-        self._keep_halves(chosen, kickers)
-
-    def _keep_halves(self, trials: np.ndarray, kicker: np.ndarray) -> None:
-        """Players into their own half; the team not kicking off out of the centre circle."""
-        p = self.params
-        rows = np.flatnonzero(trials)  # a few trials: work on their rows only
-        side = self._side[1:]
-        x, y = self.x[rows, 1:], self.y[rows, 1:]
-        x = np.where(side * x > 0.0, -side * p.player_size_m, x)
-        radius = p.center_circle_radius_m + p.player_size_m
-        r = np.sqrt(x * x + y * y)
-        inside = (side != 0) & (side != kicker[rows, None]) & ~(r > radius)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            nx = np.where(r == 0.0, radius, x * (radius / r))
-            ny = np.where(r == 0.0, 0.0, y * (radius / r))
-        self.x[rows, 1:] = np.where(inside, nx, x)
-        self.y[rows, 1:] = np.where(inside, ny, y)

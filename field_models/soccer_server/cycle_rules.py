@@ -48,6 +48,8 @@ RESTART_MODES = (
 """Modes in which the next accepted kick starts play (``play_on``)."""
 PLAY_MODES = (BEFORE_KICK_OFF, PLAY_ON, *AFTER_GOAL_MODES, *RESTART_MODES)
 """Every play mode the model knows, as the server spells them."""
+PLAY_MODE_CODE = {mode: code for code, mode in enumerate(PLAY_MODES)}
+"""The batch's integer code of each play mode: its index in :data:`PLAY_MODES`."""
 
 NO_COMMAND, DASH, TURN, KICK = 0, 1, 2, 3
 """Codes of the pending body command of a player."""

@@ -27,7 +27,11 @@ speak m/s.
 
 The rules it shares with the batch (play modes, the row layout, the command formulas) are in
 :mod:`~field_models.soccer_server.cycle_rules`, the collisions in
-:mod:`~field_models.soccer_server.collisions`.
+:mod:`~field_models.soccer_server.collisions`. The model's parts with a job of their own are
+mixins in modules of their own: the players' commands, queued and run (§2), in
+:mod:`~field_models.soccer_server.commands`; the play mode and the referee (§5, §6) in
+:mod:`~field_models.soccer_server.referee`. This module keeps the state, the coach's read-outs
+and moves, and the cycle itself (§1, §4).
 
 Randomness. Each cycle consumes one *row* of uniforms from the trial's generator, whatever
 happens in it (:class:`RowLayout`: movement noise per update slot, turn and kick noise per
@@ -75,16 +79,9 @@ import math
 import numpy as np
 
 from field_models.protocol import (
-    Action,
     BodyState,
-    Dash,
-    Kick,
     Pitch,
     PlayerRef,
-    Say,
-    Turn,
-    TurnNeck,
-    end_line_crossing,
     wrap_angle,
 )
 from field_models.seeding import Rng
@@ -94,29 +91,19 @@ from field_models.soccer_server.collisions import (
     resolve_collisions,
     sweep_of,
 )
+from field_models.soccer_server.commands import PlayerCommands
 from field_models.soccer_server.cycle_rules import (
-    AFTER_GOAL_MODES,
     BEFORE_KICK_OFF,
-    DASH,
-    KICK,
     NO_COMMAND,
-    PLAY_MODES,
     PLAY_ON,
-    RESTART_MODES,
-    TURN,
-    clamp,
-    dash_direction,
-    dash_rate,
     draw_rows,
-    kick_effectiveness,
-    kick_noise_radius,
-    out_of_circle,
     row_layout,
     side_of,
     turn_factor,
     unit_noise,
 )
 from field_models.soccer_server.params import ServerPreset
+from field_models.soccer_server.referee import ModelReferee
 
 BLOCK_CYCLES = 32
 """Cycles of random numbers drawn at once by the single-trial model."""
@@ -124,7 +111,7 @@ BLOCK_CYCLES = 32
 _state = tuple.__new__  # a BodyState from its 5 values, without the Python-level __new__
 
 
-class SoccerServerModel:
+class SoccerServerModel(PlayerCommands, ModelReferee):
     """One trial of the Soccer Server: ball and players, stepped one 100 ms cycle at a time.
 
     Attributes:
@@ -144,7 +131,9 @@ class SoccerServerModel:
             that cycle's show (monitors and game logs read it).
 
     The ball starts at rest on the centre mark, the players at rest off the pitch (3 m apart
-    below the bottom touchline) until the coach places them.
+    below the bottom touchline) until the coach places them. The players' commands (queued,
+    then run at the step) are :class:`~field_models.soccer_server.commands.PlayerCommands`',
+    the play mode and the referee :class:`~field_models.soccer_server.referee.ModelReferee`'s.
     """
 
     def __init__(self, preset: ServerPreset, players: tuple[PlayerRef, ...], rng: Rng) -> None:
@@ -258,98 +247,6 @@ class SoccerServerModel:
         if any_overlap_swept(self._sweep, self.x, self.y):
             self._resolve_collisions()
 
-    def change_mode(self, mode: str) -> None:
-        """Set the play mode (trainer ``change_mode``); announced at the next step (§5, §6)."""
-        if mode not in PLAY_MODES:
-            raise ValueError(f"unknown play mode {mode!r}; known: {', '.join(PLAY_MODES)}")
-        self.play_mode = mode
-        self._after_goal_cycles = 0
-        if mode not in AFTER_GOAL_MODES:
-            self._announce.append(mode)
-
-    # ------------------------------------------------------------------ player commands
-
-    def command(self, i: int, action: Action) -> bool:
-        """Queue player row `i`'s action for the next step; False if the server would ignore it.
-
-        A second body command (turn, dash, kick) in the same cycle is ignored (§1.1); a say
-        or a turn_neck combines with one. A view change is the sensing's, not the model's.
-        """
-        if isinstance(action, Dash):
-            return self.dash(i, action.power, action.direction_rad)
-        if isinstance(action, Turn):
-            return self.turn(i, action.angle_rad)
-        if isinstance(action, Kick):
-            return self.kick(i, action.power, action.direction_rad)
-        if isinstance(action, Say):
-            return self.say(i, action.text)
-        if isinstance(action, TurnNeck):
-            return self.turn_neck(i, action.angle_rad)
-        raise TypeError(f"not a Soccer Server model action: {action!r}")
-
-    def dash(self, i: int, power: float, direction_rad: float = 0.0) -> bool:
-        """Queue ``(dash power direction)`` (§2.1; direction counter-clockwise from the heading).
-
-        The power is clamped to [min_dash_power, max_dash_power]; the direction is clamped and
-        rounded by :func:`dash_direction`. At the step the player is pushed toward heading +
-        direction by power · :func:`dash_rate` · dash_power_rate.
-        """
-        p = self.params
-        power = clamp(power, p.min_dash_power, p.max_dash_power)
-        if direction_rad == 0.0 and self._straight_dash:
-            return self._queue(i, DASH, power, 0.0)  # what dash_direction gives, for less
-        return self._queue(i, DASH, power, dash_direction(direction_rad, p))
-
-    def turn(self, i: int, angle_rad: float) -> bool:
-        """Queue a turn by `angle_rad` (left positive), clamped in the server's sign (§2.2)."""
-        p = self.params
-        return self._queue(i, TURN, -clamp(-angle_rad, p.minmoment_rad, p.maxmoment_rad), 0.0)
-
-    def kick(self, i: int, power: float, direction_rad: float) -> bool:
-        """Queue a kick: power clamped to [minpower, maxpower], direction to the moment range."""
-        p = self.params
-        power = clamp(power, p.minpower, p.maxpower)
-        direction = -clamp(-direction_rad, p.minmoment_rad, p.maxmoment_rad)
-        return self._queue(i, KICK, power, direction)
-
-    def turn_neck(self, i: int, angle_rad: float) -> bool:
-        """Queue ``(turn_neck Moment)``: the neck turns by `angle_rad` (left positive) at the step.
-
-        As rcssserver's ``Player::turn_neck``: the moment is clamped to [minneckmoment,
-        maxneckmoment] and the new neck angle to [minneckang, maxneckang], both in the server's
-        sign (§2.2); no noise, so no random number is drawn. Not a body command: it goes with
-        one; a second turn_neck in the same cycle is ignored (False), as the server's
-        per-cycle ``turn_neck`` flag does.
-        """
-        self._check_player(i)
-        if i in self._neck_turn:
-            return False
-        p = self.params
-        self._neck_turn[i] = -clamp(-angle_rad, p.minneckmoment_rad, p.maxneckmoment_rad)
-        return True
-
-    def say(self, i: int, text: str) -> bool:
-        """Queue a say; a message longer than ``say_msg_size`` is dropped (§2.6)."""
-        self._check_player(i)
-        if len(text) > self.preset.sensing.say_msg_size:
-            return False
-        self._say_queue.append((i, text))
-        return True
-
-    def _queue(self, i: int, kind: int, arg1: float, arg2: float) -> bool:
-        self._check_player(i)
-        if self._kind[i] != NO_COMMAND:
-            return False
-        self._kind[i] = kind
-        self._arg1[i] = float(arg1)  # plain floats keep the step free of numpy scalars
-        self._arg2[i] = float(arg2)
-        self._pending.append(i)
-        return True
-
-    def _check_player(self, i: int) -> None:
-        if not 0 < i < self._n:
-            raise IndexError(f"player row {i} outside 1..{self._n - 1}")
-
     # ------------------------------------------------------------------ the cycle
 
     def step(self) -> list[str]:
@@ -400,91 +297,6 @@ class SoccerServerModel:
         )
         self._order = np.argsort(u[:, lay.order], axis=1, kind="stable").tolist()
 
-    def _run_commands(self, r: int, messages: list[str]) -> None:
-        """Dash, turn and kick, in row order, against the start-of-cycle state (§1.1, §2)."""
-        kicked = False
-        for i in sorted(self._pending):
-            kind = self._kind[i]
-            if kind == DASH:
-                self._do_dash(i, self._arg1[i], self._arg2[i])
-            elif kind == TURN:
-                self._do_turn(i, self._arg1[i], self._noise[2][r][i - 1])
-            elif kind == KICK and self._do_kick(i, self._arg1[i], self._arg2[i], r):
-                kicked = True
-                self.kicked_at[i] = self.cycle + 1
-            self._kind[i] = NO_COMMAND
-        self._pending.clear()
-        if kicked and self.play_mode in RESTART_MODES and self.params.referee:
-            self.play_mode = PLAY_ON
-            messages.append(PLAY_ON)
-
-    def _turn_necks(self) -> None:
-        """Commit this cycle's turn_necks (the server commits the neck at the step, §1.1)."""
-        p = self.params
-        for i, moment in self._neck_turn.items():
-            server = clamp(-(self.neck[i] + moment), p.minneckang_rad, p.maxneckang_rad)
-            self.neck[i] = -server + 0.0
-        self._neck_turn.clear()
-
-    def _do_dash(self, i: int, power: float, direction: float) -> None:
-        """Push the player toward heading + direction: power · dir rate · dash_power_rate.
-
-        Effort is 1 (stamina is not modelled, §2.7). With both legs dashing alike and stamina
-        to spare, rcssserver 19's ``Player::applyDashEffect`` (``src/player.cpp`` lines
-        1205-1254: the mean of the legs' accelerations, no turn) reduces to one
-        ``Leg::calcDashAccel`` (``src/leg.cpp`` lines 150-181): magnitude
-        |power · dir_rate · dash_power_rate| toward body + direction, reversed for a negative
-        power (possible only where ``min_dash_power`` < 0).
-        """
-        p = self.params
-        h = self.heading[i]
-        if direction == 0.0:
-            a = power * p.dash_power_rate_m_per_cycle2
-        else:
-            rate = dash_rate(direction, p.side_dash_rate, p.back_dash_rate)
-            a = power * rate * p.dash_power_rate_m_per_cycle2
-            h = h + direction
-        self._ax[i] += a * math.cos(h)
-        self._ay[i] += a * math.sin(h)
-
-    def _do_turn(self, i: int, angle: float, factor: float) -> None:
-        """Turn by (1 + ξ)·angle / (1 + inertia_moment·|v|), |v| the stored speed (§2.2)."""
-        vx, vy = self.vx[i], self.vy[i]
-        speed = math.sqrt(vx * vx + vy * vy)
-        h = self.heading[i] + factor * angle / (
-            1.0 + self.params.inertia_moment_cycle_per_m * speed
-        )
-        self.heading[i] = wrap_angle(h)
-
-    def _do_kick(self, i: int, power: float, direction: float, r: int) -> bool:
-        """Push the ball if it is within the kickable area; True if the kick was taken (§2.3)."""
-        p = self.params
-        if self.play_mode == BEFORE_KICK_OFF or self.play_mode in AFTER_GOAL_MODES:
-            return False
-        rx = self.x[0] - self.x[i]
-        ry = self.y[0] - self.y[i]
-        dist2 = rx * rx + ry * ry
-        reach = p.kickable_area_m
-        if dist2 > reach * reach:
-            return False
-        h = self.heading[i]
-        ch, sh = math.cos(h), math.sin(h)
-        dir_diff = math.atan2(abs(ch * ry - sh * rx), ch * rx + sh * ry)
-        gap = math.sqrt(dist2) - p.player_size_m - p.ball_size_m
-        k = kick_effectiveness(gap, dir_diff, p.kickable_margin_m) if p.kick_reduction else 1.0
-        a = power * p.kick_power_rate_m_per_cycle2 * k
-        ang = h + direction
-        ax = a * math.cos(ang)
-        ay = a * math.sin(ang)
-        if p.kick_rand:
-            bvx, bvy = self.vx[0], self.vy[0]
-            radius = kick_noise_radius(p, power, gap, dir_diff, math.sqrt(bvx * bvx + bvy * bvy))
-            ax += radius * self._noise[3][r][i - 1]
-            ay += radius * self._noise[4][r][i - 1]
-        self._ax[0] += ax
-        self._ay[0] += ay
-        return True
-
     def _hold_players(self) -> None:
         """before_kick_off: players keep their place, the ball is not updated (§1.1)."""
         for i in range(1, self._n):
@@ -518,62 +330,6 @@ class SoccerServerModel:
             y[i] += vy
             d = decay[i]
             vxs[i], vys[i] = d * vx, d * vy
-
-    # ------------------------------------------------------------------ collisions (§4)
-
-    # ------------------------------------------------------------------ referee (§6)
-
-    def _judge(self, bx0: float, by0: float, messages: list[str]) -> None:
-        mode = self.play_mode
-        if mode in AFTER_GOAL_MODES:
-            self._after_goal_cycles += 1
-            if self._after_goal_cycles >= self.params.after_goal_wait_cycles:
-                self._kick_off(mode, messages)
-            return
-        bx1, line = self.x[0], self._goal_line
-        crossing = (
-            end_line_crossing(self._pitch, bx0, by0, bx1, self.y[0])
-            if abs(bx1) > line and not abs(bx0) > line  # a cheap test first: crossed at all
-            else None
-        )
-        if crossing is not None and crossing.is_goal:
-            self._score(int(crossing), messages)
-        elif mode in ("kick_off_l", "kick_off_r"):
-            self._keep_halves(1 if mode == "kick_off_l" else -1)
-
-    def _score(self, side: int, messages: list[str]) -> None:
-        """Count the goal (`side` +1: at +x, for the left team), stop the ball (§6)."""
-        if side > 0:
-            self.score_left += 1 if 1 in self._side else 0
-            messages.append(f"goal_l_{self.score_left}")
-            self.play_mode = "goal_l"
-        else:
-            self.score_right += 1 if -1 in self._side else 0
-            messages.append(f"goal_r_{self.score_right}")
-            self.play_mode = "goal_r"
-        self.vx[0] = self.vy[0] = self._ax[0] = self._ay[0] = 0.0
-        self._after_goal_cycles = 0
-        if self.params.after_goal_wait_cycles == 0:
-            self._kick_off(self.play_mode, messages)
-
-    def _kick_off(self, after_goal_mode: str, messages: list[str]) -> None:
-        """Ball to the centre; the team that conceded kicks off (§6)."""
-        kicker = -1 if after_goal_mode == "goal_l" else 1
-        self.play_mode = "kick_off_r" if kicker < 0 else "kick_off_l"
-        messages.append(self.play_mode)
-        self.move_ball(0.0, 0.0)
-        self._keep_halves(kicker)
-
-    def _keep_halves(self, kicker: int) -> None:
-        """Players into their own half; the other team out of the centre circle."""
-        p = self.params
-        keep_out = p.center_circle_radius_m + p.player_size_m
-        for i in range(1, self._n):
-            side = self._side[i]
-            if side * self.x[i] > 0.0:
-                self.x[i] = -side * p.player_size_m
-            if side and side != kicker:
-                self.x[i], self.y[i] = out_of_circle(self.x[i], self.y[i], keep_out)
 
     def _resolve_collisions(self) -> None:
         """Push overlapping pairs apart, velocities × −0.1 (§4, :func:`resolve_collisions`)."""

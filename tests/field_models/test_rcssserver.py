@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import socket
 import threading
 import time
 
@@ -16,7 +17,10 @@ import pytest
 
 from field_models.checker import QUIET
 from field_models.presets import PresetError
-from field_models.protocol import LEFT, RIGHT, Dash, PlayerRef
+from field_models.protocol import LEFT, RIGHT, BodyState, Dash, PlayerRef
+from field_models.rcssserver.client import WireError
+from field_models.rcssserver.launch import free_port_triple
+from field_models.rcssserver.wire_text import head_angle, move_text, parse_look, sense_time
 from field_models.registry import DEFAULT_OPTIONS, entry, make_arena
 from field_models.seeding import TrialRngs
 
@@ -98,3 +102,43 @@ def test_a_protocol_version_the_server_does_not_speak_is_refused(tmp_path, versi
     sensing.write_text(f'base = "rcssserver_19"\n[sensing]\nprotocol_version = {version}\n')
     with pytest.raises(PresetError, match=r"protocol_version.*\[1, 19\]"):
         entry("soccer_server").load(str(sensing), DEFAULT_OPTIONS)
+
+
+def test_the_trainers_move_and_look_texts_convert_frames_both_ways() -> None:
+    dt = 0.5  # a cycle length that keeps the velocities exact
+    assert move_text(1.0, 2.0, math.pi / 2, 3.0, -4.0, dt) == "1.0 -2.0 -90.0 1.5 2.0"
+    look = (
+        "(ok look 7 ((g r) 52.5 0) ((b) 1 -2 1.5 2) "
+        '((p "left" 2 0) 5 6 -0.5 1 -90 0) ((p "other" 1 0) 0 0 0 0 0 0))'
+    )
+    ball, players = parse_look(look, dt)
+    assert ball == BodyState(1.0, 2.0, 0.0, 3.0, -4.0)
+    assert list(players) == [PlayerRef(LEFT, 2)]
+    left = players[PlayerRef(LEFT, 2)]
+    assert (left.x, left.y, left.vx, left.vy) == (5.0, -6.0, -1.0, -2.0)
+    assert left.heading == pytest.approx(math.pi / 2)
+    with pytest.raises(WireError, match="unreadable look"):
+        parse_look("(ok look 7 ((b) 1", dt)
+
+
+def test_a_sense_body_gives_the_last_time_and_neck_of_a_batch() -> None:
+    batch = [
+        "(sense_body 3 (view_mode high normal) (head_angle 10))",
+        "(hear 3 referee play_on)",
+        "(sense_body 4 (view_mode high normal) (head_angle -30))",
+    ]
+    assert sense_time(batch) == 4
+    assert head_angle(batch) == pytest.approx(math.radians(30.0))
+    assert sense_time(["(hear 3 referee play_on)"]) is None
+    assert head_angle(["(sense_body 5 (view_mode high normal))"]) == 0.0
+
+
+def test_a_free_port_triple_has_three_free_consecutive_ports() -> None:
+    base = free_port_triple()
+    sockets = [socket.socket(socket.AF_INET, socket.SOCK_DGRAM) for _ in range(3)]
+    try:
+        for offset, s in enumerate(sockets):
+            s.bind(("127.0.0.1", base + offset))  # raises if one was taken
+    finally:
+        for s in sockets:
+            s.close()

@@ -17,6 +17,7 @@ from learning.interception import (
     InterceptionModel,
     InterceptionNet,
 )
+from learning.interception_file import read_net_file, write_net_file
 
 PROVENANCE = Provenance(
     field_model="soccer_server",
@@ -232,6 +233,26 @@ def test_save_load_round_trip_is_bit_exact(fitted: InterceptionModel, tmp_path: 
     assert back.feature_schema_ == fitted.feature_schema_
     assert np.array_equal(back.loss_history_, fitted.loss_history_)
     assert back.n_train_ == 200 and back.provenance_ == PROVENANCE
+
+
+def test_a_net_file_written_reads_back_field_for_field(
+    fitted: InterceptionModel, tmp_path: Path
+) -> None:
+    net = read_net_file(fitted.save(tmp_path / "net.npz", PROVENANCE))
+    again = read_net_file(write_net_file(tmp_path / "again.npz", net, "9.9"))
+    assert list(again.weights) == list(net.weights) == list(WEIGHT_KEYS)
+    for key in WEIGHT_KEYS:
+        assert np.array_equal(again.weights[key], net.weights[key])
+    for name in ("input_mean", "input_scale", "loss_history"):
+        assert np.array_equal(getattr(again, name), getattr(net, name))
+    assert (again.schema, again.hyperparameters, again.n_train, again.provenance) == (
+        net.schema,
+        net.hyperparameters,
+        net.n_train,
+        net.provenance,
+    )
+    with np.load(tmp_path / "again.npz", allow_pickle=False) as z:
+        assert json.loads(str(z["metadata"]))["torch_version"] == "9.9"
 
 
 def test_save_refuses_provenance_of_another_schema(

@@ -10,7 +10,8 @@ from field_models.protocol import LEFT, RIGHT, Action, Dash, Kick, PlayerRef, Sa
 from field_models.robot_physics.camera import BallDetection, Frame, RobotDetection
 from field_models.robot_physics.config import KickerConfig, RobotPhysicsPreset, load_preset
 from field_models.robot_physics.firmware import Firmware
-from field_models.robot_physics.host import PUSH_HALF_ANGLE_RAD, CentralHost
+from field_models.robot_physics.host import CentralHost
+from field_models.robot_physics.host_actuation import PUSH_HALF_ANGLE_RAD
 from field_models.robot_physics.link import Command, Link, Primitive
 
 PRESET = load_preset()
