@@ -9,7 +9,7 @@ each side through the trial runner's own loop, per team kind, per player-minute.
 
     python scripts/server_series.py --preset soccer_server_1996 --games 34 --workers 2 \
         --net NET --tree TREE [--steady-turns] [--look neck] [--client cycle] \
-        --out runs/series-ss-default
+        [--receiver-half estimated] --out runs/series-ss-default
 
 ``--dither SEEDS`` counts the reversals of baseline-v-baseline matches instead (game 0 of each
 seed, both teams together; no net or tree), the issue's measure of dithering:
@@ -125,6 +125,12 @@ def main() -> None:
         help="the minds' client: see-triggered or per-cycle (issue 28 item 3)",
     )
     parser.add_argument(
+        "--receiver-half",
+        choices=("unknown", "estimated"),
+        default="unknown",
+        help="what the passer tells layer 2's tree of the receiver's half (issue 28 goal 4)",
+    )
+    parser.add_argument(
         "--transfer", action="store_true", help="net and tree trained on another preset"
     )
     parser.add_argument("--reversal-games", type=int, default=2, help="per side")
@@ -140,6 +146,8 @@ def main() -> None:
         minds["look"] = args.look
     if args.client != "see":
         minds["client"] = args.client
+    if args.receiver_half != "unknown":
+        minds["receiver_half"] = args.receiver_half
     if args.dither is not None:
         if args.half_time is not None:
             minds["half_time_s"] = args.half_time
@@ -181,6 +189,8 @@ def main() -> None:
         which = "looking with the neck (and steady turns)"
     if args.client == "cycle":
         which += ", per-cycle client"
+    if args.receiver_half != "unknown":
+        which += f", receiver's half {args.receiver_half}"
     title = f"Layered vs baseline on soccer_server ({args.preset}), seed {args.seed}, {which}"
     write_report(games, args.out, title, print)
     start = time.perf_counter()
