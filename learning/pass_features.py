@@ -58,7 +58,9 @@ Choices that are ours (the paper gives only the list and the names in Figure 14)
 Attribute names are versioned as :data:`PASS_SCHEMA`; every dataset and tree stores it.
 
 The receiver's half reaches the passer as a ``say`` message (paper Figure 10): its view goes
-through the compact fixed-width codec of :mod:`learning.pass_codec`.
+through the compact fixed-width codec of :mod:`learning.pass_codec`. Where no message comes (a
+match's open play) the half is unknown, or :func:`estimated_receiver_half` estimates it from
+the passer's own view.
 """
 
 from __future__ import annotations
