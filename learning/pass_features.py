@@ -58,7 +58,9 @@ Choices that are ours (the paper gives only the list and the names in Figure 14)
 Attribute names are versioned as :data:`PASS_SCHEMA`; every dataset and tree stores it.
 
 The receiver's half reaches the passer as a ``say`` message (paper Figure 10): its view goes
-through the compact fixed-width codec of :mod:`learning.pass_codec`.
+through the compact fixed-width codec of :mod:`learning.pass_codec`. Where no message comes (a
+match's open play) the half is unknown, or :func:`estimated_receiver_half` estimates it from
+the passer's own view.
 """
 
 from __future__ import annotations
@@ -363,3 +365,92 @@ def pass_attributes(
     if p.shape != (HALF,) or r.shape != (HALF,):
         raise ValueError(f"each half must have shape ({HALF},), got {p.shape} and {r.shape}")
     return np.concatenate((p, r))
+
+
+RECEIVER_VIEW_HALF_ANGLE_DEG = 45.0
+"""The receiver's view half-angle in :func:`estimated_receiver_half` [deg]: the Soccer
+Server's normal view width (``visible_angle`` 90°, both presets)."""
+
+RECEIVER_FEEL_M = 3.0
+"""Players this close to the receiver count as seen in :func:`estimated_receiver_half`
+whatever their direction [m]: the Soccer Server's ``visible_distance`` (both presets)."""
+
+
+def estimated_receiver_view(
+    receiver_distance: float,
+    receiver_angle_deg: float,
+    distance: npt.ArrayLike,
+    angle_deg: npt.ArrayLike,
+    team: npt.ArrayLike,
+    half_angle_deg: float = RECEIVER_VIEW_HALF_ANGLE_DEG,
+    feel_distance: float = RECEIVER_FEEL_M,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.int8]]:
+    """The players a receiver facing the passer would see, placed from the passer's view.
+
+    The passer stands at the origin of its own frame; the receiver and every other player it
+    sees are placed there from their polar positions. The receiver faces the passer (receivers
+    face the ball in the pass drill, paper §6), so each other player's direction is measured
+    from the receiver's line to the passer, and a player is kept when it lies within
+    ``half_angle_deg`` of that line or within ``feel_distance`` of the receiver. Teams stay as
+    the passer sees them (relative to the receiver, the passer's teammate, they are the same).
+
+    Args:
+        receiver_distance: The receiver's distance from the passer [units].
+        receiver_angle_deg: The receiver's direction from the passer's heading [deg, CCW +].
+        distance: Distances of the other players the passer sees (receiver excluded) [units].
+        angle_deg: Their directions, same reference as ``receiver_angle_deg`` [deg].
+        team: Their teams relative to the passer: +1 teammate, -1 opponent, 0 unknown.
+        half_angle_deg: The receiver's view half-angle [deg].
+        feel_distance: Players this close to the receiver are kept in any direction [units].
+
+    Returns:
+        ``(distance [units], angle [deg], team)`` of the kept players from the receiver, angles
+        relative to its heading (the passer at 0), in the input order; a player whose distance
+        or angle the passer does not know is left out (it cannot be placed).
+
+    Raises:
+        ValueError: The receiver is not seen (non-finite), or the arrays' shapes differ.
+    """
+    _check_target(receiver_distance, receiver_angle_deg, "receiver")
+    d, a, t = view_arrays(distance, angle_deg, team)
+    placed = np.isfinite(d) & np.isfinite(a)
+    d, a, t = d[placed], a[placed], t[placed]
+    r = math.radians(receiver_angle_deg)
+    rx, ry = receiver_distance * math.cos(r), receiver_distance * math.sin(r)
+    radians = np.radians(a)
+    vx, vy = d * np.cos(radians) - rx, d * np.sin(radians) - ry
+    from_receiver = np.hypot(vx, vy)
+    # The receiver's heading points at the passer (the origin): direction of -R.
+    heading_deg = math.degrees(math.atan2(-ry, -rx))
+    direction = wrap_deg(np.degrees(np.arctan2(vy, vx)) - heading_deg)
+    kept = (np.abs(direction) <= half_angle_deg) | (from_receiver <= feel_distance)
+    return from_receiver[kept], direction[kept], t[kept]
+
+
+def estimated_receiver_half(
+    receiver_distance: float,
+    receiver_angle_deg: float,
+    distance: npt.ArrayLike,
+    angle_deg: npt.ArrayLike,
+    team: npt.ArrayLike,
+    half_angle_deg: float = RECEIVER_VIEW_HALF_ANGLE_DEG,
+    feel_distance: float = RECEIVER_FEEL_M,
+) -> npt.NDArray[np.float64]:
+    """An *estimate* of the receiver's half (87), from the passer's own view.
+
+    What the receiver would report (:func:`receiver_attributes`) if it faced the passer and saw
+    what the passer sees of its surroundings (:func:`estimated_receiver_view`): players the
+    passer cannot see are missing, and distances carry the passer's noise, not the receiver's.
+    The match uses it where no ``say`` report reaches the passer (open play). The arguments
+    are :func:`estimated_receiver_view`'s, in units (``feel_distance`` too).
+    """
+    d, a, t = estimated_receiver_view(
+        receiver_distance,
+        receiver_angle_deg,
+        distance,
+        angle_deg,
+        team,
+        half_angle_deg,
+        feel_distance,
+    )
+    return receiver_attributes(receiver_distance, 0.0, d, a, t)

@@ -9,7 +9,7 @@ each side through the trial runner's own loop, per team kind, per player-minute.
 
     python scripts/server_series.py --preset soccer_server_1996 --games 34 --workers 2 \
         --net NET --tree TREE [--steady-turns] [--look neck] [--client cycle] \
-        --out runs/series-ss-default
+        [--receiver-half estimated] --out runs/series-ss-default
 
 ``--dither SEEDS`` counts the reversals of baseline-v-baseline matches instead (game 0 of each
 seed, both teams together; no net or tree), the issue's measure of dithering:
@@ -131,6 +131,12 @@ def main() -> None:
         help="where the layered team asks its net: any ball met, or inside its training domain",
     )
     parser.add_argument(
+        "--receiver-half",
+        choices=("unknown", "estimated"),
+        default="unknown",
+        help="what the passer tells layer 2's tree of the receiver's half (issue 28 goal 4)",
+    )
+    parser.add_argument(
         "--transfer", action="store_true", help="net and tree trained on another preset"
     )
     parser.add_argument("--reversal-games", type=int, default=2, help="per side")
@@ -148,6 +154,8 @@ def main() -> None:
         minds["client"] = args.client
     if args.net_domain != "any":
         minds["net_domain"] = args.net_domain
+    if args.receiver_half != "unknown":
+        minds["receiver_half"] = args.receiver_half
     if args.dither is not None:
         if args.half_time is not None:
             minds["half_time_s"] = args.half_time
@@ -191,6 +199,8 @@ def main() -> None:
         which += ", per-cycle client"
     if args.net_domain == "trained":
         which += ", net asked inside its training domain only"
+    if args.receiver_half != "unknown":
+        which += f", receiver's half {args.receiver_half}"
     title = f"Layered vs baseline on soccer_server ({args.preset}), seed {args.seed}, {which}"
     write_report(games, args.out, title, print)
     start = time.perf_counter()

@@ -257,7 +257,17 @@ class MatchDrill(LayeredDrill):
         plan = self.plan(facts)
         dead_band = team in self.dead_band
         latency = "reckon" if team in self.options.reckoning_teams() else "hold"
-        return team_setup(facts, plan, n, team, self.steady_turns, self.look, dead_band, latency)
+        return team_setup(
+            facts,
+            plan,
+            n,
+            team,
+            self.steady_turns,
+            self.look,
+            dead_band,
+            latency,
+            self.options.receiver_half,
+        )
 
     # ------------------------------------------------------------------ the coach
 

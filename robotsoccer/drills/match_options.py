@@ -21,7 +21,7 @@ from robotsoccer.drills.match_setup import FORMATIONS
 from robotsoccer.options import bounded, choice, duration, flag
 from robotsoccer.skills.layer3 import TpotSettings
 from robotsoccer.skills.team_cycle import CLIENT_MODES
-from robotsoccer.skills.team_setup import LOOK_MODES, TURN_LATENCIES
+from robotsoccer.skills.team_setup import LOOK_MODES, TURN_LATENCIES, check_receiver_half
 
 HALF_TIME_S = 300.0
 """One half [s]: rcssserver's ``half_time`` (3000 cycles)."""
@@ -108,6 +108,10 @@ class MatchOptions:
             cycle from a world model, :mod:`robotsoccer.skills.team_cycle`) for both teams, or
             ``left`` or ``right``: that team acts every cycle, the other on sees (to measure
             what it is worth). The robots refuse ``cycle`` (their host already acts every tick).
+        receiver_half: What a layered passer tells layer 2's tree of the receiver's half
+            (:data:`~robotsoccer.skills.team_setup.RECEIVER_HALVES`): ``unknown`` (default, as
+            before: open play has no ``say`` report) or ``estimated`` from the passer's own view
+            (:func:`learning.pass_features.estimated_receiver_half`; issue 28 goal 4).
         tpot: Layer 3's table (:func:`learning.tpot.save_table`), for a ``layer3`` team.
         explore: Layer 3's exploration rate epsilon in [0, 1].
         learn: Layer 3 records its rewards: the drill's ``data`` returns them
@@ -130,7 +134,7 @@ class MatchOptions:
     Raises:
         ValueError: An unknown team kind, a layered team without its model files, a layer3
             team without its table, an unknown team size, a half <= 0, an unknown look, turn
-            latency or client, or a layer-3 option out of its range.
+            latency, client or receiver half, or a layer-3 option out of its range.
     """
 
     left: TeamKind = TeamKind.LAYERED
@@ -145,6 +149,7 @@ class MatchOptions:
     dead_band: bool | str = False
     turn_latency: str = "hold"
     client: str = "see"
+    receiver_half: str = "unknown"
     tpot: str = ""
     explore: float = 0.0
     learn: bool = False
@@ -164,6 +169,7 @@ class MatchOptions:
         dead_band_teams(self.dead_band)
         one_team(self.turn_latency, "turn_latency", TURN_LATENCIES)
         one_team(self.client, "client", CLIENT_MODES)
+        check_receiver_half(self.receiver_half)
         self._set("left", choice(TeamKind, self.left, "left"))
         self._set("right", choice(TeamKind, self.right, "right"))
         if self.layered() and not (self.net and self.tree):

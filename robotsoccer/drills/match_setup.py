@@ -71,6 +71,7 @@ def team_setup(
     look: str = "body",
     dead_band: bool = False,
     turn_latency: str = "hold",
+    receiver_half: str = "unknown",
 ) -> TeamSetup:
     """One team of `n`'s plan on this field: homes, ranges, powers, the goalie's stance.
 
@@ -107,6 +108,7 @@ def team_setup(
         look=look,
         dead_band=dead_band,
         turn_latency=turn_latency,
+        receiver_half=receiver_half,
         top_speed_mps=facts.player_top_speed_mps,
         push_kick=push,
         # The nearest a shot of layer 1's goal-mouth drill is at its trigger: the nearest

@@ -10,7 +10,13 @@ from __future__ import annotations
 import math
 
 from field_models.protocol import Action, Dash, Kick, Percept, SeenPlayer, Turn, wrap_angle
-from learning.pass_features import pass_attributes, passer_attributes, unknown_half
+from learning.pass_features import (
+    RECEIVER_FEEL_M,
+    estimated_receiver_half,
+    pass_attributes,
+    passer_attributes,
+    unknown_half,
+)
 from robotsoccer.skills.lead import (
     LEAD_CLIP_S,
     ahead_of,
@@ -105,13 +111,22 @@ class BallMind(ChaseMind):
             _, best = min(candidates, key=lambda c: c[1].distance_m)
             return (best.number or 0, best.angle_rad)
         scored = []
+        estimate = setup.receiver_half == "estimated"
         for index, seen in candidates:
             others = [s for i, s in enumerate(percept.players) if i != index]
             dist, ang, team = view_arrays(others, own, setup.unit_m)
-            mine = passer_attributes(
-                seen.distance_m / setup.unit_m, math.degrees(seen.angle_rad), dist, ang, team
+            receiver = (seen.distance_m / setup.unit_m, math.degrees(seen.angle_rad))
+            mine = passer_attributes(*receiver, dist, ang, team)
+            # Open play has no say/hear exchange: the receiver's half is unknown, or estimated
+            # from what the passer sees (TeamSetup.receiver_half).
+            theirs = (
+                estimated_receiver_half(
+                    *receiver, dist, ang, team, feel_distance=RECEIVER_FEEL_M / setup.unit_m
+                )
+                if estimate
+                else unknown_half()
             )
-            x = pass_attributes(mine, unknown_half())
+            x = pass_attributes(mine, theirs)
             scored.append((self.evaluator.success_confidence(x), seen))
         confidence, best = max(scored, key=lambda c: c[0])
         if not confidence >= self.pass_threshold:

@@ -22,6 +22,9 @@ LOOK_MODES = ("body", "neck")
 TURN_LATENCIES = ("hold", "reckon")
 """How a team mind treats a percept that does not show its last turn yet
 (:attr:`TeamSetup.turn_latency`: the two settings of :mod:`robotsoccer.skills.motion`)."""
+RECEIVER_HALVES = ("unknown", "estimated")
+"""What layer 2's tree is told of the receiver's half in open play (:attr:`TeamSetup.
+receiver_half`)."""
 REVERSE_HOLD_TICKS = 10
 """With steady turns, a turn the other way within this many ticks of the last needs ..."""
 REVERSE_MIN_RAD = math.radians(60.0)
@@ -160,6 +163,11 @@ class TeamSetup:
             ``"reckon"`` decides at every percept, turned into the frame of the turns sent (as
             the set play's minds do; measured in the README's "One motion skill (issue 23,
             measured)").
+        receiver_half: What the passer tells layer 2's tree of the receiver's half of the
+            attributes (:data:`RECEIVER_HALVES`; open play has no ``say`` report):
+            ``"unknown"`` (default, every result as before) or ``"estimated"``: from the
+            passer's own view (:func:`learning.pass_features.estimated_receiver_half`; issue 28
+            goal 4).
     """
 
     attack_right: bool
@@ -195,6 +203,7 @@ class TeamSetup:
     dead_band: bool = False
     top_speed_mps: float = 0.0
     turn_latency: str = "hold"
+    receiver_half: str = "unknown"
 
     def __post_init__(self) -> None:
         if self.look not in LOOK_MODES:
@@ -202,6 +211,7 @@ class TeamSetup:
         if self.turn_latency not in TURN_LATENCIES:
             known = ", ".join(TURN_LATENCIES)
             raise ValueError(f"turn_latency: expected one of {known}; got {self.turn_latency!r}")
+        check_receiver_half(self.receiver_half)
 
     def turn_ticks(self, angle_rad: float) -> int:
         """Ticks until a percept shows a turn by `angle_rad` done: latency plus the spin.
@@ -245,6 +255,17 @@ class TeamSetup:
     def own_goal_xy(self) -> tuple[float, float]:
         """The team's own goal centre [m]."""
         return (-self.goal_xy[0], 0.0)
+
+
+def check_receiver_half(value: str) -> None:
+    """Refuse a receiver half that is not one of :data:`RECEIVER_HALVES`, naming them.
+
+    Raises:
+        ValueError: In one line.
+    """
+    if value not in RECEIVER_HALVES:
+        known = ", ".join(RECEIVER_HALVES)
+        raise ValueError(f"receiver_half: expected one of {known}; got {value!r}")
 
 
 def goal_direction(

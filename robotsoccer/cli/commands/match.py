@@ -121,7 +121,9 @@ def add_parser(commands: Commands) -> None:
         type=_drill_option,
         metavar="NAME=VALUE",
         help="a match option for both teams' minds, e.g. look=neck, steady_turns=true, "
-        "dead_band=true, turn_latency=reckon, client=cycle (repeatable; a team's own: "
+        "dead_band=true, turn_latency=reckon, client=cycle, receiver_half=estimated, "
+        "net_domain=trained "
+        "(repeatable; a team's own: "
         "left/right as the value where it takes one)",
     )
     run_options(match)

@@ -6,6 +6,7 @@ import dataclasses
 
 import pytest
 
+from field_models.registry import field_facts
 from robotsoccer.drills import drill_options, make_drill
 from robotsoccer.drills.match import MatchDrill
 from robotsoccer.drills.match_options import MatchOptions, TeamKind
@@ -78,6 +79,10 @@ def test_a_record_and_keywords_together_are_refused() -> None:
         ({"left": "baseline", "tpot_guard": "true"}, "tpot_guard needs tpot_every"),
         ({"left": "baseline", "tpot_loss": 2}, r"tpot_loss must be a number in \[0, 1\]"),
         ({"left": "baseline", "nope": 1}, "has no option 'nope'"),
+        (
+            {"left": "baseline", "receiver_half": "heard"},
+            "receiver_half: expected one of unknown, estimated; got 'heard'",
+        ),
     ],
 )
 def test_bad_options_are_one_line_errors(given: dict[str, object], message: str) -> None:
@@ -91,3 +96,15 @@ def test_net_domain_takes_any_or_trained_and_refuses_the_rest_in_one_line() -> N
     assert trained.net_domain == "trained"
     with pytest.raises(ValueError, match=r"^net_domain: expected one of any, trained; got 'x'$"):
         MatchOptions(left=TeamKind.BASELINE, net_domain="x")
+
+
+def test_the_receiver_half_reaches_both_teams_setups() -> None:
+    facts = field_facts("soccer_server", "soccer_server_1996")
+    for value in ("unknown", "estimated"):
+        drill = MatchDrill(left="baseline", right="baseline", receiver_half=value)
+        assert drill.options.receiver_half == value
+        assert [drill.team_setup(facts, 11, side).receiver_half for side in ("left", "right")] == [
+            value,
+            value,
+        ]
+    assert MatchOptions(left=TeamKind.BASELINE).receiver_half == "unknown"

@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 
+import numpy as np
+import numpy.typing as npt
 import pytest
 
 from field_models.protocol import (
@@ -20,7 +23,15 @@ from field_models.protocol import (
     Turn,
     wrap_angle,
 )
+from learning.pass_features import (
+    HALF,
+    estimated_receiver_half,
+    pass_attributes,
+    passer_attributes,
+    unknown_half,
+)
 from robotsoccer.skills.localise import Localiser
+from robotsoccer.skills.passing import view_arrays
 from robotsoccer.skills.setplay import KickPowers
 from robotsoccer.skills.team import TeamMind
 from robotsoccer.skills.team_setup import TeamSetup
@@ -127,6 +138,73 @@ def test_blocked_the_baseline_passes_to_the_closest_teammate_ahead() -> None:
     (kick,) = mind.act(percept(-20.0, 0.0, 0.0, ball=ball, players=(opponent, near_mate, far_mate)))
     assert mind.intent == "pass 9" and isinstance(kick, Kick)
     assert kick.direction_rad == pytest.approx(0.6) and kick.power == 60.0
+
+
+class _Recorder:
+    """A pass evaluator that keeps every attribute row it is asked about."""
+
+    def __init__(self, confidence: Callable[[npt.NDArray[np.float64]], float]) -> None:
+        self.rows: list[npt.NDArray[np.float64]] = []
+        self.confidence = confidence
+
+    def success_confidence(self, x: npt.NDArray[np.float64]) -> float:
+        self.rows.append(np.array(x))
+        return self.confidence(x)
+
+
+BLOCKED = (
+    SeenPlayer(5.0, 0.0, RIGHT, 3),
+    SeenPlayer(12.0, 0.6, LEFT, 9),
+    SeenPlayer(25.0, -0.4, LEFT, 10),
+)
+
+
+def _passer_half(index: int) -> npt.NDArray[np.float64]:
+    seen = BLOCKED[index]
+    dist, ang, team = view_arrays([s for s in BLOCKED if s is not seen], LEFT, 1.0)
+    return passer_attributes(seen.distance_m, math.degrees(seen.angle_rad), dist, ang, team)
+
+
+def test_the_layered_passer_asks_the_tree_with_the_receivers_half_unknown_by_default() -> None:
+    tree = _Recorder(lambda x: 0.9)
+    mind = TeamMind(7, setup(), evaluator=tree)
+    (kick,) = mind.act(percept(-20.0, 0.0, 0.0, ball=SeenBall(0.5, 0.0), players=BLOCKED))
+    # Every answer equal: the first passable teammate in the percept's list.
+    assert mind.intent == "pass 9" and isinstance(kick, Kick)
+    expected = [pass_attributes(_passer_half(i), unknown_half()) for i in (1, 2)]
+    assert len(tree.rows) == 2
+    for got, want in zip(tree.rows, expected, strict=True):
+        np.testing.assert_array_equal(got, want)
+
+
+def test_with_the_estimated_half_the_tree_sees_the_receivers_surroundings() -> None:
+    # Estimated, mate 9 (12 m, 34°) would see the opponent 8.4 m from it and mate 10 (25 m,
+    # -23°) 20.5 m from it. A tree that likes a receiver whose nearest opponent is over 15 m
+    # away picks 10; with the half unknown it cannot tell them apart and the first, 9, goes.
+    def likes_space(x: npt.NDArray[np.float64]) -> float:
+        return 0.9 if x[HALF + 20] > 15.0 else 0.6  # "receiver opponent1 distance"
+
+    blind = TeamMind(7, setup(), evaluator=_Recorder(likes_space))
+    blind.act(percept(-20.0, 0.0, 0.0, ball=SeenBall(0.5, 0.0), players=BLOCKED))
+    assert blind.intent == "pass 9"
+    tree = _Recorder(likes_space)
+    mind = TeamMind(7, dataclasses.replace(setup(), receiver_half="estimated"), evaluator=tree)
+    (kick,) = mind.act(percept(-20.0, 0.0, 0.0, ball=SeenBall(0.5, 0.0), players=BLOCKED))
+    assert mind.intent == "pass 10" and isinstance(kick, Kick)
+    assert kick.direction_rad == pytest.approx(-0.4)
+    for index, got in zip((1, 2), tree.rows, strict=True):
+        seen = BLOCKED[index]
+        dist, ang, team = view_arrays([s for s in BLOCKED if s is not seen], LEFT, 1.0)
+        theirs = estimated_receiver_half(
+            seen.distance_m, math.degrees(seen.angle_rad), dist, ang, team
+        )
+        np.testing.assert_array_equal(got, pass_attributes(_passer_half(index), theirs))
+        assert not np.isnan(got[HALF:]).all()
+
+
+def test_a_bad_receiver_half_is_refused() -> None:
+    with pytest.raises(ValueError, match="receiver_half: expected one of unknown, estimated"):
+        dataclasses.replace(setup(), receiver_half="heard")
 
 
 def test_after_a_turn_it_waits_for_a_percept_that_shows_it() -> None:
