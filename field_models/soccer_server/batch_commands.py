@@ -26,6 +26,7 @@ from field_models.soccer_server.cycle_rules import (
     PLAY_ON,
     RESTART_MODES,
     TURN,
+    kick_noise_radius,
     unit_noise,
 )
 from field_models.soccer_server.params import DynamicsParams
@@ -190,21 +191,10 @@ class BatchCommands:
         ay = a * np.sin(ang)
         if p.kick_rand:
             bvx, bvy = self.vx[idx, 0], self.vy[idx, 0]
-            radius = self._kick_noise_radius(power, gap, dir_diff, np.sqrt(bvx * bvx + bvy * bvy))
+            radius = kick_noise_radius(p, power, gap, dir_diff, np.sqrt(bvx * bvx + bvy * bvy))
             nx, ny = unit_noise(*self._random.kick_uniforms(r, i, idx), p.noise_model)
             ax = ax + radius * nx
             ay = ay + radius * ny
         self._ax[idx, 0] = self._ax[idx, 0] + ax
         self._ay[idx, 0] = self._ay[idx, 0] + ay
         return ok
-
-    def _kick_noise_radius(
-        self, power: np.ndarray, gap: np.ndarray, dir_diff: np.ndarray, ball_speed: np.ndarray
-    ) -> np.ndarray:
-        p = self.params
-        scale = p.kick_rand * (power / p.maxpower)
-        if p.noise_model == "box":
-            return scale
-        pos_rate = 0.5 + 0.25 * (dir_diff / math.pi + gap / p.kickable_margin_m)
-        speed_rate = 0.5 + 0.5 * (ball_speed / (p.ball_speed_max_m_per_cycle * p.ball_decay))
-        return scale * (pos_rate + speed_rate)

@@ -13,8 +13,10 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
+import numpy.typing as npt
 
 from field_models.protocol import LEFT, RIGHT, PlayerRef
 from field_models.seeding import Rng
@@ -192,10 +194,17 @@ def out_of_circle(x: float, y: float, radius: float) -> tuple[float, float]:
     return x * (radius / r), y * (radius / r)
 
 
+Size = TypeVar("Size", float, npt.NDArray[np.float64])
+"""A number, or an array of them (the batch's kickers), in :func:`kick_noise_radius`."""
+
+
 def kick_noise_radius(
-    p: DynamicsParams, power: float, gap: float, dir_diff: float, ball_speed: float
-) -> float:
-    """Kick-noise size: box ±kick_rand·P/maxpower (6.07–11.x); polar today's formula (§2.3)."""
+    p: DynamicsParams, power: Size, gap: Size, dir_diff: Size, ball_speed: Size
+) -> Size:
+    """Kick-noise size: box ±kick_rand·P/maxpower (6.07–11.x); polar today's formula (§2.3).
+
+    One kick or a batch of them, element by element in the same operations.
+    """
     scale = p.kick_rand * (power / p.maxpower)
     if p.noise_model == "box":
         return scale
