@@ -148,8 +148,12 @@ class TurnPolicy(Protocol):
 
 # ----------------------------------------------------------------------------- model files
 
+Triple = tuple[float, float, float]
+"""(BD [m], BA [rad], previous BD [m]): a statistic of a net's three inputs."""
+
 _NETS: dict[tuple[str, int, int, float], TurnAngleFunction] = {}
 _TABLES: dict[tuple[str, int, int], LookupTable] = {}
+_SPREADS: dict[tuple[str, int, int, float], tuple[Triple, Triple]] = {}
 
 
 def file_key(path: str | os.PathLike[str]) -> tuple[str, int, int]:
@@ -188,8 +192,11 @@ def trained_domain(
     Raises:
         learning.features.ModelFileError: The file is missing, corrupt or not a net.
     """
-    mean, spread = training_spread(read_net_file(path), distance_factor)
-    return TrainedDomainPolicy(policy, mean, spread)
+    key = (*file_key(path), distance_factor)
+    spread = _SPREADS.get(key)
+    if spread is None:  # read once per process, as the net itself (load_net_function)
+        spread = _SPREADS[key] = training_spread(read_net_file(path), distance_factor)
+    return TrainedDomainPolicy(policy, *spread)
 
 
 def transfer_distance_factor(path: str | os.PathLike[str], facts: FieldFacts) -> float:
