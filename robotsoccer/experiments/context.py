@@ -20,6 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
+from robotsoccer.runs.folders import prepare_run_folder
+from robotsoccer.runs.pool import default_workers
+
 Log = Callable[[str], None]
 """Where progress lines go (the CLI prints them)."""
 
@@ -67,6 +70,24 @@ class RunRequest:
     overwrite: bool = False
     workers: int | None = None
     progress: bool = False
+
+    def prepared(self, out: Path) -> int:
+        """Make `out` ready by the request's ``resume``/``overwrite``; the worker count to use.
+
+        Raises:
+            ValueError: A run folder in the way (:func:`~robotsoccer.runs.folders.
+                prepare_run_folder`, one line).
+        """
+        prepare_run_folder(out, resume=self.resume, overwrite=self.overwrite)
+        return self.workers or default_workers()
+
+    def context(
+        self, out: Path, workers: int, log: Log, created_by: str = "robotsoccer reproduce"
+    ) -> RunContext:
+        """The run's context: `out`, the request's seed and progress, `workers`, `log`."""
+        return RunContext.for_seed(
+            out, self.seed, workers, log, progress=self.progress, created_by=created_by
+        )
 
 
 class RunInterrupted(Exception):

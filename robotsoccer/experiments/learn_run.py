@@ -22,14 +22,11 @@ from robotsoccer.experiments.context import (
     Field,
     Log,
     ReportOutcome,
-    RunContext,
     RunRequest,
     kept_on_interrupt,
 )
 from robotsoccer.experiments.lead_study import StudyDrill
 from robotsoccer.experiments.reproduce import ReproduceParts, lead_step
-from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec, check_spec
 
 
@@ -145,13 +142,9 @@ def run_learn_pass(request: PassRun, log: Log) -> ReportOutcome:
     if request.net is not None:
         check_spec(spec.with_options(interceptor="net", net=str(request.net)))
     out = request.folder
-    prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
+    workers = request.prepared(out)
     plan = dataclasses.replace(layer2.layer2_plan(request.quick), client=request.client)
-    workers = request.workers or default_workers()
-    ctx = RunContext.for_seed(
-        out, request.seed, workers, log, progress=request.progress,
-        created_by="robotsoccer learn pass",
-    )  # fmt: skip
+    ctx = request.context(out, workers, log, "robotsoccer learn pass")
     start = time.perf_counter()
     with kept_on_interrupt(out):
         net = request.net
@@ -200,14 +193,10 @@ def run_learn_lead(request: LeadRun, log: Log) -> ReportOutcome:
         RunInterrupted: Ctrl-C; the finished trials are kept (``resume`` finishes the run).
     """
     out = request.folder
-    prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
+    workers = request.prepared(out)
     plan = lead_study.plan_for(request.quick)
-    workers = request.workers or default_workers()
     start = time.perf_counter()
-    ctx = RunContext.for_seed(
-        out, request.seed, workers, log, progress=request.progress,
-        created_by="robotsoccer learn lead",
-    )  # fmt: skip
+    ctx = request.context(out, workers, log, "robotsoccer learn lead")
     with kept_on_interrupt(out):
         text = lead_step(request.drills, request.quick, ctx)
     report = out / "report.md"

@@ -29,7 +29,6 @@ from robotsoccer.experiments.context import (
 from robotsoccer.experiments.lead_study import StudyDrill
 from robotsoccer.experiments.report_records import ModelSection
 from robotsoccer.experiments.transfer_study import TransferSetup
-from robotsoccer.runs.folders import prepare_run_folder
 from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec, check_spec
 
@@ -86,21 +85,11 @@ class LayersRequest(Protocol):
     def created_by(self) -> str:
         """The command named in the files' provenance."""
 
-    @property
-    def resume(self) -> bool:
-        """Continue the run in the folder."""
+    def prepared(self, out: Path) -> int:
+        """Make the run folder ready; the worker count (:class:`RunRequest`'s)."""
 
-    @property
-    def overwrite(self) -> bool:
-        """Replace the run in the folder."""
-
-    @property
-    def workers(self) -> int | None:
-        """Processes (None: all cores)."""
-
-    @property
-    def progress(self) -> bool:
-        """Show a progress bar for each batch of trials."""
+    def context(self, out: Path, workers: int, log: Log, created_by: str) -> RunContext:
+        """The run's context (:class:`RunRequest`'s)."""
 
 
 @dataclass(frozen=True)
@@ -149,12 +138,9 @@ def run_reproduce(request: LayersRequest, log: Log) -> ReportOutcome:
     for model, preset in request.models:  # a bad preset fails here with one line, not in a worker
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     out = request.folder
-    prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
+    workers = request.prepared(out)
     start = time.perf_counter()
-    workers = request.workers or default_workers()
-    ctx = RunContext.for_seed(
-        out, request.seed, workers, log, progress=request.progress, created_by=request.created_by
-    )
+    ctx = request.context(out, workers, log, request.created_by)
     with kept_on_interrupt(out):
         report = run_steps(request.models, request.quick, ctx, request.parts, request.title)
     return ReportOutcome(report, time.perf_counter() - start, workers)

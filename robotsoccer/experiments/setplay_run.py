@@ -14,13 +14,9 @@ from pathlib import Path
 
 from robotsoccer.experiments.context import (
     Log,
-    RunContext,
     RunRequest,
     kept_on_interrupt,
-    seeds_for,
 )
-from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.pool import default_workers
 
 LAYER_FILES = ("net_750.npz", "pass_tree.json")
 """What each field's ``models/<field>/`` must hold for the layered minds."""
@@ -100,9 +96,8 @@ def run_setplay(request: SetPlayRun, log: Log, warn: Callable[[str], None]) -> S
 
     models = request.layers(warn)
     out = request.folder
-    prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
-    workers = request.workers or default_workers()
-    ctx = RunContext(out, seeds_for(request.seed), workers, log, request.progress)
+    workers = request.prepared(out)
+    ctx = request.context(out, workers, log)
     with kept_on_interrupt(out, kept="plays"):
         report = run_setplay_study(
             ctx,

@@ -20,8 +20,6 @@ from robotsoccer.experiments import team_study
 from robotsoccer.experiments.context import Log, ReportOutcome, RunRequest, kept_on_interrupt
 from robotsoccer.experiments.match_run import LayerFiles
 from robotsoccer.experiments.team_plan import TeamPlan
-from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import check_spec
 
 
@@ -105,8 +103,7 @@ def run_learn_team(request: TeamRun, log: Log) -> ReportOutcome:
 
         load_table(request.table)  # a corrupt or foreign table fails here, in one line
     out = request.folder
-    prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
-    workers = request.workers or default_workers()
+    workers = request.prepared(out)
     config = {
         "command": "robotsoccer learn team",
         "plan": plan.to_dict(),

@@ -16,13 +16,10 @@ from robotsoccer.experiments import transfer_study
 from robotsoccer.experiments.context import (
     Log,
     ReportOutcome,
-    RunContext,
     RunRequest,
     kept_on_interrupt,
 )
 from robotsoccer.experiments.transfer_study import TransferSetup
-from robotsoccer.runs.folders import prepare_run_folder
-from robotsoccer.runs.pool import default_workers
 from robotsoccer.runs.runner import TrialSpec, check_spec
 
 
@@ -60,12 +57,8 @@ def run_transfer(request: TransferRun, log: Log) -> ReportOutcome:
     for model, preset in (setup.reference, setup.target):  # one line here, not in a worker
         check_spec(TrialSpec(drill="intercept", field_model=model, preset=preset))
     out = request.folder
-    prepare_run_folder(out, resume=request.resume, overwrite=request.overwrite)
-    workers = request.workers or default_workers()
-    ctx = RunContext.for_seed(
-        out, request.seed, workers, log, progress=request.progress,
-        created_by="robotsoccer transfer",
-    )  # fmt: skip
+    workers = request.prepared(out)
+    ctx = request.context(out, workers, log, "robotsoccer transfer")
     start = time.perf_counter()
     with kept_on_interrupt(out):
         section = transfer_study.run_transfer_study(setup, request.quick, ctx)
