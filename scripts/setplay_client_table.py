@@ -19,12 +19,12 @@ a goal) and the cycle − see difference paired play by play:
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from pathlib import Path
 
-from robotsoccer.experiments.report_cells import paired_difference, percent_cell
+from robotsoccer.experiments.report_cells import percent_cell
+from robotsoccer.experiments.setplay import paired_cell
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.runner import TrialResult, TrialSpec
 from robotsoccer.runs.spec import DrillOption
@@ -55,17 +55,6 @@ def options(
         ("transfer", "true" if transfer else "false"),
         ("client", client),
     )
-
-
-def paired(a: Sequence[TrialResult], b: Sequence[TrialResult], holds: Callable[..., bool]) -> str:
-    """`a` − `b` in points, paired play by play, with its 95% interval."""
-    mark = [dataclasses.replace(r, label="YES" if holds(r) else "NO") for r in a]
-    base = [dataclasses.replace(r, label="YES" if holds(r) else "NO") for r in b]
-    found = paired_difference(mark, base, label="YES")
-    if found is None:
-        return "—"
-    diff, low, high, _ = found
-    return f"{diff:+.1f} [{low:+.1f}, {high:+.1f}]"
 
 
 def main() -> None:
@@ -111,7 +100,7 @@ def main() -> None:
                 rows = results[client]
                 k = sum(1 for r in rows if holds(r))
                 cells.append(f"{k} — {percent_cell(k, len(rows))}")
-            diff = paired(results["cycle"], results["see"], holds)
+            diff = paired_cell(results["cycle"], results["see"], holds)
             print(f"| {title} | {cells[0]} | {cells[1]} | {diff} |")
         labels = sorted({r.label for rows in results.values() for r in rows})
         for client in ("see", "cycle"):

@@ -25,11 +25,12 @@ import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
-from setplay_client_table import MEASURES, options, paired
+from setplay_client_table import MEASURES, options
 
 from field_models.protocol import LEFT, Percept
 from robotsoccer.experiments.match import mean_interval
 from robotsoccer.experiments.report_cells import percent_cell
+from robotsoccer.experiments.setplay import paired_cell
 from robotsoccer.runs.runner import TrialResult, TrialSpec, build_trial, play
 from robotsoccer.skills.reversals import TurnReversals
 
@@ -121,7 +122,7 @@ def main() -> None:
                 for look in LOOKS:
                     k = sum(1 for r in results[look] if holds(r))
                     cells.append(f"{k} — {percent_cell(k, len(results[look]))}")
-                diff = paired(results["neck"], results["body"], holds)
+                diff = paired_cell(results["neck"], results["body"], holds)
                 print(f"| {title} | {cells[0]} | {cells[1]} | {diff} |")
             turns = []
             for look in LOOKS:
