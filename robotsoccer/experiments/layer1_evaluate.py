@@ -23,6 +23,7 @@ from robotsoccer.experiments.report_records import Counts
 from robotsoccer.runs.pool import run_trials
 from robotsoccer.runs.runner import TrialResult, TrialSpec, run_trial
 from robotsoccer.runs.table import iter_results
+from robotsoccer.runs.twins import fill_from_twins
 
 
 def evaluate(
@@ -30,12 +31,16 @@ def evaluate(
 ) -> tuple[list[TrialResult], int, float]:
     """Run one condition through the pool, streamed to ``results_dir/<name>.csv`` and resumed.
 
+    Trials the run folder holds already in a table of the same spec, code and inputs are
+    copied from it, not run again (:mod:`robotsoccer.runs.twins`).
+
     Returns:
         (results sorted by index, trials actually run now, wall seconds).
     """
     path = results_dir / f"{cond.name}.csv"
     before = _rows_in(path)
     start = time.perf_counter()
+    before += fill_from_twins(path, cond.spec, cond.n_trials)
     results = run_trials(
         cond.spec,
         cond.n_trials,

@@ -347,7 +347,7 @@ def run_trials(
                     if result.index < n_trials and not finished[result.index]:
                         record(result)
                         resumed += 1
-            _write_manifest(results_path, spec, root)
+            write_manifest(results_path, manifest(spec, root))
             writer = TableWriter(results_path, append=resume)
             stack.callback(writer.close)
         remaining = n_trials - resumed
@@ -365,11 +365,16 @@ def run_trials(
     return [kept[i] for i in sorted(kept)]
 
 
-def _write_manifest(results_path: Path, spec: TrialSpec, root: Path) -> None:
-    """Write the table's manifest whole or not at all (a kill must not leave half of one)."""
+def write_manifest(results_path: Path, made: dict[str, Any]) -> None:
+    """Write a table's manifest whole or not at all (a kill must not leave half of one).
+
+    Args:
+        results_path: The table.
+        made: Its manifest (:func:`manifest`).
+    """
     where = manifest_path(results_path)
     partial = where.with_name(where.name + ".part")
-    partial.write_text(json.dumps(manifest(spec, root), indent=2) + "\n")
+    partial.write_text(json.dumps(made, indent=2) + "\n")
     partial.replace(where)
 
 
