@@ -106,6 +106,7 @@ class MatchDrill(LayeredDrill):
         self.kinds = {LEFT: o.left, RIGHT: o.right}
         layered = o.layered()
         self.tpot = o.tpot if o.has(TeamKind.LAYER3) else ""
+        self.tpot_tree = o.tpot_tree if self.tpot else ""
         self.learn = o.learn  # layer 3's other options reach it as o.tpot_settings()
         self.policies: dict[str, TpotBallPolicy] = {}
         self._tick = 0
@@ -145,8 +146,8 @@ class MatchDrill(LayeredDrill):
         return {"all_landmarks": True}
 
     def inputs(self) -> tuple[str, ...]:
-        """The net and tree files."""
-        return tuple(f for f in (self.model, self.net, self.tpot) if f)
+        """The net and tree files (and layer 3's table and its own tree)."""
+        return tuple(f for f in (self.model, self.net, self.tpot, self.tpot_tree) if f)
 
     # ------------------------------------------------------------------ kick-off
 
@@ -210,12 +211,13 @@ class MatchDrill(LayeredDrill):
         if self.transfer and self.net:
             factor = transfer_distance_factor(self.net, facts)
         minds: dict[PlayerRef, Mind] = {}
+        features = load_evaluator(self.tpot_tree)[0] if self.tpot_tree else tree
         for team in (LEFT, RIGHT):
             setup = self.team_setup(facts, n, team)
             layered = self.kinds[team] in (TeamKind.LAYERED, TeamKind.LAYER3)
             ball_policy = None
-            if self.kinds[team] is TeamKind.LAYER3 and tree is not None:
-                ball_policy = self._layer3_policy(setup, tree, rngs)
+            if self.kinds[team] is TeamKind.LAYER3 and features is not None:
+                ball_policy = self._layer3_policy(setup, features, rngs)
                 self.policies[team] = ball_policy
             policy, lead = None, None
             if layered and model_decision(self.net) == "lead":

@@ -125,6 +125,10 @@ class MatchOptions:
         tpot_guard: Layer 3's shot-range guard (needs ``tpot_every``): the goal destination is
             a shot only within the teams' shooting range.
         tpot_loss: Layer 3's loss penalty in [0, 1] (0: the ball's advance alone).
+        tpot_tree: Layer 3's own pass tree, for its features e(s, a) alone (empty: the team's
+            `tree`). The team's other play keeps `tree`. On ``soccer_server_1996`` the full
+            tree, asked with the receiver's half unknown as in open play, answers one constant
+            confidence; §6's passer-only tree tells passes apart there (issue 24).
         net_domain: Where a layered team asks its turn-angle net (:data:`NET_DOMAINS`):
             ``any`` (default: every ball coming at its chaser within the trigger distance) or
             ``trained``: only inside the net's training domain, straight elsewhere
@@ -158,6 +162,7 @@ class MatchOptions:
     tpot_window: str = WINDOW_CHOICE
     tpot_guard: bool = False
     tpot_loss: float = 0.0
+    tpot_tree: str = ""
     net_domain: str = "any"
 
     def __post_init__(self) -> None:

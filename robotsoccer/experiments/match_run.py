@@ -114,6 +114,8 @@ def layer3_options(table: Path | None) -> dict[str, Any]:
         options["tpot_guard"] = True
     if plan.get("loss", 0.0):
         options["tpot_loss"] = float(plan["loss"])
+    if plan.get("features_tree"):
+        options["tpot_tree"] = str(plan["features_tree"])
     return options
 
 

@@ -40,6 +40,8 @@ class TeamPlan:
             toward the goal (:mod:`robotsoccer.skills.layer3`).
         loss: The loss penalty of the possession reward (drill option ``tpot_loss``; 0: the
             ball's advance alone, the first studies').
+        features_tree: Layer 3's own pass tree for its features (drill option ``tpot_tree``;
+            empty: the layered team's tree, the first studies').
     """
 
     name: str
@@ -56,6 +58,7 @@ class TeamPlan:
     window: str = WINDOW_CHOICE
     guard: bool = False
     loss: float = 0.0
+    features_tree: str = ""
 
     def __post_init__(self) -> None:
         if self.training_games < 1 or self.games_per_round < 1 or self.series_games < 0:
@@ -76,8 +79,8 @@ class TeamPlan:
     def drill_options(self) -> dict[str, Any]:
         """The match drill's layer-3 options this plan plays with.
 
-        The guard and the loss penalty are named only when set, so the earlier studies' specs
-        stay as they were.
+        The guard, the loss penalty and layer 3's own tree are named only when set, so the
+        earlier studies' specs stay as they were.
         """
         options: dict[str, Any] = {
             "tpot_every": self.every,
@@ -88,6 +91,8 @@ class TeamPlan:
             options["tpot_guard"] = True
         if self.loss:
             options["tpot_loss"] = self.loss
+        if self.features_tree:
+            options["tpot_tree"] = self.features_tree
         return options
 
     @property

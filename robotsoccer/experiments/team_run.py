@@ -37,6 +37,8 @@ class TeamRun(RunRequest):
         window: When a reward closes (:data:`learning.tpot.REWARD_WINDOWS`).
         shot_guard: The shot-range guard (needs `every`).
         loss_penalty: The possession reward's loss penalty (0: the ball's advance alone).
+        features_tree: Layer 3's own pass tree for its features; None: the team's tree.
+        success: Layer 3's SUCCESS cut on that tree's confidence; None: the plan's.
         games_per_round: Training games that share one table; None: the plan's.
         training_games: Training games; None: the plan's.
         out: The run folder; None: ``runs/learn-team-<field>-<preset>[-...]-seed<S>``.
@@ -52,6 +54,8 @@ class TeamRun(RunRequest):
     window: str = WINDOW_CHOICE
     shot_guard: bool = False
     loss_penalty: float = 0.0
+    features_tree: Path | None = None
+    success: float | None = None
     games_per_round: int | None = None
     training_games: int | None = None
 
@@ -68,6 +72,10 @@ class TeamRun(RunRequest):
             plan = replace(plan, games_per_round=self.games_per_round)
         if self.shot_guard or self.loss_penalty:
             plan = replace(plan, guard=self.shot_guard, loss=self.loss_penalty)
+        if self.features_tree is not None:
+            plan = replace(plan, features_tree=str(self.features_tree.resolve()))
+        if self.success is not None:
+            plan = replace(plan, success=self.success)
         return plan
 
     @property
@@ -78,6 +86,8 @@ class TeamRun(RunRequest):
         tag += "-horizon" if self.window == "horizon" else ""
         tag += "-guard" if self.shot_guard else ""
         tag += f"-loss{self.loss_penalty:g}" if self.loss_penalty else ""
+        tag += f"-{self.features_tree.stem}" if self.features_tree is not None else ""
+        tag += f"-cut{self.success:g}" if self.success is not None else ""
         tag += "-quick" if self.quick else ""
         return self.out or Path("runs") / f"{tag}-seed{self.seed}"
 

@@ -126,6 +126,13 @@ def match_base(
     )
 
 
+def _features_tree(plan: TeamPlan) -> dict[str, str]:
+    """Layer 3's own tree and its digest, for the table's provenance (none: the team's)."""
+    if not plan.features_tree:
+        return {}
+    return {"features_tree_digest": file_digest(plan.features_tree)}
+
+
 def train(
     base: TrialSpec,
     plan: TeamPlan,
@@ -152,6 +159,7 @@ def train(
         "tree_digest": file_digest(tree),
         "net": net,
         "net_digest": file_digest(net),
+        **_features_tree(plan),
         "alpha_min": ALPHA_MIN,
         "horizon_s": HORIZON_S,
         "reward_window": plan.window,
@@ -348,11 +356,12 @@ def run_team_study(
     """Train (or take `table`), plot, play the series; write ``<out>/report.md``."""
     base = base.with_options(**plan.drill_options())
     lines = [f"## Layer 3: TPOT-RL on {base.field_model} ({plan.name} plan), seed {base.seed}", ""]
-    if plan.guard or plan.loss:
+    if plan.guard or plan.loss or plan.features_tree:
+        features = f"`{Path(plan.features_tree).name}`" if plan.features_tree else "the team's"
         lines += [
             f"Rule: every spell on the ball, SUCCESS cut {plan.success:g}, reward window "
             f"`{plan.window}`, shot-range guard {'on' if plan.guard else 'off'}, loss penalty "
-            f"{plan.loss:g} (`robotsoccer/skills/layer3.py`).",
+            f"{plan.loss:g}, features from {features} tree (`robotsoccer/skills/layer3.py`).",
             "",
         ]
     if table is None:

@@ -108,6 +108,8 @@ def team_request(args: argparse.Namespace) -> TeamRun:
         window=args.window,
         shot_guard=args.shot_guard,
         loss_penalty=args.loss_penalty,
+        features_tree=args.features_tree,
+        success=args.success_cut,
         games_per_round=args.games_per_round,
         training_games=args.training_games,
         **run_settings(args),
@@ -222,6 +224,20 @@ def _team_parser(team: argparse.ArgumentParser) -> None:
         default=0.0,
         help="reward possession: an opponent's touch closes a choice's reward, which loses up "
         "to this much (0..1; default 0: the ball's advance alone)",
+    )
+    team.add_argument(
+        "--features-tree",
+        type=Path,
+        default=None,
+        help="layer 3's own pass tree for its features e(s, a) (default: --tree's; the team's "
+        "other play keeps --tree), e.g. `learn pass`'s pass_tree_passer_only.json",
+    )
+    team.add_argument(
+        "--success-cut",
+        type=float,
+        default=None,
+        help="layer 3's SUCCESS cut on that tree's confidence, 0..1 (default: the plan's, "
+        "0.95 with --every, else 0.5)",
     )
     team.add_argument(
         "--games-per-round",

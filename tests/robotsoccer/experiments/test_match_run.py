@@ -107,6 +107,10 @@ def test_a_layer3_team_plays_as_its_table_learned(tmp_path: Path, layers: LayerF
     }  # fmt: skip
     assert request.teams == ("layer3", "baseline")
     assert MatchRun(FIELD, left="baseline").teams == ("layered", "baseline")
+    plan = {**plan, "features_tree": "/models/pass_tree_passer_only.json"}
+    table = save_table(TpotTable.empty(11, {"plan": plan}), tmp_path / "f.npz")
+    options = MatchRun(FIELD, left="layer3", layers=layers, tpot=table).match_options()
+    assert options["tpot_tree"] == "/models/pass_tree_passer_only.json"
 
 
 def test_an_interrupted_series_says_its_games_are_kept(
@@ -134,6 +138,14 @@ def test_learn_team_plans_and_names_its_folder_from_the_request() -> None:
         "learn-team-soccer_server-soccer_server_1996-every-horizon-guard-loss0.5-seed0"
     )
     assert TeamRun(FIELD, out=Path("x")).folder == Path("x")
+    own = TeamRun(FIELD, every=True, features_tree=Path("m/passer.json"), success=0.5)
+    assert own.plan().features_tree == str(Path("m/passer.json").resolve())
+    assert own.plan().success == 0.5
+    assert own.folder.name == (
+        "learn-team-soccer_server-soccer_server_1996-every-passer-cut0.5-seed0"
+    )
+    with pytest.raises(ValueError, match="success must be in"):
+        TeamRun(FIELD, success=1.5).plan()
     with pytest.raises(ValueError, match="guard needs every"):
         TeamRun(FIELD, shot_guard=True).plan()
 

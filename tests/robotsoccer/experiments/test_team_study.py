@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from field_models.protocol import PlayerRef
 from learning.tpot import TpotTable, load_table, save_table
 from robotsoccer.drills.match import MatchDrill, layer3_experiences
 from robotsoccer.experiments.team_study import (
@@ -18,7 +19,8 @@ from robotsoccer.experiments.team_study import (
     run_team_study,
     train,
 )
-from robotsoccer.runs.runner import TrialSpec, run_trial
+from robotsoccer.runs.provenance import file_digest
+from robotsoccer.runs.runner import TrialSpec, build_trial, run_trial
 from tests.robotsoccer.drills.test_passing import _tree_file
 from tests.robotsoccer.skills.test_intercept import net_file
 
@@ -163,3 +165,31 @@ def test_a_losing_touch_closes_a_learning_match_s_rewards_with_the_penalty(tmp_p
     assert len(plain) == len(full) and plain
     assert all(f <= p + 1e-12 for p, f in zip(plain, full, strict=True))
     assert any(f < p - 0.1 for p, f in zip(plain, full, strict=True))
+
+
+def test_layer3_can_take_its_features_from_a_tree_of_its_own(tmp_path: Path) -> None:
+    net, tree = files(tmp_path)
+    own = _tree_file(tmp_path / "own", "soccer_server")
+    table = save_table(TpotTable.empty(11), tmp_path / "eleven.npz")
+    spec = match_base("soccer_server", None, 2, net, tree).with_options(
+        left="layer3", right="baseline", tpot=str(table), tpot_tree=str(own), half_time_s=5.0
+    )
+    rngs, drill, arena = build_trial(spec, 0)
+    drill.setup(arena, rngs)
+    minds = drill.minds(arena, rngs)
+    assert isinstance(drill, MatchDrill)
+    policy = drill.policies["left"]
+    assert policy.evaluator is not minds[PlayerRef("left", 2)].evaluator  # the team keeps tree
+    assert str(own) in drill.inputs()  # its digest is in the run's manifest
+    plain = dict(spec.drill_options) | {"tpot_tree": ""}
+    _, drill, _ = build_trial(replace(spec, drill_options=tuple(plain.items())), 0)
+    assert str(own) not in drill.inputs()
+    plan = TeamPlan("tiny-every", 2, 2, 8.0, 0.5, 0.1, 2, 5.0, 2, True, 0.5, "horizon")
+    assert "tpot_tree" not in plan.drill_options()  # the earlier plans' specs unchanged
+    chosen = replace(plan, features_tree=str(own))
+    assert chosen.drill_options()["tpot_tree"] == str(own)
+    trained = train(match_base("soccer_server", None, 5, net, tree), chosen, tmp_path / "t",
+                    workers=1, log=lambda _: None)  # fmt: skip
+    saved = load_table(trained.path).provenance
+    assert saved["plan"]["features_tree"] == str(own)
+    assert saved["features_tree_digest"] == file_digest(own)
