@@ -37,7 +37,6 @@ per spell on the ball), kicks its players tried at all, per side.
 
 from __future__ import annotations
 
-import math
 from functools import partial
 from typing import Any
 
@@ -53,7 +52,7 @@ from robotsoccer.drills.layered import (
     load_evaluator,
 )
 from robotsoccer.drills.match_options import MatchOptions, TeamKind
-from robotsoccer.drills.match_setup import FORMATIONS, GOALIE, KICKER, team_setup
+from robotsoccer.drills.match_setup import FORMATIONS, GOALIE, kickoff_spots, team_setup
 from robotsoccer.drills.referee import PLAY_ON, SIDE, Referee
 from robotsoccer.replay.frames import GameFrame
 from robotsoccer.skills.intercept import (
@@ -72,8 +71,6 @@ from robotsoccer.skills.team_setup import TeamSetup
 
 EXPERIENCE_FIELDS = 5
 """Numbers per layer-3 experience in a match's data: side (0 left), number, e, a, reward."""
-JITTER_UNITS = 1.0
-"""Kick-off spots are moved by up to this in x and y from the ``placement`` stream."""
 
 
 class MatchDrill(LayeredDrill):
@@ -163,7 +160,7 @@ class MatchDrill(LayeredDrill):
             ref: (float(rng.uniform(-1.0, 1.0)), float(rng.uniform(-1.0, 1.0)))
             for ref in arena.players
         }
-        spots = {team: self._kickoff_spots(facts, n, team, jitter) for team in (LEFT, RIGHT)}
+        spots = {team: kickoff_spots(facts, n, team, jitter) for team in (LEFT, RIGHT)}
         ticks = round(self.half_time_s / facts.dt_s)
         if ticks < 1:  # a half of no tick would end the match before its kick-off
             raise ValueError(
@@ -172,33 +169,6 @@ class MatchDrill(LayeredDrill):
             )
         self.referee = Referee(arena, spots, ticks, control_reach(facts))
         self.referee.start(arena)
-
-    def _kickoff_spots(
-        self,
-        facts: FieldFacts,
-        n: int,
-        kicker_team: str,
-        jitter: dict[PlayerRef, tuple[float, float]],
-    ) -> dict[PlayerRef, tuple[float, float, float]]:
-        """Every player's spot when `kicker_team` kicks off: own half, out of the circle."""
-        unit = facts.unit_m
-        circle = 10.0 * unit
-        spots: dict[PlayerRef, tuple[float, float, float]] = {}
-        for team in (LEFT, RIGHT):
-            sign = 1.0 if team == LEFT else -1.0
-            for number, (hx, hy) in FORMATIONS[n].items():
-                ref = PlayerRef(team, number)
-                jx, jy = jitter.get(ref, (0.0, 0.0))
-                x = min(hx + JITTER_UNITS * jx, -1.0) * unit
-                y = (hy + JITTER_UNITS * jy) * unit
-                if team == kicker_team and number == KICKER[n]:
-                    x, y = -(facts.touch_distance_m + 0.3 * unit), 0.0
-                elif math.hypot(x, y) < circle:
-                    scale = circle / max(math.hypot(x, y), 1e-9)
-                    x, y = x * scale, y * scale
-                heading = 0.0 if team == LEFT else math.pi
-                spots[ref] = (sign * x, sign * y, heading)
-        return spots
 
     # ------------------------------------------------------------------ minds
 

@@ -2,13 +2,16 @@
 
 :func:`team_setup` turns the field's facts and layer 1's launch plan into the
 :class:`~robotsoccer.skills.team_setup.TeamSetup` every mind of a team shares; the numbers it
-uses are the constants below, in the drill's units.
+uses are the constants below, in the drill's units. :func:`kickoff_spots` places both teams
+for a kick-off.
 """
 
 from __future__ import annotations
 
+import math
+
 from field_models.arena import FieldFacts
-from field_models.protocol import LEFT
+from field_models.protocol import LEFT, RIGHT, PlayerRef
 from robotsoccer.drills.intercept_plan import LaunchPlan
 from robotsoccer.drills.layered import control_reach
 from robotsoccer.skills.lead import VELOCITY_SPAN_S
@@ -151,3 +154,34 @@ def carry_m(facts: FieldFacts, power: float) -> float:
     kick = facts.kick
     speed = kick.speed(power) if kick is not None else facts.player_top_speed_mps
     return facts.ball.distance_in(speed, 10.0)
+
+
+JITTER_UNITS = 1.0
+"""Kick-off spots are moved by up to this in x and y from the ``placement`` stream."""
+
+
+def kickoff_spots(
+    facts: FieldFacts,
+    n: int,
+    kicker_team: str,
+    jitter: dict[PlayerRef, tuple[float, float]],
+) -> dict[PlayerRef, tuple[float, float, float]]:
+    """Every player's spot when `kicker_team` kicks off: own half, out of the circle."""
+    unit = facts.unit_m
+    circle = 10.0 * unit
+    spots: dict[PlayerRef, tuple[float, float, float]] = {}
+    for team in (LEFT, RIGHT):
+        sign = 1.0 if team == LEFT else -1.0
+        for number, (hx, hy) in FORMATIONS[n].items():
+            ref = PlayerRef(team, number)
+            jx, jy = jitter.get(ref, (0.0, 0.0))
+            x = min(hx + JITTER_UNITS * jx, -1.0) * unit
+            y = (hy + JITTER_UNITS * jy) * unit
+            if team == kicker_team and number == KICKER[n]:
+                x, y = -(facts.touch_distance_m + 0.3 * unit), 0.0
+            elif math.hypot(x, y) < circle:
+                scale = circle / max(math.hypot(x, y), 1e-9)
+                x, y = x * scale, y * scale
+            heading = 0.0 if team == LEFT else math.pi
+            spots[ref] = (sign * x, sign * y, heading)
+    return spots
