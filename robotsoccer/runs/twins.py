@@ -7,8 +7,7 @@ the inputs' digests hold the same result for every index both hold. ``reproduce`
 such cells more than once: the transfer study's matrices hold layer 1's and layer 2's own cells
 (a field's tree, random and closest choosers on that field), the lead matrix holds the lead
 study's, and ablation rows share collections. :func:`fill_from_twins` copies what such a *twin*
-holds into a new table before the pool runs the rest (issue 21: the transfer study's robot pass
-cells alone cost about 100 s of a 17-minute ``reproduce``).
+holds into a new table before the pool runs the rest (issue 21).
 
 Only the run folder the table lies in is searched (the folder whose lock the run holds), and
 only tables with a readable manifest of the current format; the machine a twin ran on is not
