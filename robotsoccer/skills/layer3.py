@@ -15,10 +15,10 @@ sit inside the touchlines so a kick toward them does not aim the ball out.
 
 **Features e(s, a)**: for destination ``a``, the teammates the player sees within
 :data:`SECTOR_RAD` of its direction and within the layered team's pass distances are the
-passes toward it. The tree's success confidence of the best of them (the layered team's
-attributes: the passer's half, the receiver's unknown) gives SUCCESS when at least the layered
-team's pass threshold, FAILURE below it; no such teammate gives MISS (the kick reaches no one,
-§6's third label).
+passes toward it. The tree's success confidence of the best of them (asked as the layered team
+asks: the passer's half, the receiver's unknown or, with the match option ``receiver_half``,
+estimated) gives SUCCESS when at least the layered team's pass threshold, FAILURE below it;
+no such teammate gives MISS (the kick reaches no one, §6's third label).
 
 **The kick**: toward the teammate judged when there is one (the pass the tree rated), else
 toward the destination point, at the pass power.
@@ -88,7 +88,6 @@ import math
 from dataclasses import dataclass, field
 
 from field_models.protocol import Action, Kick, Percept, SeenPlayer, wrap_angle
-from learning.pass_features import pass_attributes, passer_attributes, unknown_half
 from learning.tpot import (
     FAILURE,
     HORIZON_S,
@@ -106,7 +105,7 @@ from learning.tpot import (
     reward,
 )
 from robotsoccer.skills.localise import Pose
-from robotsoccer.skills.passing import PassEvaluator, view_arrays
+from robotsoccer.skills.passing import PassEvaluator, open_play_attributes
 from robotsoccer.skills.setplay import opponent_in_path
 from robotsoccer.skills.team_setup import TeamSetup, goal_direction, in_shooting_range
 
@@ -251,6 +250,7 @@ class TpotBallPolicy:
         self.attack_right = setup.attack_right
         self.half_length_m, self.half_width_m = setup.half_length_m, setup.half_width_m
         self.unit_m, self.dt_s = setup.unit_m, setup.dt_s
+        self.estimate_receiver = setup.receiver_half == "estimated"
         self.pass_range_m, self.pass_power = setup.pass_range_m, setup.powers.passing
         self.shoot_range_m, self.blocked_m = setup.shoot_range_m, setup.blocked_m
         self.shot_power, self.dribble_power = setup.powers.shot, setup.powers.dribble
@@ -331,14 +331,9 @@ class TpotBallPolicy:
         return (f"tpot {name}", Kick(self.pass_power, direction))
 
     def _confidence(self, percept: Percept, index: int, seen: SeenPlayer) -> float:
-        """The tree's success confidence of a pass to `seen` (the layered team's attributes)."""
-        own = percept.player.team
-        others = [s for i, s in enumerate(percept.players) if i != index]
-        dist, ang, team = view_arrays(others, own, self.unit_m)
-        mine = passer_attributes(
-            seen.distance_m / self.unit_m, math.degrees(seen.angle_rad), dist, ang, team
-        )
-        return self.evaluator.success_confidence(pass_attributes(mine, unknown_half()))
+        """The tree's success confidence of a pass to `seen`, asked as the layered team asks."""
+        x = open_play_attributes(percept, index, self.unit_m, self.estimate_receiver)
+        return self.evaluator.success_confidence(x)
 
     def decide(
         self, number: int, percept: Percept, pose: Pose | None, ball_xy: tuple[float, float] | None

@@ -63,6 +63,8 @@ from field_models.arena import BallLaw, FieldFacts
 from field_models.protocol import Action, Kick, Percept, Say, SeenPlayer
 from field_models.seeding import Rng
 from learning.pass_features import (
+    RECEIVER_FEEL_M,
+    estimated_receiver_half,
     pass_attributes,
     passer_attributes,
     unknown_half,
@@ -102,6 +104,29 @@ def view_arrays(
         [0 if s.team is None else (1 if s.team == own_team else -1) for s in seen], dtype=np.int8
     )
     return distance, angle, team
+
+
+def open_play_attributes(
+    percept: Percept, index: int, unit_m: float, estimate_receiver: bool = False
+) -> np.ndarray:
+    """The tree's attributes of a pass to ``percept.players[index]`` in open play (§6).
+
+    The passer's half comes from its own view. Open play has no say/hear exchange, so the
+    receiver's half is unknown, or with `estimate_receiver` estimated from what the passer sees
+    (:func:`learning.pass_features.estimated_receiver_half`; match option ``receiver_half``).
+    """
+    seen = percept.players[index]
+    others = [s for i, s in enumerate(percept.players) if i != index]
+    dist, ang, team = view_arrays(others, percept.player.team, unit_m)
+    receiver = (seen.distance_m / unit_m, math.degrees(seen.angle_rad))
+    mine = passer_attributes(*receiver, dist, ang, team)
+    feel = RECEIVER_FEEL_M / unit_m
+    theirs = (
+        estimated_receiver_half(*receiver, dist, ang, team, feel_distance=feel)
+        if estimate_receiver
+        else unknown_half()
+    )
+    return pass_attributes(mine, theirs)
 
 
 @dataclass(frozen=True, slots=True)

@@ -10,13 +10,6 @@ from __future__ import annotations
 import math
 
 from field_models.protocol import Action, Dash, Kick, Percept, SeenPlayer, Turn, wrap_angle
-from learning.pass_features import (
-    RECEIVER_FEEL_M,
-    estimated_receiver_half,
-    pass_attributes,
-    passer_attributes,
-    unknown_half,
-)
 from robotsoccer.skills.lead import (
     LEAD_CLIP_S,
     ahead_of,
@@ -24,7 +17,7 @@ from robotsoccer.skills.lead import (
 )
 from robotsoccer.skills.localise import Pose
 from robotsoccer.skills.motion import turn_then_go
-from robotsoccer.skills.passing import view_arrays
+from robotsoccer.skills.passing import open_play_attributes
 from robotsoccer.skills.setplay import opponent_in_path
 from robotsoccer.skills.team_chase import ChaseMind
 from robotsoccer.skills.team_setup import (
@@ -113,20 +106,7 @@ class BallMind(ChaseMind):
         scored = []
         estimate = setup.receiver_half == "estimated"
         for index, seen in candidates:
-            others = [s for i, s in enumerate(percept.players) if i != index]
-            dist, ang, team = view_arrays(others, own, setup.unit_m)
-            receiver = (seen.distance_m / setup.unit_m, math.degrees(seen.angle_rad))
-            mine = passer_attributes(*receiver, dist, ang, team)
-            # Open play has no say/hear exchange: the receiver's half is unknown, or estimated
-            # from what the passer sees (TeamSetup.receiver_half).
-            theirs = (
-                estimated_receiver_half(
-                    *receiver, dist, ang, team, feel_distance=RECEIVER_FEEL_M / setup.unit_m
-                )
-                if estimate
-                else unknown_half()
-            )
-            x = pass_attributes(mine, theirs)
+            x = open_play_attributes(percept, index, setup.unit_m, estimate)
             scored.append((self.evaluator.success_confidence(x), seen))
         confidence, best = max(scored, key=lambda c: c[0])
         if not confidence >= self.pass_threshold:

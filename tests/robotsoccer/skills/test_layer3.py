@@ -21,6 +21,7 @@ from field_models.protocol import (
 from learning.tpot import FAILURE, MISS, N_ACTIONS, SUCCESS, TpotTable
 from robotsoccer.skills.layer3 import DESTINATIONS, TpotBallPolicy, TpotSettings, destination_xy
 from robotsoccer.skills.localise import Pose
+from robotsoccer.skills.passing import open_play_attributes
 from robotsoccer.skills.setplay import KickPowers
 from robotsoccer.skills.team_setup import TeamSetup
 from tests.robotsoccer.skills.test_team import setup as team_setup
@@ -335,3 +336,30 @@ def test_an_opponent_touch_closes_rewards_with_the_loss_penalty_only_when_one_is
     assert q.experiences == []
     q.finish(110)
     assert [e.reward for e in q.experiences] == pytest.approx([0.5])
+
+
+class _Rows:
+    """An evaluator that keeps every attribute row it is asked about."""
+
+    def __init__(self) -> None:
+        self.rows: list[np.ndarray] = []
+
+    def success_confidence(self, x: np.ndarray) -> float:
+        self.rows.append(x)
+        return 0.9
+
+
+@pytest.mark.parametrize("half", ["unknown", "estimated"])
+def test_layer3_asks_its_tree_as_the_team_does_the_receivers_half_included(half: str) -> None:
+    mate = SeenPlayer(10.0, math.radians(5.0), LEFT, 9)
+    foe = SeenPlayer(8.0, math.radians(10.0), RIGHT, 4)
+    seen = percept(mate, foe)
+    tree = _Rows()
+    setup = replace(plan(), receiver_half=half)
+    TpotBallPolicy(TpotTable.empty(11), setup, tree, np.random.default_rng(0)).options(
+        seen, Pose(0.0, 0.0, 0.0)
+    )
+    (row,) = tree.rows
+    np.testing.assert_array_equal(row, open_play_attributes(seen, 0, 1.0, half == "estimated"))
+    receiver_half = row[len(row) // 2 :]
+    assert np.isnan(receiver_half).all() == (half == "unknown")
