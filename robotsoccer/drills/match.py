@@ -37,6 +37,7 @@ per spell on the ball), kicks its players tried at all, per side.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import partial
 from typing import Any
 
@@ -229,16 +230,13 @@ class MatchDrill(LayeredDrill):
         plan = self.plan(facts)
         dead_band = team in self.dead_band
         latency = "reckon" if team in self.options.reckoning_teams() else "hold"
-        return team_setup(
-            facts,
-            plan,
-            n,
-            team,
-            self.steady_turns,
-            self.look,
-            dead_band,
-            latency,
-            self.options.receiver_half,
+        return replace(
+            team_setup(facts, plan, n, team),
+            steady_turns=self.steady_turns,
+            look=self.look,
+            dead_band=dead_band,
+            turn_latency=latency,
+            receiver_half=self.options.receiver_half,
         )
 
     # ------------------------------------------------------------------ the coach

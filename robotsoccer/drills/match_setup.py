@@ -65,20 +65,12 @@ CARRY_SHARE = 0.6
 """Shots and passes are aimed at most this share of how far a kick carries the ball."""
 
 
-def team_setup(
-    facts: FieldFacts,
-    plan: LaunchPlan,
-    n: int,
-    team: str,
-    steady_turns: bool,
-    look: str = "body",
-    dead_band: bool = False,
-    turn_latency: str = "hold",
-    receiver_half: str = "unknown",
-) -> TeamSetup:
+def team_setup(facts: FieldFacts, plan: LaunchPlan, n: int, team: str) -> TeamSetup:
     """One team of `n`'s plan on this field: homes, ranges, powers, the goalie's stance.
 
     `plan` is layer 1's launch plan on this field (trigger, the goal-mouth drill's distances).
+    How the minds turn, look and ask the tree (:class:`~robotsoccer.skills.team_setup.
+    TeamSetup`'s mind settings) is left at its defaults: the match's options set it.
     """
     unit = facts.unit_m
     sign = 1.0 if team == LEFT else -1.0
@@ -107,11 +99,6 @@ def team_setup(
         spin_accel_radps2=facts.player_accel_mps2 / facts.pitch.player_radius_m,
         sensor_period_s=facts.sensor_period_s,
         ball_law=facts.ball,
-        steady_turns=steady_turns,
-        look=look,
-        dead_band=dead_band,
-        turn_latency=turn_latency,
-        receiver_half=receiver_half,
         top_speed_mps=facts.player_top_speed_mps,
         push_kick=push,
         # The nearest a shot of layer 1's goal-mouth drill is at its trigger: the nearest
