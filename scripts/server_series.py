@@ -32,6 +32,7 @@ from robotsoccer.experiments.match import mean_interval, run_series, series_spec
 from robotsoccer.experiments.team_study import match_base
 from robotsoccer.runs.runner import TrialLoop, TrialSpec, build_trial
 from robotsoccer.skills.reversals import TurnReversals
+from robotsoccer.skills.team_setup import RECEIVER_HALVES
 
 
 def reversals(spec: TrialSpec, index: int) -> dict[str, Any]:
@@ -132,7 +133,7 @@ def main() -> None:
     )
     parser.add_argument(
         "--receiver-half",
-        choices=("unknown", "estimated"),
+        choices=RECEIVER_HALVES,
         default="unknown",
         help="what the passer tells layer 2's tree of the receiver's half (issue 28 goal 4)",
     )

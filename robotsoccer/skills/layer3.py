@@ -250,7 +250,7 @@ class TpotBallPolicy:
         self.attack_right = setup.attack_right
         self.half_length_m, self.half_width_m = setup.half_length_m, setup.half_width_m
         self.unit_m, self.dt_s = setup.unit_m, setup.dt_s
-        self.estimate_receiver = setup.receiver_half == "estimated"
+        self.receiver_half = setup.receiver_half
         self.pass_range_m, self.pass_power = setup.pass_range_m, setup.powers.passing
         self.shoot_range_m, self.blocked_m = setup.shoot_range_m, setup.blocked_m
         self.shot_power, self.dribble_power = setup.powers.shot, setup.powers.dribble
@@ -332,7 +332,7 @@ class TpotBallPolicy:
 
     def _confidence(self, percept: Percept, index: int, seen: SeenPlayer) -> float:
         """The tree's success confidence of a pass to `seen`, asked as the layered team asks."""
-        x = open_play_attributes(percept, index, self.unit_m, self.estimate_receiver)
+        x = open_play_attributes(percept, index, self.unit_m, self.receiver_half)
         return self.evaluator.success_confidence(x)
 
     def decide(

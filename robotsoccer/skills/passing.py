@@ -107,13 +107,14 @@ def view_arrays(
 
 
 def open_play_attributes(
-    percept: Percept, index: int, unit_m: float, estimate_receiver: bool = False
+    percept: Percept, index: int, unit_m: float, receiver_half: str = "unknown"
 ) -> np.ndarray:
     """The tree's attributes of a pass to ``percept.players[index]`` in open play (§6).
 
     The passer's half comes from its own view. Open play has no say/hear exchange, so the
-    receiver's half is unknown, or with `estimate_receiver` estimated from what the passer sees
-    (:func:`learning.pass_features.estimated_receiver_half`; match option ``receiver_half``).
+    receiver's half is ``"unknown"``, or ``"estimated"`` from what the passer sees
+    (:func:`learning.pass_features.estimated_receiver_half`; a team's
+    :attr:`~robotsoccer.skills.team_setup.TeamSetup.receiver_half`).
     """
     seen = percept.players[index]
     others = [s for i, s in enumerate(percept.players) if i != index]
@@ -123,7 +124,7 @@ def open_play_attributes(
     feel = RECEIVER_FEEL_M / unit_m
     theirs = (
         estimated_receiver_half(*receiver, dist, ang, team, feel_distance=feel)
-        if estimate_receiver
+        if receiver_half == "estimated"
         else unknown_half()
     )
     return pass_attributes(mine, theirs)

@@ -104,9 +104,8 @@ class BallMind(ChaseMind):
             _, best = min(candidates, key=lambda c: c[1].distance_m)
             return (best.number or 0, best.angle_rad)
         scored = []
-        estimate = setup.receiver_half == "estimated"
         for index, seen in candidates:
-            x = open_play_attributes(percept, index, setup.unit_m, estimate)
+            x = open_play_attributes(percept, index, setup.unit_m, setup.receiver_half)
             scored.append((self.evaluator.success_confidence(x), seen))
         confidence, best = max(scored, key=lambda c: c[0])
         if not confidence >= self.pass_threshold:

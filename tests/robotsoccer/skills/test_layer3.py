@@ -360,6 +360,6 @@ def test_layer3_asks_its_tree_as_the_team_does_the_receivers_half_included(half:
         seen, Pose(0.0, 0.0, 0.0)
     )
     (row,) = tree.rows
-    np.testing.assert_array_equal(row, open_play_attributes(seen, 0, 1.0, half == "estimated"))
+    np.testing.assert_array_equal(row, open_play_attributes(seen, 0, 1.0, half))
     receiver_half = row[len(row) // 2 :]
     assert np.isnan(receiver_half).all() == (half == "unknown")
