@@ -260,7 +260,15 @@ class Stream:
 
     def standard_normal(self, size: int | None = None) -> float | npt.NDArray[np.float64]:
         """Standard normal draws by the Box–Muller transform (two uniforms per pair)."""
-        n = 1 if size is None else int(size)
+        z = self.standard_normal_list(1 if size is None else int(size))
+        return z[0] if size is None else np.array(z)
+
+    def standard_normal_list(self, n: int) -> list[float]:
+        """`n` standard normal draws as a list: :meth:`standard_normal`'s numbers, no array.
+
+        For a caller that reads them one by one (the camera's frames): building and unpacking
+        an array would cost more than the draws.
+        """
         pairs = (n + 1) // 2
         u = self._take_list(2 * pairs)
         z: list[float] = []
@@ -269,7 +277,19 @@ class Stream:
             radius = sqrt(-2.0 * log1p(-u[2 * j]))  # 1 - u in (0, 1]: the log is finite
             angle = tau * u[2 * j + 1]
             z += (radius * cos(angle), radius * sin(angle))
-        return z[0] if size is None else np.array(z[:n])
+        return z[:n] if len(z) > n else z
+
+    def draws_list(self, position: int, count: int) -> list[float]:
+        """Draws ``position .. position + count - 1`` of this stream, without moving it.
+
+        For a reader that consumes a reserved range in its own order (the robot world's ball
+        noise, :mod:`field_models.robot_physics.world`); the numbers :meth:`random` gives there.
+        """
+        return uniforms(self._key, position, count)[0].tolist()
+
+    def random_list(self, n: int) -> list[float]:
+        """The next `n` uniform draws in [0, 1) as a list (:meth:`random`'s numbers)."""
+        return self._take_list(n)
 
     def normal(
         self, loc: float = 0.0, scale: float = 1.0, size: int | None = None

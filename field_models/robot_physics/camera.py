@@ -27,13 +27,13 @@ from __future__ import annotations
 
 import math
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from field_models.protocol import TWO_PI, PlayerRef, wrap_angle
 from field_models.records import positional_maker
 from field_models.robot_physics.config import CameraConfig
-from field_models.seeding import Rng
+from field_models.seeding import Rng, Stream
 
 _NEVER = 1 << 62
 """A tick that never comes."""
@@ -108,7 +108,14 @@ class OverheadCamera:
         self.refs = refs
         self.period_ticks = period_ticks
         self.latency_ticks = 0 if config.perfect else latency_ticks
-        self._rng = rng
+        # Lists straight from a project stream; a numpy generator's arrays are unpacked.
+        self._normals: Callable[[int], list[float]]
+        self._uniforms: Callable[[int], list[float]]
+        if isinstance(rng, Stream):
+            self._normals, self._uniforms = rng.standard_normal_list, rng.random_list
+        else:
+            self._normals = lambda n: rng.standard_normal(n).tolist()
+            self._uniforms = lambda n: rng.random(n).tolist()
         self._pending: deque[Frame] = deque()
         self._perfect = config.perfect
         self._pos_sigma = config.position_sigma_m
@@ -182,8 +189,8 @@ class OverheadCamera:
         n = self._n
         # One vectorised draw each: [ball dx, ball dy, (dx, dy, dheading) per robot] as unit
         # normals, and [ball, robot...] uniforms for the misses.
-        z = self._rng.standard_normal(2 + 3 * n).tolist()
-        u = self._rng.random(1 + n).tolist()
+        z = self._normals(2 + 3 * n)
+        u = self._uniforms(1 + n)
         ps = self._pos_sigma
         hs = self._head_sigma
         ball = (

@@ -38,7 +38,7 @@ from field_models.protocol import PlayerRef, wrap_angle
 from field_models.robot_physics.config import RobotPhysicsPreset
 from field_models.robot_physics.world_build import add_ball, add_robot, add_walls
 from field_models.robot_physics.world_truth import WorldTruth
-from field_models.seeding import Rng
+from field_models.seeding import Rng, Stream
 
 # The hot loop calls Chipmunk through pymunk's cffi layer, skipping pymunk's Python property
 # wrappers, which cost several times more per call (shared notes/tooling.md §2.4). Only reads,
@@ -46,11 +46,51 @@ from field_models.seeding import Rng
 # public API. Pinned to pymunk 7 in pyproject.toml.
 _get_angle = _cp.cpBodyGetAngle
 _set_velocity = _cp.cpBodySetVelocity
+_get_velocity = _cp.cpBodyGetVelocity
 _set_spin = _cp.cpBodySetAngularVelocity
 _space_step = _cp.cpSpaceStep
 
 _row_of = operator.attrgetter("row")  # a drive's index among the robots (sort key)
-_NOISE_BLOCK = 512  # noise draws fetched per generator call (speed; same numbers either way)
+_NOISE_BLOCK = 512  # noise draws reserved per generator call; part of the numbers (_BallNoise)
+_NOISE_CHUNK = 64  # of which computed at a time, from a project stream (speed only)
+
+
+class _BallNoise:
+    """The ball-noise draws in the order the world has always used them (a trial's numbers).
+
+    The world reserves a block of :data:`_NOISE_BLOCK` uniform draws in [-1, 1) from its
+    generator and uses them last first, two per perturbation. A short trial uses a few dozen,
+    so from a project :class:`~field_models.seeding.Stream` the block is only reserved (the
+    stream moves past it, as a draw of the whole block would) and its values are computed
+    :data:`_NOISE_CHUNK` at a time from the top: the same numbers in the same order.
+    """
+
+    __slots__ = ("_left", "_next", "_rng", "_start")
+
+    def __init__(self, rng: Rng) -> None:
+        self._rng = rng
+        self._next: list[float] = []  # values not used yet, the next one last
+        self._start = 0  # the block's first stream position
+        self._left = 0  # block draws below those in _next, not computed yet
+
+    def pair(self) -> tuple[float, float]:
+        """The next two noise values (x, then y)."""
+        values = self._next
+        if len(values) < 2:
+            values = self._next = self._refill()
+        return values.pop(), values.pop()
+
+    def _refill(self) -> list[float]:
+        rng = self._rng
+        if not isinstance(rng, Stream):
+            return rng.uniform(-1.0, 1.0, _NOISE_BLOCK).tolist()
+        if self._left == 0:
+            self._start, self._left = rng.position, _NOISE_BLOCK
+            rng.position += _NOISE_BLOCK
+        count = min(_NOISE_CHUNK, self._left)
+        self._left -= count
+        # uniform(-1, 1)'s formula, low + (high - low)·u, on each draw.
+        return [-1.0 + 2.0 * u for u in rng.draws_list(self._start + self._left, count)]
 
 
 class _Drive:
@@ -129,14 +169,13 @@ class RobotWorld(WorldTruth):
         # pymunk's default slop is 0.1 length units: 10 cm in SI (robot_physics.md §3.1).
         self.space.collision_slop = preset.timing.collision_slop_m
         # Walls, ball, robots: the order the space holds them in (world_build).
-        add_walls(self.space, preset.field, preset.ball.wall_restitution)
+        self._walls = add_walls(self.space, preset.field, preset.ball.wall_restitution)
         self.ball = add_ball(self.space, preset.ball)
         self._drives = [
             _Drive(*add_robot(self.space, preset.robot), row) for row in range(len(self.refs))
         ]
         self._body_ptrs = [d.body_ptr for d in self._drives]  # what the read-outs read
         self._index = {ref: i for i, ref in enumerate(self.refs)}
-        self._noise_rng = noise_rng
         self._noise_ticks = max(1, round(preset.ball.noise_period_s / self.dt_s))
         # The next tick whose end perturbs the ball (never without a generator).
         self._noise_tick = self._noise_ticks if noise_rng is not None else -1
@@ -146,7 +185,7 @@ class RobotWorld(WorldTruth):
         # (body pointer, control pointer, forward speed) that loop reads.
         self._cruising: list[_Drive] = []
         self._cruise_rows: list[tuple[object, object, float]] = []
-        self._noise_buf: list[float] = []
+        self._noise = _BallNoise(noise_rng) if noise_rng is not None else None
         self._space_ptr = self.space._space
         self.space_step = _space_step
         """Chipmunk's step, called once per tick as ``space_step(space pointer, dt)``.
@@ -360,18 +399,16 @@ class RobotWorld(WorldTruth):
     def _perturb_ball(self) -> None:
         """Ball-motion noise and the stop threshold, every noise period."""
         b = self.preset.ball
-        vx, vy = self.ball.velocity
+        v = _get_velocity(self._ball_ptr)
+        vx, vy = v.x, v.y
         speed = math.hypot(vx, vy)
         if speed < b.stop_speed_mps:
             if speed > 0.0:
-                self.ball.velocity = (0.0, 0.0)
+                _set_velocity(self._ball_ptr, (0.0, 0.0))
             return
         if b.motion_noise == 0.0:
             return
-        if len(self._noise_buf) < 2:
-            assert self._noise_rng is not None
-            self._noise_buf = self._noise_rng.uniform(-1.0, 1.0, _NOISE_BLOCK).tolist()
+        assert self._noise is not None
         amp = b.motion_noise * speed
-        nx = self._noise_buf.pop()
-        ny = self._noise_buf.pop()
-        self.ball.velocity = self._clamp_speed(vx + amp * nx, vy + amp * ny)
+        nx, ny = self._noise.pair()
+        _set_velocity(self._ball_ptr, self._clamp_speed(vx + amp * nx, vy + amp * ny))

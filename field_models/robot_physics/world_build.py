@@ -15,6 +15,8 @@ from __future__ import annotations
 import math
 
 import pymunk
+from pymunk._chipmunk import ffi as _ffi
+from pymunk._chipmunk import lib as _cp
 
 from field_models.robot_physics.config import (
     GRAVITY_MPS2,
@@ -23,9 +25,19 @@ from field_models.robot_physics.config import (
     RobotConfig,
 )
 
+_IDENTITY = tuple(pymunk.Transform.identity())  # what pymunk's Poly passes by default
 
-def add_walls(space: pymunk.Space, field: FieldConfig, wall_restitution: float) -> None:
-    """Add the field's walls, goal boxes and corner panels to `space`, as static shapes."""
+
+def add_walls(space: pymunk.Space, field: FieldConfig, wall_restitution: float) -> list[object]:
+    """Add the field's walls, goal boxes and corner panels to `space`, as static shapes.
+
+    The shapes are Chipmunk's own, made by the call pymunk's ``Poly`` makes
+    (``cpPolyShapeNew`` with the identity transform and no radius) and added in the same order,
+    but without pymunk's Python wrappers: nothing reads a wall back, and the wrappers cost more
+    than the rest of a short trial's set-up (issue 21). The caller keeps the returned handles
+    for as long as the space lives; each one frees its shape, first taking it out of a space
+    that still holds it (pymunk's own rule for its shapes, so either may go first).
+    """
     f = field
     hl, hw, t = 0.5 * f.length_m, 0.5 * f.width_m, f.wall_thickness_m
     gw, gd = 0.5 * f.goal_width_m, f.goal_depth_m
@@ -43,30 +55,38 @@ def add_walls(space: pymunk.Space, field: FieldConfig, wall_restitution: float) 
             (min(sign * hl, back[1]), -gw - t, max(sign * hl, back[1]), -gw),
             (min(back), -gw - t, max(back), gw + t),  # goal back wall
         ]
-    static = space.static_body
-    shapes: list[pymunk.Shape] = [_static_box(static, *b) for b in boxes]
-    shapes += _corner_panels(static, hl, hw, f.corner_fillet_m)
-    for shape in shapes:
-        shape.elasticity = wall_restitution
-        shape.friction = 0.2
-    space.add(*shapes)
+    outlines = [[(x0, y0), (x1, y0), (x1, y1), (x0, y1)] for x0, y0, x1, y1 in boxes]
+    outlines += _corner_panels(hl, hw, f.corner_fillet_m)
+    static, space_ptr = space.static_body._body, space._space
+    shapes = []
+    for outline in outlines:
+        shape = _ffi.gc(
+            _cp.cpPolyShapeNew(static, len(outline), outline, _IDENTITY, 0.0), _free_shape
+        )
+        _cp.cpShapeSetElasticity(shape, wall_restitution)
+        _cp.cpShapeSetFriction(shape, 0.2)
+        _cp.cpSpaceAddShape(space_ptr, shape)
+        shapes.append(shape)
+    return shapes
 
 
-def _static_box(static: pymunk.Body, x0: float, y0: float, x1: float, y1: float) -> pymunk.Poly:
-    corners = [(x0, y0), (x1, y0), (x1, y1), (x0, y1)]
-    return pymunk.Poly(static, corners)
+def _free_shape(shape: object) -> None:
+    """Free a wall shape, out of its space first if the space still holds it."""
+    space = _cp.cpShapeGetSpace(shape)
+    if space != _ffi.NULL:
+        _cp.cpSpaceRemoveShape(space, shape)
+    _cp.cpShapeFree(shape)
 
 
-def _corner_panels(static: pymunk.Body, hl: float, hw: float, leg: float) -> list[pymunk.Shape]:
+def _corner_panels(hl: float, hw: float, leg: float) -> list[list[tuple[float, float]]]:
     if leg <= 0:
         return []
-    panels: list[pymunk.Shape] = []
+    panels = []
     for sx in (-1.0, 1.0):
         for sy in (-1.0, 1.0):
             cx, cy = sx * hl, sy * hw
             # A triangle filling the corner, extended into the walls so it has no thin edge.
-            tri = [(cx, cy), (cx - sx * leg, cy), (cx, cy - sy * leg)]
-            panels.append(pymunk.Poly(static, tri))
+            panels.append([(cx, cy), (cx - sx * leg, cy), (cx, cy - sy * leg)])
     return panels
 
 

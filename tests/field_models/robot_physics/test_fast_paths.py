@@ -3,15 +3,21 @@
 * positional makers build the same frozen dataclass objects as their ``__init__``;
 * a robot at steady wheel speeds that cruises moves bit for bit as it would under full steering;
 * the host's identity row look-up agrees with the hash look-up, equal copies included;
-* robot and ball states built as tuples are the BodyState their fields make.
+* robot and ball states built as tuples are the BodyState their fields make;
+* the ball noise computed a chunk at a time, the camera's list draws and the walls built without
+  pymunk's wrappers give the numbers and shapes the plain paths give.
 """
 
 from __future__ import annotations
 
+import gc
 import math
 from dataclasses import dataclass
 
+import numpy as np
+import pymunk
 import pytest
+from pymunk._chipmunk import lib as _cp
 
 from field_models.protocol import (
     LEFT,
@@ -28,7 +34,8 @@ from field_models.records import positional_maker
 from field_models.robot_physics.camera import Frame, RobotDetection
 from field_models.robot_physics.config import load_preset
 from field_models.robot_physics.link import Command, Primitive
-from field_models.robot_physics.world import RobotWorld
+from field_models.robot_physics.world import RobotWorld, _BallNoise
+from field_models.seeding import Stream, stream_key
 
 PRESET = load_preset()
 REFS = (PlayerRef(LEFT, 1), PlayerRef(RIGHT, 1), PlayerRef(LEFT, 2))
@@ -177,3 +184,66 @@ def test_the_host_finds_rows_by_identity_and_by_equality() -> None:
     assert host._row(stranger) == -1
     with pytest.raises(KeyError):
         host._row_of(stranger)
+
+
+def _old_ball_noise(rng: Stream, pairs: int) -> list[tuple[float, float]]:
+    """The ball noise as the world drew it before: whole blocks of 512, used last first."""
+    out, block = [], []
+    for _ in range(pairs):
+        if len(block) < 2:
+            block = rng.uniform(-1.0, 1.0, 512).tolist()
+        out.append((block.pop(), block.pop()))
+    return out
+
+
+@pytest.mark.parametrize("pairs", [1, 31, 32, 33, 256, 257, 700])
+def test_the_ball_noise_gives_the_old_block_numbers_in_the_old_order(pairs: int) -> None:
+    # Chunk (64 draws) and block (512) edges are crossed: the numbers and the stream's
+    # position afterwards are the old ones.
+    old_rng, new_rng = Stream(stream_key(5, 3, "movement")), Stream(stream_key(5, 3, "movement"))
+    noise = _BallNoise(new_rng)
+    assert [noise.pair() for _ in range(pairs)] == _old_ball_noise(old_rng, pairs)
+    assert new_rng.position == old_rng.position
+    assert new_rng.random() == old_rng.random()  # a later reader of the stream sees the same
+
+
+def test_the_ball_noise_takes_a_numpy_generator_as_before() -> None:
+    draws = _BallNoise(np.random.default_rng(3))
+    old = np.random.default_rng(3).uniform(-1.0, 1.0, 512).tolist()
+    assert draws.pair() == (old[-1], old[-2])
+
+
+def test_list_draws_are_the_array_draws() -> None:
+    a, b = Stream(stream_key(1, 2, "camera")), Stream(stream_key(1, 2, "camera"))
+    for n in (1, 2, 5, 8, 11, 200):
+        assert a.standard_normal_list(n) == b.standard_normal(n).tolist()
+        assert a.random_list(n) == b.random(n).tolist()
+    assert a.position == b.position
+    assert a.draws_list(3, 4) == b.draws_list(3, 4) == Stream(a.key).random(7).tolist()[3:]
+
+
+def test_raw_walls_are_the_shapes_pymunk_polys_would_be() -> None:
+    """The walls built without pymunk's wrappers: same vertices, surface and order in the space."""
+    world = RobotWorld(PRESET, REFS)
+    raw = world._walls
+    expected = pymunk.Space()
+    static = expected.static_body
+    f = PRESET.field
+    count = 0
+    for shape in raw:
+        assert _cp.cpShapeGetSpace(shape) == world.space._space
+        assert _cp.cpShapeGetElasticity(shape) == PRESET.ball.wall_restitution
+        assert _cp.cpShapeGetFriction(shape) == 0.2
+        corners = [_cp.cpPolyShapeGetVert(shape, i) for i in range(_cp.cpPolyShapeGetCount(shape))]
+        poly = pymunk.Poly(static, [(v.x, v.y) for v in corners])
+        assert [tuple(v) for v in poly.get_vertices()] == [(v.x, v.y) for v in corners]
+        count += 1
+    assert count == 12 + (4 if f.corner_fillet_m > 0 else 0)
+    # The space frees cleanly whichever goes first: the world (space and walls together), or
+    # a wall handle dropped while the space lives.
+    del world
+    gc.collect()
+    other = RobotWorld(PRESET, REFS)
+    other._walls.pop()
+    gc.collect()
+    other.step()
