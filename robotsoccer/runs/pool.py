@@ -121,6 +121,34 @@ def chunked(indices: Iterable[int], size: int) -> Iterator[list[int]]:
         yield chunk
 
 
+def tapered(indices: Iterable[int], size: int, remaining: int, workers: int) -> Iterator[list[int]]:
+    """Chunks of at most `size` that shrink toward the end of the run, to no less than size/8.
+
+    The last chunks decide when the run ends: with full-size chunks one worker may run a whole
+    chunk alone while the others wait. Here a chunk is at most a quarter of each worker's share
+    of what is left, so the workers finish close together (a result depends only on its trial,
+    so chunking never changes one).
+
+    Args:
+        indices: The trials to run, in order.
+        size: The largest chunk.
+        remaining: How many `indices` yields.
+        workers: Processes sharing the work.
+    """
+    floor = max(1, size // 8)
+    chunk: list[int] = []
+    want = max(floor, min(size, remaining // (4 * workers)))
+    for index in indices:
+        chunk.append(index)
+        if len(chunk) == want:
+            yield chunk
+            remaining -= want
+            chunk = []
+            want = max(floor, min(size, remaining // (4 * workers)))
+    if chunk:
+        yield chunk
+
+
 class Progress:
     """Progress of a run on stderr: a tqdm bar on a terminal, plain lines anywhere else.
 
@@ -352,11 +380,14 @@ def run_trials(
             stack.callback(writer.close)
         remaining = n_trials - resumed
         todo = (i for i in range(n_trials) if not finished[i])
-        size = chunk_size or default_chunk_size(spec, remaining, workers)
+        if chunk_size or batched(spec):  # a batch pays by its size: never tapered
+            chunks = chunked(todo, chunk_size or default_chunk_size(spec, remaining, workers))
+        else:
+            chunks = tapered(todo, default_chunk_size(spec, remaining, workers), remaining, workers)
         bar = Progress(n_trials, enabled=progress)
         stack.callback(bar.close)
         bar.advance(resumed)
-        for chunk in _execute(spec, chunked(todo, size), workers, backend):
+        for chunk in _execute(spec, chunks, workers, backend):
             for result in chunk:
                 record(result)
             if writer is not None:

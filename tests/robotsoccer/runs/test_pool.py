@@ -139,3 +139,23 @@ def test_a_manifest_records_the_cpu_and_numpys_simd_dispatch(tmp_path: Path) -> 
     assert recorded["cpu"] and recorded["numpy_simd_baseline"] == list(umath.__cpu_baseline__)
     assert set(recorded["numpy_simd_dispatched"]) <= set(umath.__cpu_dispatch__)
     assert recorded["packages"]["numpy"] == np.__version__
+
+
+@pytest.mark.parametrize(
+    ("n", "size", "workers"), [(1000, 50, 2), (37, 9, 2), (5, 50, 4), (400, 50, 1)]
+)
+def test_tapered_chunks_cover_every_trial_in_order_and_shrink_to_an_eighth(
+    n: int, size: int, workers: int
+) -> None:
+    chunks = list(pool.tapered(iter(range(n)), size, n, workers))
+    assert [i for c in chunks for i in c] == list(range(n))
+    sizes = [len(c) for c in chunks]
+    assert max(sizes) <= size
+    assert all(s >= max(1, size // 8) for s in sizes[:-1])
+    assert sizes[:-1] == sorted(sizes[:-1], reverse=True)  # never grows again
+
+
+def test_a_long_run_ends_in_small_chunks() -> None:
+    sizes = [len(c) for c in pool.tapered(iter(range(5000)), 50, 5000, 2)]
+    assert sizes[0] == 50 and sizes[-2] == 6  # the tail: an eighth of the largest
+    assert sum(s == 50 for s in sizes) >= 90
