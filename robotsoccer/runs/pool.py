@@ -1,7 +1,8 @@
 """Many trials in parallel processes, streamed to a results table on disk as they finish.
 
 * Trials run in chunks in a `ProcessPoolExecutor` (every worker builds its own pymunk space;
-  nothing is shared). Workers come from a ``forkserver`` that has imported the project once, so
+  nothing is shared); the chunks shrink toward a run's end (:func:`tapered`) so the workers
+  finish together. Workers come from a ``forkserver`` that has imported the project once, so
   a pool starts in milliseconds rather than re-importing numpy and pymunk per worker (and, unlike
   a plain fork, never inherits the threads of a parent that trained a torch model). One worker
   runs the trials in this process, with no pool at all.
