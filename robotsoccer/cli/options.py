@@ -57,10 +57,10 @@ BENCH_TARGETS = {
     "intercept.trials_per_s.robot_physics": (">=", 100.0),
     "intercept.trials_per_s.soccer_server_batch": (">=", 90_000.0),
     "pass.trials_per_s.soccer_server": (">=", 300.0),
-    "pass.trials_per_s.robot_physics": (">=", 40.0),
+    "pass.trials_per_s.robot_physics": (">=", 200.0),  # issue 21 (was 40)
     "training.net_1000_saves_s": ("<=", 5.0),
     "match.wall_s.soccer_server": ("<=", 60.0),
-    "match.realtime_factor.robot_physics": (">=", 50.0),
+    "match.realtime_factor.robot_physics": (">=", 150.0),  # issue 21 (was 50)
     "envs.score_env_to_bare_ratio.robot_physics": (">=", 0.8),
     "envs.score_env_to_bare_ratio.soccer_server": (">=", 0.8),
 }
