@@ -100,13 +100,17 @@ def batched(spec: TrialSpec) -> bool:
     return batch_reason(spec) is None
 
 
+CHUNKS_PER_WORKER = 4
+"""Chunks of plain trials queued per worker: a chunk is at most that share of what is left."""
+
+
 def default_chunk_size(spec: TrialSpec, remaining: int, workers: int) -> int:
     """Trials per unit of work: a few chunks per worker.
 
     At most one batch for batched specs (a large chunk is what makes a batch pay), else 50.
     """
     limit = DEFAULT_BATCH if batched(spec) else 50
-    parts = (2 if batched(spec) else 4) * workers
+    parts = (2 if batched(spec) else CHUNKS_PER_WORKER) * workers
     return max(1, min(limit, remaining // parts or 1))
 
 
@@ -136,16 +140,16 @@ def tapered(indices: Iterable[int], size: int, remaining: int, workers: int) -> 
         remaining: How many `indices` yields.
         workers: Processes sharing the work.
     """
-    floor = max(1, size // 8)
+    floor, parts = max(1, size // 8), CHUNKS_PER_WORKER * workers
     chunk: list[int] = []
-    want = max(floor, min(size, remaining // (4 * workers)))
+    want = max(floor, min(size, remaining // parts))
     for index in indices:
         chunk.append(index)
         if len(chunk) == want:
             yield chunk
             remaining -= want
             chunk = []
-            want = max(floor, min(size, remaining // (4 * workers)))
+            want = max(floor, min(size, remaining // parts))
     if chunk:
         yield chunk
 
